@@ -1,0 +1,65 @@
+#include <plyfit/exporters/atomic_file.hpp>
+
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <system_error>
+#include <unistd.h>
+
+namespace plyfit::exporters {
+
+namespace {
+std::string temp_name(const std::string& path) {
+  static std::atomic<unsigned> counter{0};
+  return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+}
+}  // namespace
+
+AtomicFile::AtomicFile(std::string path, bool binary)
+    : path_(std::move(path)), temp_(temp_name(path_)) {
+  out_.open(temp_, binary ? std::ios::out | std::ios::binary | std::ios::trunc
+                          : std::ios::out | std::ios::trunc);
+}
+
+AtomicFile::~AtomicFile() {
+  if (!done_) discard();
+}
+
+void AtomicFile::discard() {
+  if (out_.is_open()) out_.close();
+  std::error_code ec;
+  std::filesystem::remove(temp_, ec);
+  done_ = true;
+}
+
+Status AtomicFile::commit() {
+  if (done_) return Error{path_ + ": file already closed"};
+  if (!out_.is_open()) {
+    done_ = true;
+    return Error{path_ + ": cannot create the file (folder missing or not writable?)"};
+  }
+  out_.flush();
+  const bool good = static_cast<bool>(out_);
+  out_.close();
+  if (!good || out_.fail()) {
+    discard();
+    return Error{path_ + ": write failed (disk full?)"};
+  }
+  std::error_code ec;
+  std::filesystem::rename(temp_, path_, ec);
+  if (ec) {
+    discard();
+    return Error{path_ + ": cannot rename the finished file into place: " + ec.message()};
+  }
+  done_ = true;
+  return ok_status();
+}
+
+Status write_file_atomic(const std::string& path, const std::string& content) {
+  AtomicFile f(path);
+  if (!f.ok()) return Error{path + ": cannot create the file (folder missing or not writable?)"};
+  f.stream() << content;
+  return f.commit();
+}
+
+}  // namespace plyfit::exporters

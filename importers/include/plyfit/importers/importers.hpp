@@ -1,0 +1,64 @@
+#pragma once
+/// \file Mold importers: a registry of one-file plugins keyed by lower-case extension.
+///
+/// Opening a file reads it and lists its faces (kernel::Mold) without converting any
+/// surface; a face is converted to kernel data only when asked for.
+
+#include <plyfit/kernel/face.hpp>
+#include <plyfit/kernel/mold.hpp>
+#include <plyfit/kernel/result.hpp>
+#include <plyfit/kernel/tolerances.hpp>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace plyfit::importers {
+
+/// Options of every importer.
+struct ImportOptions {
+  /// Importer key that overrides the file extension ("step", "iges"); empty: by extension.
+  std::string format;
+  /// Tolerances; trim_chord_rel sets the accuracy of trim polylines.
+  Tolerances tolerances;
+};
+
+/// An opened mold file.
+class MoldFile {
+ public:
+  virtual ~MoldFile() = default;
+  /// The file's faces and metadata, listed without converting surfaces.
+  virtual const Mold& mold() const = 0;
+  /// Converts face `index` (0-based, as listed) to kernel data: the surface as NURBS
+  /// restricted to the face, its trim loops in (u, v), its orientation, area and name.
+  virtual Result<FaceData> convert_face(int index) = 0;
+};
+
+/// A registered importer.
+struct Importer {
+  std::string key;                      ///< e.g. "step"
+  std::vector<std::string> extensions;  ///< lower-case, without the dot
+  std::string description;
+  std::function<Result<std::unique_ptr<MoldFile>>(const std::string& path,
+                                                  const ImportOptions& options)>
+      open;
+};
+
+/// All registered importers, in registration order.
+const std::vector<Importer>& registry();
+/// Importer for a key or extension (case-insensitive), or nullptr.
+const Importer* find_importer(const std::string& key_or_extension);
+/// Comma-separated list of supported extensions, for error messages.
+std::string supported_extensions();
+
+/// Opens `path` with the importer named by options.format or by the file's extension.
+/// Errors name the file and the problem (missing, unreadable, corrupt, unknown extension,
+/// no faces).
+Result<std::unique_ptr<MoldFile>> open_mold(const std::string& path,
+                                            const ImportOptions& options = {});
+
+/// Opens `path` and converts face `index` into a kernel Face.
+Result<Face> load_face(const std::string& path, int index, const ImportOptions& options = {});
+
+}  // namespace plyfit::importers

@@ -1,0 +1,70 @@
+#include <plyfit/importers/importers.hpp>
+
+#include "plugins.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+namespace plyfit::importers {
+
+namespace {
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+}  // namespace
+
+const std::vector<Importer>& registry() {
+  // One registration line per format.
+  static const std::vector<Importer> list = {
+  };
+  return list;
+}
+
+const Importer* find_importer(const std::string& key_or_extension) {
+  const std::string k = lower(key_or_extension);
+  for (const auto& imp : registry()) {
+    if (imp.key == k) return &imp;
+    if (std::find(imp.extensions.begin(), imp.extensions.end(), k) != imp.extensions.end())
+      return &imp;
+  }
+  return nullptr;
+}
+
+std::string supported_extensions() {
+  std::string s;
+  for (const auto& imp : registry())
+    for (const auto& e : imp.extensions) s += (s.empty() ? "" : ", ") + e;
+  return s;
+}
+
+Result<std::unique_ptr<MoldFile>> open_mold(const std::string& path, const ImportOptions& options) {
+  const Importer* imp = nullptr;
+  if (!options.format.empty()) {
+    imp = find_importer(options.format);
+    if (!imp)
+      return Error{"unknown format '" + options.format + "' (supported: " +
+                   supported_extensions() + ")"};
+  } else {
+    std::string ext = std::filesystem::path(path).extension().string();
+    if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
+    imp = find_importer(ext);
+    if (!imp)
+      return Error{path + ": unknown file extension '" + ext + "' (supported: " +
+                   supported_extensions() + "; --format overrides)"};
+  }
+  return imp->open(path, options);
+}
+
+Result<Face> load_face(const std::string& path, int index, const ImportOptions& options) {
+  auto file = open_mold(path, options);
+  if (!file) return file.error();
+  auto data = (*file)->convert_face(index);
+  if (!data) return data.error();
+  auto face = Face::create(std::move(data).value(), options.tolerances);
+  if (!face) return Error{path + ": face " + std::to_string(index) + ": " + face.error().message};
+  return face;
+}
+
+}  // namespace plyfit::importers

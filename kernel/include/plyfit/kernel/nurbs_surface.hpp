@@ -1,0 +1,104 @@
+#pragma once
+/// \file Rational and non-rational B-spline (NURBS) surfaces, eq. (3) of the paper.
+
+#include <plyfit/kernel/result.hpp>
+#include <plyfit/kernel/tolerances.hpp>
+#include <plyfit/kernel/types.hpp>
+
+#include <vector>
+
+namespace plyfit {
+
+/// Plain data of a NURBS surface, as importers and constructors produce it. Validated by
+/// NurbsSurface::create().
+struct NurbsSurfaceData {
+  int degree_u = 1;  ///< degree in u (1..25)
+  int degree_v = 1;  ///< degree in v (1..25)
+  int count_u = 0;   ///< number of poles along u
+  int count_v = 0;   ///< number of poles along v
+  std::vector<double> knots_u;  ///< flat knot vector, count_u + degree_u + 1 values
+  std::vector<double> knots_v;  ///< flat knot vector, count_v + degree_v + 1 values
+  std::vector<Vec3> poles;      ///< count_u * count_v poles, index i * count_v + j (i along u)
+  std::vector<double> weights;  ///< empty for a non-rational surface, else one per pole (> 0)
+
+  /// Pole (i, j).
+  Vec3& pole(int i, int j) { return poles[static_cast<size_t>(i) * count_v + j]; }
+  const Vec3& pole(int i, int j) const { return poles[static_cast<size_t>(i) * count_v + j]; }
+  /// Weight of pole (i, j) (1 when non-rational).
+  double weight(int i, int j) const {
+    return weights.empty() ? 1.0 : weights[static_cast<size_t>(i) * count_v + j];
+  }
+};
+
+/// Point and first partial derivatives at (u, v). `ok` is false where the surface is not
+/// defined (a rational surface extended past its domain until its weight vanishes); the
+/// vectors are then zero, never NaN.
+struct SurfaceEval1 {
+  Vec3 p, du, dv;
+  bool ok = true;
+};
+
+/// Point and all partial derivatives up to second order at (u, v).
+struct SurfaceEval2 {
+  Vec3 p, du, dv, duu, duv, dvv;
+  bool ok = true;
+};
+
+/// Unit normal at (u, v). At a degenerate point (e.g. a pole where a whole edge collapses to
+/// one point) the normal is the limit from the interior and `degenerate` is set.
+struct SurfaceNormal {
+  Vec3 n = Vec3::UnitZ();
+  bool degenerate = false;
+  bool ok = true;  ///< false only if no limit could be found (then n is a placeholder)
+};
+
+/// A validated NURBS surface. Evaluation outside the parameter domain extends the end
+/// polynomials of the boundary spans (the surface "extended past its edge").
+class NurbsSurface {
+ public:
+  /// Validates `data` (knot count = poles + degree + 1, non-decreasing knots, multiplicity
+  /// <= degree + 1, a non-empty domain, finite poles, positive finite weights, degree 1..25)
+  /// and builds the surface. The error message names the first problem found.
+  static Result<NurbsSurface> create(NurbsSurfaceData data, const Tolerances& tol = {});
+
+  /// The plain data this surface was built from.
+  const NurbsSurfaceData& data() const { return data_; }
+  /// Parameter domain [U_p, U_n] x [V_q, V_m].
+  const ParamDomain& domain() const { return domain_; }
+  /// True when weights were given (even if all equal).
+  bool rational() const { return !data_.weights.empty(); }
+  /// Bounding box of the control net (contains the surface over its domain).
+  const BBox3& control_bbox() const { return bbox_; }
+
+  /// Point at (u, v).
+  Vec3 point(double u, double v) const;
+  /// Point and first derivatives.
+  SurfaceEval1 eval1(double u, double v) const;
+  /// Point and derivatives up to second order (exact quotient rule for rational surfaces).
+  SurfaceEval2 eval2(double u, double v) const;
+  /// Unit normal Su x Sv / |Su x Sv|, or its limit at a degenerate point.
+  SurfaceNormal normal(double u, double v) const;
+  /// True when |Su x Sv| is below the degenerate threshold at (u, v).
+  bool is_degenerate(const Vec3& du, const Vec3& dv) const;
+
+  /// Characteristic parametric speeds |dS/du| and |dS/dv| (control-net extent over domain
+  /// width), used to scale parameter-space tolerances.
+  double speed_u() const { return speed_u_; }
+  double speed_v() const { return speed_v_; }
+
+ private:
+  NurbsSurface() = default;
+  template <int ND, bool Rational>
+  void eval_homogeneous(double u, double v, double out[][4]) const;
+
+  NurbsSurfaceData data_;
+  std::vector<double> hpoles_;  // homogeneous poles (w x, w y, w z, w), stride 4
+  ParamDomain domain_;
+  BBox3 bbox_;
+  int first_span_u_ = 0, last_span_u_ = 0, first_span_v_ = 0, last_span_v_ = 0;
+  double speed_u_ = 1.0, speed_v_ = 1.0;
+  double min_weight_ = 1.0;
+  double degenerate_rel_ = 1e-8;
+};
+
+}  // namespace plyfit

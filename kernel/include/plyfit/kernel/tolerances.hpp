@@ -1,0 +1,37 @@
+#pragma once
+/// \file The one place where plyfit's tolerances live.
+///
+/// Every field is named after what it compares and is relative to a scale given by the
+/// problem: the spacing `d` of the ply, the size of the face, or the width of a parameter
+/// range. Algorithms multiply these by their scale; none uses a bare epsilon.
+
+namespace plyfit {
+
+/// Tolerances for geometry, solvers and the drape. All are dimensionless ratios unless the
+/// name says otherwise.
+struct Tolerances {
+  /// Newton stop, eq. (9): |F1| + |F2| < newton_residual_rel * d, where both F are lengths.
+  double newton_residual_rel = 1e-11;
+  /// Iteration cap of every Newton solve.
+  int newton_max_iterations = 40;
+  /// Cap on step halvings in a line search.
+  int line_search_max_halvings = 30;
+  /// A point is degenerate (pole) when |Su x Sv| < degenerate_rel * |Su|max * |Sv|max, the
+  /// maxima taken as the surface's characteristic parametric speeds.
+  double degenerate_rel = 1e-8;
+  /// Parameter values closer than param_rel * (domain width) are the same.
+  double param_rel = 1e-12;
+  /// Two ply points closer than ply_merge_rel * d are the same node (e.g. an auxiliary point
+  /// that falls on a thread crossing).
+  double ply_merge_rel = 1e-9;
+  /// Trim polylines deviate from the exact trim curve by at most trim_chord_rel * face size.
+  double trim_chord_rel = 1e-5;
+  /// During Newton, an iterate may leave the face's parameter domain by at most this many
+  /// parameter-space step lengths before the solve stops with "left the face".
+  double extension_steps = 2.0;
+  /// A rational surface extended past its domain is undefined where its weight falls below
+  /// extension_min_weight_rel times its smallest control weight.
+  double extension_min_weight_rel = 1e-3;
+};
+
+}  // namespace plyfit

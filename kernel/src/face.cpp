@@ -1,0 +1,291 @@
+#include <plyfit/kernel/face.hpp>
+
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace plyfit {
+
+namespace {
+
+// 5-point Gauss-Legendre rule on [-1, 1].
+constexpr double kGaussX[5] = {-0.9061798459386640, -0.5384693101056831, 0.0,
+                               0.5384693101056831, 0.9061798459386640};
+constexpr double kGaussW[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
+                               0.4786286704993665, 0.2369268850561891};
+
+// Distinct knot values inside the domain: the breakpoints of the polynomial pieces.
+std::vector<double> breakpoints(const std::vector<double>& knots, double a, double b) {
+  std::vector<double> out;
+  for (double k : knots)
+    if (k >= a && k <= b && (out.empty() || k > out.back())) out.push_back(k);
+  return out;
+}
+
+}  // namespace
+
+Result<Face> Face::create(FaceData data, const Tolerances& tol) {
+  auto surf = NurbsSurface::create(std::move(data.surface), tol);
+  if (!surf) return surf.error();
+  Face f;
+  f.surface_ = std::make_shared<const NurbsSurface>(std::move(surf).value());
+  f.tol_ = tol;
+  f.reversed_ = data.reversed;
+  f.closed_u_ = data.closed_u;
+  f.closed_v_ = data.closed_v;
+  f.name_ = std::move(data.name);
+  for (size_t l = 0; l < data.loops.size(); ++l) {
+    auto& loop = data.loops[l];
+    // Drop a repeated closing point.
+    if (loop.points.size() > 1 && loop.points.front() == loop.points.back()) loop.points.pop_back();
+    if (loop.points.size() < 3)
+      return Error{"trim loop " + std::to_string(l) + " has fewer than 3 points"};
+    for (const auto& p : loop.points)
+      if (!p.allFinite()) return Error{"trim loop " + std::to_string(l) + " has a non-finite point"};
+  }
+  f.loops_ = std::move(data.loops);
+  f.build_slabs();
+  // Bounding box from samples on the face (control boxes can be far larger).
+  for (const auto& s : sample_face(f, 33)) f.bbox_.add(s.second);
+  if (f.bbox_.empty) return Error{"no point of the face lies inside its trim loops"};
+  f.size_ = std::max(f.bbox_.diagonal(), f.surface_->control_bbox().diagonal() * 1e-6);
+  if (!(f.size_ > 0.0)) return Error{"the face has zero size"};
+  f.area_ = data.area > 0.0 ? data.area : f.compute_area();
+  return f;
+}
+
+std::vector<std::vector<Vec2>> Face::boundary_loops() const {
+  std::vector<std::vector<Vec2>> out;
+  if (loops_.empty()) {
+    const auto& d = domain();
+    out.push_back({Vec2(d.u0, d.v0), Vec2(d.u1, d.v0), Vec2(d.u1, d.v1), Vec2(d.u0, d.v1)});
+    return out;
+  }
+  for (const auto& l : loops_) out.push_back(l.points);
+  return out;
+}
+
+void Face::build_slabs() {
+  segs_.clear();
+  slabs_.clear();
+  if (loops_.empty()) return;
+  loops_min_ = loops_max_ = loops_.front().points.front();
+  for (const auto& l : loops_) {
+    const size_t n = l.points.size();
+    for (size_t k = 0; k < n; ++k) {
+      const Vec2& a = l.points[k];
+      const Vec2& b = l.points[(k + 1) % n];
+      loops_min_ = loops_min_.cwiseMin(a);
+      loops_max_ = loops_max_.cwiseMax(a);
+      if (a.y() != b.y()) segs_.push_back({a, b});  // horizontal edges never cross the ray
+    }
+  }
+  const int nslab = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(segs_.size()))), 1,
+                               4096);
+  slab_v0_ = loops_min_.y();
+  slab_h_ = std::max((loops_max_.y() - loops_min_.y()) / nslab, 1e-300);
+  slabs_.assign(nslab, {});
+  for (int s = 0; s < static_cast<int>(segs_.size()); ++s) {
+    const double lo = std::min(segs_[s].a.y(), segs_[s].b.y());
+    const double hi = std::max(segs_[s].a.y(), segs_[s].b.y());
+    const int k0 = std::clamp(static_cast<int>(std::floor((lo - slab_v0_) / slab_h_)), 0, nslab - 1);
+    const int k1 = std::clamp(static_cast<int>(std::floor((hi - slab_v0_) / slab_h_)), 0, nslab - 1);
+    for (int k = k0; k <= k1; ++k) slabs_[k].push_back(s);
+  }
+}
+
+bool Face::inside_trims(const Vec2& uv) const {
+  const double u = uv.x(), v = uv.y();
+  if (v < loops_min_.y() || v > loops_max_.y() || u < loops_min_.x() || u > loops_max_.x())
+    return false;
+  const int k = std::clamp(static_cast<int>(std::floor((v - slab_v0_) / slab_h_)), 0,
+                           static_cast<int>(slabs_.size()) - 1);
+  bool inside = false;
+  for (int s : slabs_[k]) {  // crossing number with half-open edges: robust at vertices
+    const Vec2& a = segs_[s].a;
+    const Vec2& b = segs_[s].b;
+    if ((a.y() > v) != (b.y() > v)) {
+      const double x = a.x() + (v - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
+      if (u < x) inside = !inside;
+    }
+  }
+  return inside;
+}
+
+bool Face::contains(const Vec2& uv) const {
+  const Vec2 w = wrap(uv);
+  const auto& d = domain();
+  if (!d.contains(w.x(), w.y(), tol_.param_rel * d.width_u(), tol_.param_rel * d.width_v()))
+    return false;
+  return loops_.empty() || inside_trims(w);
+}
+
+Vec2 Face::wrap(const Vec2& uv) const {
+  Vec2 w = uv;
+  const auto& d = domain();
+  if (closed_u_ && (w.x() < d.u0 || w.x() > d.u1)) {
+    const double P = d.width_u();
+    w.x() = d.u0 + (w.x() - d.u0) - P * std::floor((w.x() - d.u0) / P);
+  }
+  if (closed_v_ && (w.y() < d.v0 || w.y() > d.v1)) {
+    const double P = d.width_v();
+    w.y() = d.v0 + (w.y() - d.v0) - P * std::floor((w.y() - d.v0) / P);
+  }
+  return w;
+}
+
+Vec2 Face::delta(const Vec2& from, const Vec2& to) const {
+  Vec2 d = to - from;
+  const auto& dom = domain();
+  if (closed_u_) d.x() -= dom.width_u() * std::round(d.x() / dom.width_u());
+  if (closed_v_) d.y() -= dom.width_v() * std::round(d.y() / dom.width_v());
+  return d;
+}
+
+SurfaceEval1 Face::eval1(const Vec2& uv) const {
+  const Vec2 w = wrap(uv);
+  return surface_->eval1(w.x(), w.y());
+}
+
+SurfaceEval2 Face::eval2(const Vec2& uv) const {
+  const Vec2 w = wrap(uv);
+  return surface_->eval2(w.x(), w.y());
+}
+
+SurfaceNormal Face::normal(const Vec2& uv) const {
+  const Vec2 w = wrap(uv);
+  SurfaceNormal n = surface_->normal(w.x(), w.y());
+  if (reversed_) n.n = -n.n;
+  return n;
+}
+
+std::vector<std::pair<Vec2, Vec3>> sample_face(const Face& face, int n) {
+  const auto& s = face.surface();
+  const auto& d = s.domain();
+  const auto bu = breakpoints(s.data().knots_u, d.u0, d.u1);
+  const auto bv = breakpoints(s.data().knots_v, d.v0, d.v1);
+  const int nu = std::clamp(static_cast<int>(bu.size() - 1) * (s.data().degree_u + 1), n, 4 * n);
+  const int nv = std::clamp(static_cast<int>(bv.size() - 1) * (s.data().degree_v + 1), n, 4 * n);
+  std::vector<std::pair<Vec2, Vec3>> out;
+  out.reserve(static_cast<size_t>(nu + 1) * (nv + 1));
+  for (int i = 0; i <= nu; ++i) {
+    const double u = d.u0 + d.width_u() * i / nu;
+    for (int j = 0; j <= nv; ++j) {
+      const Vec2 uv(u, d.v0 + d.width_v() * j / nv);
+      if (!face.contains(uv)) continue;
+      const SurfaceEval1 e = face.eval1(uv);
+      if (e.ok) out.emplace_back(uv, e.p);
+    }
+  }
+  return out;
+}
+
+double Face::compute_area() const {
+  const auto& s = *surface_;
+  const auto& d = s.domain();
+  const auto bu = breakpoints(s.data().knots_u, d.u0, d.u1);
+  const auto bv = breakpoints(s.data().knots_v, d.v0, d.v1);
+  // Sub-divide each span so that each direction has at least ~64 Gauss points in all
+  // (rational and trimmed faces need them), and at most ~512.
+  const int su = std::clamp(64 / (5 * static_cast<int>(bu.size() - 1)) + 1, 1, 16);
+  const int sv = std::clamp(64 / (5 * static_cast<int>(bv.size() - 1)) + 1, 1, 16);
+  const int extra = loops_.empty() ? 1 : 4;
+  double area = 0.0;
+  for (size_t i = 0; i + 1 < bu.size(); ++i) {
+    for (int a = 0; a < su * extra; ++a) {
+      const double ua = bu[i] + (bu[i + 1] - bu[i]) * a / (su * extra);
+      const double ub = bu[i] + (bu[i + 1] - bu[i]) * (a + 1) / (su * extra);
+      for (size_t j = 0; j + 1 < bv.size(); ++j) {
+        for (int b = 0; b < sv * extra; ++b) {
+          const double va = bv[j] + (bv[j + 1] - bv[j]) * b / (sv * extra);
+          const double vb = bv[j] + (bv[j + 1] - bv[j]) * (b + 1) / (sv * extra);
+          double cell = 0.0;
+          for (int gi = 0; gi < 5; ++gi) {
+            const double u = 0.5 * (ua + ub) + 0.5 * (ub - ua) * kGaussX[gi];
+            for (int gj = 0; gj < 5; ++gj) {
+              const double v = 0.5 * (va + vb) + 0.5 * (vb - va) * kGaussX[gj];
+              if (!loops_.empty() && !inside_trims(Vec2(u, v))) continue;
+              const SurfaceEval1 e = s.eval1(u, v);
+              if (e.ok) cell += kGaussW[gi] * kGaussW[gj] * e.du.cross(e.dv).norm();
+            }
+          }
+          area += cell * 0.25 * (ub - ua) * (vb - va);
+        }
+      }
+    }
+  }
+  return area;
+}
+
+Projection Face::project(const Vec3& p) const {
+  Projection best;
+  const auto samples = sample_face(*this, 24);
+  if (samples.empty()) return best;
+  // Seeds: the few nearest samples.
+  std::vector<size_t> order(samples.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  const size_t nseed = std::min<size_t>(4, order.size());
+  std::partial_sort(order.begin(), order.begin() + nseed, order.end(), [&](size_t a, size_t b) {
+    return (samples[a].second - p).squaredNorm() < (samples[b].second - p).squaredNorm();
+  });
+  const auto& d = domain();
+  const double step_tol = tol_.param_rel;
+  for (size_t si = 0; si < nseed; ++si) {
+    Vec2 uv = samples[order[si]].first;
+    double dist = (samples[order[si]].second - p).norm();
+    // Newton on the point-inversion equations Su.(S - p) = Sv.(S - p) = 0, Levenberg-
+    // Marquardt damped, with a line search on the distance; stays inside the face.
+    double lambda = 0.0;
+    for (int it = 0; it < tol_.newton_max_iterations; ++it) {
+      const SurfaceEval2 e = eval2(uv);
+      if (!e.ok) break;
+      const Vec3 r = e.p - p;
+      const Vec2 g(e.du.dot(r), e.dv.dot(r));
+      Eigen::Matrix2d J;
+      J << e.du.dot(e.du) + r.dot(e.duu), e.du.dot(e.dv) + r.dot(e.duv),
+          e.du.dot(e.dv) + r.dot(e.duv), e.dv.dot(e.dv) + r.dot(e.dvv);
+      const double scale = J.diagonal().cwiseAbs().maxCoeff() + 1e-300;
+      if (J.determinant() <= 0.0 || J(0, 0) <= 0.0) lambda = std::max(lambda * 10, 1e-9);
+      Eigen::Matrix2d Jd = J;
+      Jd(0, 0) += lambda * scale;
+      Jd(1, 1) += lambda * scale;
+      Vec2 step = -Jd.fullPivLu().solve(g);
+      if (!step.allFinite()) break;
+      // Line search: accept the largest fraction that reduces the distance and stays on the face.
+      bool moved = false;
+      for (int h = 0; h < tol_.line_search_max_halvings; ++h) {
+        Vec2 cand = uv + step;
+        if (!closed_u_) cand.x() = std::clamp(cand.x(), d.u0, d.u1);
+        if (!closed_v_) cand.y() = std::clamp(cand.y(), d.v0, d.v1);
+        cand = wrap(cand);
+        if (contains(cand)) {
+          const SurfaceEval1 c = eval1(cand);
+          const double cd = (c.p - p).norm();
+          if (c.ok && cd <= dist) {
+            const bool small = (delta(uv, cand).cwiseAbs().array() <=
+                                step_tol * Eigen::Array2d(d.width_u(), d.width_v()))
+                                   .all();
+            uv = cand;
+            dist = cd;
+            moved = !small;
+            break;
+          }
+        }
+        step *= 0.5;
+      }
+      lambda *= 0.1;
+      if (!moved) break;
+    }
+    if (!best.ok || dist < best.distance) {
+      best.uv = uv;
+      best.point = eval1(uv).p;
+      best.distance = dist;
+      best.ok = true;
+    }
+  }
+  return best;
+}
+
+}  // namespace plyfit

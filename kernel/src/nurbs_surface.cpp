@@ -1,0 +1,229 @@
+#include <plyfit/kernel/nurbs_surface.hpp>
+
+#include "bspline_basis.hpp"
+#include "knot_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace plyfit {
+
+Result<NurbsSurface> NurbsSurface::create(NurbsSurfaceData data, const Tolerances& tol) {
+  if (auto s = detail::check_knots(data.knots_u, data.count_u, data.degree_u, "u"); !s)
+    return s.error();
+  if (auto s = detail::check_knots(data.knots_v, data.count_v, data.degree_v, "v"); !s)
+    return s.error();
+  const size_t n = static_cast<size_t>(data.count_u) * data.count_v;
+  if (data.poles.size() != n)
+    return Error{"pole count is " + std::to_string(data.poles.size()) + ", must be " +
+                 std::to_string(data.count_u) + " x " + std::to_string(data.count_v)};
+  if (!data.weights.empty() && data.weights.size() != n)
+    return Error{"weight count is " + std::to_string(data.weights.size()) + ", must be " +
+                 std::to_string(n)};
+  for (size_t k = 0; k < n; ++k) {
+    if (!data.poles[k].allFinite()) return Error{"pole " + std::to_string(k) + " is not finite"};
+    if (!data.weights.empty() && !(data.weights[k] > 0.0 && std::isfinite(data.weights[k])))
+      return Error{"weight " + std::to_string(k) + " is not a positive finite number"};
+  }
+
+  NurbsSurface s;
+  s.data_ = std::move(data);
+  const auto& d = s.data_;
+  s.hpoles_.resize(4 * n);
+  s.min_weight_ = 1.0;
+  for (size_t k = 0; k < n; ++k) {
+    const double w = d.weights.empty() ? 1.0 : d.weights[k];
+    s.min_weight_ = (k == 0) ? w : std::min(s.min_weight_, w);
+    s.hpoles_[4 * k + 0] = w * d.poles[k].x();
+    s.hpoles_[4 * k + 1] = w * d.poles[k].y();
+    s.hpoles_[4 * k + 2] = w * d.poles[k].z();
+    s.hpoles_[4 * k + 3] = w;
+    s.bbox_.add(d.poles[k]);
+  }
+  s.domain_ = {d.knots_u[d.degree_u], d.knots_u[d.count_u], d.knots_v[d.degree_v],
+               d.knots_v[d.count_v]};
+  detail::span_range(d.knots_u.data(), d.count_u - 1, d.degree_u, s.first_span_u_,
+                     s.last_span_u_);
+  detail::span_range(d.knots_v.data(), d.count_v - 1, d.degree_v, s.first_span_v_,
+                     s.last_span_v_);
+  const double size = std::max(s.bbox_.diagonal(), 1e-300);
+  s.speed_u_ = size / s.domain_.width_u();
+  s.speed_v_ = size / s.domain_.width_v();
+  s.degenerate_rel_ = tol.degenerate_rel;
+  s.min_weight_ *= tol.extension_min_weight_rel;
+  return s;
+}
+
+// out[c] = homogeneous derivative combination c: 0 S, 1 Su, 2 Sv, (ND=2) 3 Suu, 4 Suv, 5 Svv.
+template <int ND, bool Rational>
+void NurbsSurface::eval_homogeneous(double u, double v, double out[][4]) const {
+  const int p = data_.degree_u, q = data_.degree_v;
+  const double* U = data_.knots_u.data();
+  const double* V = data_.knots_v.data();
+  const int su = detail::find_span(U, first_span_u_, last_span_u_, u);
+  const int sv = detail::find_span(V, first_span_v_, last_span_v_, v);
+  double Nu[ND + 1][detail::kMaxBasis], Nv[ND + 1][detail::kMaxBasis];
+  detail::ders_basis<ND>(U, su, p, u, Nu);
+  detail::ders_basis<ND>(V, sv, q, v, Nv);
+  constexpr int W = Rational ? 4 : 3;
+  constexpr int NC = (ND + 1) * (ND + 2) / 2;
+  for (int c = 0; c < NC; ++c)
+    for (int k = 0; k < 4; ++k) out[c][k] = 0.0;
+  if constexpr (!Rational) {
+    for (int c = 0; c < NC; ++c) out[c][3] = (c == 0) ? 1.0 : 0.0;
+  }
+  const int cv = data_.count_v;
+  for (int i = 0; i <= p; ++i) {
+    // T[l] = sum_j Nv[l][j] * P(su - p + i, sv - q + j)
+    double T[ND + 1][4] = {};
+    const double* row = &hpoles_[4 * (static_cast<size_t>(su - p + i) * cv + (sv - q))];
+    for (int j = 0; j <= q; ++j) {
+      const double* P = row + 4 * j;
+      for (int l = 0; l <= ND; ++l) {
+        const double b = Nv[l][j];
+        for (int k = 0; k < W; ++k) T[l][k] += b * P[k];
+      }
+    }
+    const double a0 = Nu[0][i];
+    for (int k = 0; k < W; ++k) {
+      out[0][k] += a0 * T[0][k];
+      if constexpr (ND >= 1) {
+        out[1][k] += Nu[1][i] * T[0][k];
+        out[2][k] += a0 * T[1][k];
+      }
+      if constexpr (ND >= 2) {
+        out[3][k] += Nu[2][i] * T[0][k];
+        out[4][k] += Nu[1][i] * T[1][k];
+        out[5][k] += a0 * T[2][k];
+      }
+    }
+  }
+}
+
+namespace {
+inline Vec3 xyz(const double* h) { return Vec3(h[0], h[1], h[2]); }
+}  // namespace
+
+Vec3 NurbsSurface::point(double u, double v) const {
+  double h[1][4];
+  if (rational()) {
+    eval_homogeneous<0, true>(u, v, h);
+    if (!(h[0][3] > min_weight_)) return Vec3::Zero();
+    return xyz(h[0]) / h[0][3];
+  }
+  eval_homogeneous<0, false>(u, v, h);
+  return xyz(h[0]);
+}
+
+SurfaceEval1 NurbsSurface::eval1(double u, double v) const {
+  double h[3][4];
+  SurfaceEval1 r;
+  if (!rational()) {
+    eval_homogeneous<1, false>(u, v, h);
+    r.p = xyz(h[0]);
+    r.du = xyz(h[1]);
+    r.dv = xyz(h[2]);
+    return r;
+  }
+  eval_homogeneous<1, true>(u, v, h);
+  const double w = h[0][3];
+  if (!(w > min_weight_)) {
+    r.p = r.du = r.dv = Vec3::Zero();
+    r.ok = false;
+    return r;
+  }
+  const double iw = 1.0 / w;
+  r.p = xyz(h[0]) * iw;
+  r.du = (xyz(h[1]) - h[1][3] * r.p) * iw;
+  r.dv = (xyz(h[2]) - h[2][3] * r.p) * iw;
+  return r;
+}
+
+SurfaceEval2 NurbsSurface::eval2(double u, double v) const {
+  double h[6][4];
+  SurfaceEval2 r;
+  if (!rational()) {
+    eval_homogeneous<2, false>(u, v, h);
+    r.p = xyz(h[0]);
+    r.du = xyz(h[1]);
+    r.dv = xyz(h[2]);
+    r.duu = xyz(h[3]);
+    r.duv = xyz(h[4]);
+    r.dvv = xyz(h[5]);
+    return r;
+  }
+  eval_homogeneous<2, true>(u, v, h);
+  const double w = h[0][3];
+  if (!(w > min_weight_)) {
+    r.p = r.du = r.dv = r.duu = r.duv = r.dvv = Vec3::Zero();
+    r.ok = false;
+    return r;
+  }
+  // Quotient rule on homogeneous derivatives (The NURBS Book, A4.4).
+  const double iw = 1.0 / w;
+  const double wu = h[1][3], wv = h[2][3], wuu = h[3][3], wuv = h[4][3], wvv = h[5][3];
+  r.p = xyz(h[0]) * iw;
+  r.du = (xyz(h[1]) - wu * r.p) * iw;
+  r.dv = (xyz(h[2]) - wv * r.p) * iw;
+  r.duu = (xyz(h[3]) - 2.0 * wu * r.du - wuu * r.p) * iw;
+  r.duv = (xyz(h[4]) - wu * r.dv - wv * r.du - wuv * r.p) * iw;
+  r.dvv = (xyz(h[5]) - 2.0 * wv * r.dv - wvv * r.p) * iw;
+  return r;
+}
+
+bool NurbsSurface::is_degenerate(const Vec3& du, const Vec3& dv) const {
+  return du.cross(dv).norm() <= degenerate_rel_ * speed_u_ * speed_v_;
+}
+
+SurfaceNormal NurbsSurface::normal(double u, double v) const {
+  SurfaceNormal out;
+  const SurfaceEval2 e = eval2(u, v);
+  if (!e.ok) {
+    out.ok = false;
+    return out;
+  }
+  const Vec3 c = e.du.cross(e.dv);
+  if (!is_degenerate(e.du, e.dv)) {
+    out.n = c.normalized();
+    return out;
+  }
+  out.degenerate = true;
+  // First-order limit: N(u + h, v) ~ h * d(Su x Sv)/du, taken towards the domain interior.
+  const double su = (u <= 0.5 * (domain_.u0 + domain_.u1)) ? 1.0 : -1.0;
+  const double sv = (v <= 0.5 * (domain_.v0 + domain_.v1)) ? 1.0 : -1.0;
+  const Vec3 cu = su * (e.duu.cross(e.dv) + e.du.cross(e.duv));
+  const Vec3 cv = sv * (e.duv.cross(e.dv) + e.du.cross(e.dvv));
+  // The collapsed direction is the one whose first derivative vanishes; move across it.
+  const bool dv_vanishes = e.dv.norm() * speed_u_ <= e.du.norm() * speed_v_;
+  const Vec3& first = dv_vanishes ? cu : cv;
+  const Vec3& second = dv_vanishes ? cv : cu;
+  const double thresh = degenerate_rel_ * speed_u_ * speed_v_ *
+                        std::max(1.0 / domain_.width_u(), 1.0 / domain_.width_v());
+  if (first.norm() > thresh) {
+    out.n = first.normalized();
+    return out;
+  }
+  if (second.norm() > thresh) {
+    out.n = second.normalized();
+    return out;
+  }
+  // Higher-order degeneracy: average normals at nearby interior points.
+  Vec3 acc = Vec3::Zero();
+  for (double f : {1e-6, 1e-5, 1e-4}) {
+    const double uu = u + su * f * domain_.width_u();
+    const double vv = v + sv * f * domain_.width_v();
+    const SurfaceEval1 n1 = eval1(uu, vv);
+    const Vec3 cc = n1.du.cross(n1.dv);
+    if (n1.ok && cc.norm() > 0.0 && cc.allFinite()) acc += cc.normalized();
+    if (acc.norm() > 0.5) break;
+  }
+  if (acc.norm() > 0.0) {
+    out.n = acc.normalized();
+  } else {
+    out.ok = false;
+  }
+  return out;
+}
+
+}  // namespace plyfit
