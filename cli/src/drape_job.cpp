@@ -52,7 +52,7 @@ const std::vector<OptionSpec>& drape_options() {
       {"warn-angle", "DEG", "", "shear above which cells are flagged (default: lock angle - 5)", false, "material"},
       {"material", "TEXT", "woven", "material name for labels", false, "material"},
       {"ply-name", "TEXT", "ply", "ply name for labels", false, "material"},
-      {"tolerance", "T", "1e-11", "Newton tolerance relative to the spacing (eq. 9)", false, "numerics"},
+      {"tolerance", "T", "1e-14", "Newton tolerance relative to the spacing (eq. 9)", false, "numerics"},
       {"max-iterations", "N", "40", "Newton iteration cap per node", false, "numerics"},
       {"guess", "paper|parallelogram", "paper", "initial guess of the two-sphere solver", false, "numerics"},
       {"max-nodes", "N", "50000000", "stop after reaching this many nodes", false, "numerics"},

@@ -44,7 +44,7 @@ struct DrapeJob {
   DrapeProblem problem;
   DrapeOptions drape;        ///< lock angle, tolerances, guess rule, node cap
   double lock_angle_deg = 90.0;
-  double tolerance_rel = 1e-11;
+  double tolerance_rel = 1e-14;
   int max_iterations = 40;
   bool flip_normal = false;
   std::string outdir;

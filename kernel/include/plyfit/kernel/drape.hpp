@@ -63,7 +63,9 @@ class NodeIndex {
     std::uint64_t key = kEmpty;
     std::uint32_t value = 0;
   };
-  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+  // The key of NodeId::path(INT32_MIN): no node has it (path indices stay within
+  // +-Ply::kMaxPathNodes). (All ones would be the key of regular node (-1, -1).)
+  static constexpr std::uint64_t kEmpty = (std::uint64_t{0x7fffffff} << 32) | 0x80000000u;
   void grow();
   std::vector<Slot> slots_;
   std::size_t size_ = 0;
