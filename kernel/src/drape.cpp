@@ -1,5 +1,7 @@
 #include <plyfit/kernel/drape.hpp>
 
+#include "cells.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -551,92 +553,21 @@ void thread_angles(DrapeResult& res) {
 // 2D and 3D area of the mapped cells. A cell the base path crosses is split by the path
 // into two convex parts, each counted if all its corners are mapped.
 void cell_areas(DrapeResult& res) {
-  const Ply& ply = *res.ply;
   double a2 = 0.0, a3 = 0.0;
-  auto add_polygon = [&](const std::vector<const DrapeNode*>& poly) {
-    for (const DrapeNode* v : poly)
-      if (!v || !v->mapped()) return;
-    for (std::size_t k = 1; k + 1 < poly.size(); ++k) {
-      a2 += tri_area2(poly[0]->ply, poly[k]->ply, poly[k + 1]->ply);
-      a3 += tri_area(poly[0]->point, poly[k]->point, poly[k + 1]->point);
-    }
-  };
-  for (const DrapeNode& n : res.nodes) {
-    if (!n.mapped() || n.id.is_path_only()) continue;
-    const std::int32_t i = n.id.i, j = n.id.j;
-    // Cell with lower-left corner (i, j): corners counter-clockwise, with the path nodes that
-    // split its edges.
-    const NodeId corner[4] = {NodeId::regular(i, j), NodeId::regular(i + 1, j),
-                              NodeId::regular(i + 1, j + 1), NodeId::regular(i, j + 1)};
-    const ThreadDir edge_dir[4] = {ThreadDir::kPlusX, ThreadDir::kPlusY, ThreadDir::kMinusX,
-                                   ThreadDir::kMinusY};
-    std::vector<NodeId> ring;
-    bool cut = false;
-    for (int e = 0; e < 4; ++e) {
-      ring.push_back(corner[e]);
-      const auto nb = ply.neighbour(corner[e].i, corner[e].j, edge_dir[e]);
-      if (!nb) {
-        cut = true;  // split by a path node that was never generated: count nothing
-        ring.clear();
-        break;
-      }
-      if (nb->id.is_path_only()) {
-        ring.push_back(nb->id);
-        cut = true;
-      }
-    }
-    if (ring.empty()) continue;
-    // Are the corners on both sides of the path (or is a path node inside the cell)?
-    int sides = 0;
-    for (const NodeId& c : corner) sides |= (ply.side(ply.pos(c.i, c.j)) > 0 ? 1 : 0) | (ply.side(ply.pos(c.i, c.j)) < 0 ? 2 : 0);
-    const bool crossed = cut || sides == 3;
-    if (!crossed) {
+  detail::for_each_touched_cell(res, [&](std::int32_t i, std::int32_t j) {
+    for (const auto& part : detail::cell_parts(*res.ply, i, j)) {
       std::vector<const DrapeNode*> poly;
-      for (const NodeId& c : corner) poly.push_back(res.find(c));
-      add_polygon(poly);
-      continue;
-    }
-    // Split the ring by the path: path nodes on the ring (splits, and corners on the path)
-    // plus path-only nodes strictly inside the cell (the start) form the cut.
-    std::vector<const DrapeNode*> inside;
-    const Vec2 lo = ply.pos(i, j), hi = ply.pos(i + 1, j + 1);
-    for (std::uint32_t k : res.base_path) {
-      const DrapeNode& p = res.nodes[k];
-      if (!p.id.is_path_only()) continue;
-      if (p.ply.x() > lo.x() && p.ply.x() < hi.x() && p.ply.y() > lo.y() && p.ply.y() < hi.y())
-        inside.push_back(&p);
-    }
-    for (int s : {1, -1}) {
-      std::vector<const DrapeNode*> poly;
-      std::vector<Vec2> pos2;
-      for (const NodeId& id : ring) {
-        const Vec2 p = ply.pos(id);
-        const int sd = id.is_path_only() ? 0 : ply.side(p);
-        if (sd == s || sd == 0) {
-          poly.push_back(res.find(id));
-          pos2.push_back(p);
-        }
+      for (const NodeId& id : part) {
+        const DrapeNode* v = res.find(id);
+        if (!v || !v->mapped()) return;
+        poly.push_back(v);
       }
-      if (poly.size() + inside.size() < 3) continue;
-      for (const DrapeNode* p : inside) {
-        poly.push_back(p);
-        pos2.push_back(p->ply);
+      for (std::size_t k = 1; k + 1 < poly.size(); ++k) {
+        a2 += tri_area2(poly[0]->ply, poly[k]->ply, poly[k + 1]->ply);
+        a3 += tri_area(poly[0]->point, poly[k]->point, poly[k + 1]->point);
       }
-      // Order the convex part counter-clockwise about its centroid.
-      Vec2 c = Vec2::Zero();
-      for (const auto& p : pos2) c += p;
-      c /= static_cast<double>(pos2.size());
-      std::vector<std::size_t> ord(poly.size());
-      for (std::size_t k = 0; k < ord.size(); ++k) ord[k] = k;
-      std::sort(ord.begin(), ord.end(), [&](std::size_t x, std::size_t y) {
-        return std::atan2(pos2[x].y() - c.y(), pos2[x].x() - c.x()) <
-               std::atan2(pos2[y].y() - c.y(), pos2[y].x() - c.x());
-      });
-      std::vector<const DrapeNode*> sorted;
-      for (std::size_t k : ord) sorted.push_back(poly[k]);
-      add_polygon(sorted);
     }
-  }
+  });
   res.metrics.flat_area = a2;
   res.metrics.surface_area = a3;
 }

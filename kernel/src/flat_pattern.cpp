@@ -1,10 +1,552 @@
 #include <plyfit/kernel/flat_pattern.hpp>
+#include <plyfit/kernel/solvers.hpp>
+
+#include "cells.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <unordered_map>
 
 namespace plyfit {
 
-// Interim: the exact outline is not implemented yet (issue 6); nothing is reported.
-FlatPattern flat_pattern(const DrapeSurface&, const DrapeResult&, const FlatPatternOptions&) {
-  return {};
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Bisection steps for a boundary crossing along a cell edge (2^-60 of the edge), used where
+// the segment intersections disagree with contains() (a node on the boundary itself).
+constexpr int kCrossingBisections = 60;
+// Barycentric slack when locating a (u, v) point in a cell's triangles (rounding only).
+constexpr double kBarycentricSlack = 1e-12;
+// Corners the drape never reached are solved on the surface extended this many steps past
+// the face.
+constexpr double kVirtualExtensionSteps = 4.0;
+// Virtual corners may be solved from virtual corners this many layers deep.
+constexpr int kVirtualLayers = 2;
+// Cells of the grid index over boundary segments, per direction (at most).
+constexpr int kGridMax = 256;
+
+// A vertex of the outline polygons: a node, an edge crossing or a boundary vertex.
+struct Vertex {
+  Vec2 p2 = Vec2::Zero();  // ply coordinates
+  Vec2 uv = Vec2::Zero();  // surface parameters (if has_uv)
+  bool has_uv = false;
+  bool in = false;  // on the face
+};
+
+// The face boundary as segments in (u, v), with copies shifted by a period across closed
+// seams, in a uniform grid for segment queries. Domain edges along a closed seam are not
+// boundaries and are left out.
+class BoundaryIndex {
+ public:
+  struct Seg {
+    Vec2 a, b;
+    int loop, index;  // position in the boundary loops
+  };
+
+  BoundaryIndex(const DrapeSurface& s, const std::vector<std::vector<Vec2>>& loops) {
+    const auto& d = s.domain();
+    const bool cu = s.wrap(Vec2(d.u1 + 0.5 * d.width_u(), d.v0)).x() <= d.u1;
+    const bool cv = s.wrap(Vec2(d.u0, d.v1 + 0.5 * d.width_v())).y() <= d.v1;
+    const double eu = d.width_u() * 1e-12, ev = d.width_v() * 1e-12;  // on-seam test, rounding
+    for (int l = 0; l < static_cast<int>(loops.size()); ++l) {
+      const auto& L = loops[l];
+      for (int k = 0; k < static_cast<int>(L.size()); ++k) {
+        const Vec2 a = L[k], b = L[(k + 1) % L.size()];
+        auto on = [](double x, double y, double e) { return std::abs(x - y) <= e; };
+        if (cu && ((on(a.x(), d.u0, eu) && on(b.x(), d.u0, eu)) || (on(a.x(), d.u1, eu) && on(b.x(), d.u1, eu)))) continue;
+        if (cv && ((on(a.y(), d.v0, ev) && on(b.y(), d.v0, ev)) || (on(a.y(), d.v1, ev) && on(b.y(), d.v1, ev)))) continue;
+        for (int su = cu ? -1 : 0; su <= (cu ? 1 : 0); ++su)
+          for (int sv = cv ? -1 : 0; sv <= (cv ? 1 : 0); ++sv) {
+            const Vec2 sh(su * d.width_u(), sv * d.width_v());
+            segs_.push_back({a + sh, b + sh, l, k});
+          }
+      }
+    }
+    if (segs_.empty()) return;
+    lo_ = hi_ = segs_[0].a;
+    for (const Seg& g : segs_) {
+      lo_ = lo_.cwiseMin(g.a).cwiseMin(g.b);
+      hi_ = hi_.cwiseMax(g.a).cwiseMax(g.b);
+    }
+    n_ = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(segs_.size()))), 1, kGridMax);
+    cell_ = ((hi_ - lo_) / n_).cwiseMax(Vec2::Constant(1e-300));
+    grid_.assign(static_cast<std::size_t>(n_) * n_, {});
+    for (int k = 0; k < static_cast<int>(segs_.size()); ++k) {
+      int i0, j0, i1, j1;
+      range(segs_[k].a.cwiseMin(segs_[k].b), segs_[k].a.cwiseMax(segs_[k].b), i0, j0, i1, j1);
+      for (int i = i0; i <= i1; ++i)
+        for (int j = j0; j <= j1; ++j) grid_[static_cast<std::size_t>(i) * n_ + j].push_back(k);
+    }
+  }
+
+  // Parameters t in (0, 1) where segment p -> q crosses the boundary, sorted, with the
+  // segment crossed. Half-open rules count a crossing through a boundary vertex once.
+  std::vector<std::pair<double, int>> crossings(const Vec2& p, const Vec2& q) const {
+    std::vector<std::pair<double, int>> out;
+    if (segs_.empty()) return out;
+    int i0, j0, i1, j1;
+    range(p.cwiseMin(q), p.cwiseMax(q), i0, j0, i1, j1);
+    std::vector<int> cand;
+    for (int i = i0; i <= i1; ++i)
+      for (int j = j0; j <= j1; ++j)
+        for (int k : grid_[static_cast<std::size_t>(i) * n_ + j]) cand.push_back(k);
+    std::sort(cand.begin(), cand.end());
+    cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
+    const Vec2 r = q - p;
+    for (int k : cand) {
+      const Vec2 a = segs_[k].a, e = segs_[k].b - segs_[k].a;
+      const double den = cross2(r, e);
+      if (den == 0.0) continue;  // parallel
+      const double t = cross2(a - p, e) / den;
+      const double s = cross2(a - p, r) / den;
+      if (t > 0.0 && t < 1.0 && s >= 0.0 && s < 1.0) out.push_back({t, k});
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+
+  const Seg& seg(int k) const { return segs_[k]; }
+  bool empty() const { return segs_.empty(); }
+
+ private:
+  void range(const Vec2& a, const Vec2& b, int& i0, int& j0, int& i1, int& j1) const {
+    auto idx = [&](double x, double o, double c) {
+      return std::clamp(static_cast<int>(std::floor((x - o) / c)), 0, n_ - 1);
+    };
+    i0 = idx(a.x(), lo_.x(), cell_.x());
+    i1 = idx(b.x(), lo_.x(), cell_.x());
+    j0 = idx(a.y(), lo_.y(), cell_.y());
+    j1 = idx(b.y(), lo_.y(), cell_.y());
+  }
+  std::vector<Seg> segs_;
+  Vec2 lo_ = Vec2::Zero(), hi_ = Vec2::Zero(), cell_ = Vec2::Ones();
+  int n_ = 1;
+  std::vector<std::vector<int>> grid_;
+};
+
+class Builder {
+ public:
+  Builder(const DrapeSurface& s, const DrapeResult& r)
+      : s_(s), r_(r), ply_(*r.ply), loops_(s.boundary_loops()), index_(s, loops_) {
+    st_.spacing = ply_.d();
+    st_.gamma_min = 0.0;
+    st_.tol.extension_steps = kVirtualExtensionSteps;
+  }
+
+  FlatPattern run() {
+    // Positions of the corners the drape did not reach, layer by layer.
+    for (int layer = 0; layer < kVirtualLayers; ++layer) {
+      std::vector<NodeId> todo;
+      detail::for_each_touched_cell(
+          r_,
+          [&](std::int32_t i, std::int32_t j) {
+            for (const NodeId& c : {NodeId::regular(i, j), NodeId::regular(i + 1, j),
+                                    NodeId::regular(i + 1, j + 1), NodeId::regular(i, j + 1)})
+              if (!position(c)) todo.push_back(c);
+          },
+          1);
+      for (const NodeId& c : todo) solve_virtual(c);
+    }
+    detail::for_each_touched_cell(
+        r_,
+        [&](std::int32_t i, std::int32_t j) {
+          for (const auto& part : detail::cell_parts(ply_, i, j)) add_part(part);
+        },
+        1);
+    FlatPattern fp;
+    fp.outline = assemble(exact_);
+    fp.staircase = assemble(stair_);
+    for (const auto& l : fp.outline) {
+      fp.area += l.hole ? -l.area : l.area;
+      fp.perimeter += l.perimeter;
+    }
+    return fp;
+  }
+
+ private:
+  using Polygon = std::vector<int>;  // vertex indices, counter-clockwise
+  struct Position {
+    Vec2 uv;
+    Vec3 point;
+    bool in;
+  };
+
+  // Known position of a node: mapped, extended by the drape, or virtual.
+  std::optional<Position> position(const NodeId& id) const {
+    if (const DrapeNode* n = r_.find(id)) {
+      if (n->mapped()) return Position{n->uv, n->point, true};
+      if (n->has(DrapeNode::kExtended)) return Position{n->uv, n->point, false};
+    }
+    const auto it = virtual_.find(id.key());
+    if (it != virtual_.end()) return it->second;
+    return std::nullopt;
+  }
+
+  // A corner the drape never reached, beyond the face: solved from a weft and a warp
+  // neighbour with positions, or by continuing a thread through a neighbour. Kept only if
+  // it lands outside the face (inside, the drape stopped for another reason, or the node is
+  // in an unswept half-plane: the outline stays on the mapped side there).
+  void solve_virtual(const NodeId& id) {
+    if (id.is_path_only() || virtual_.count(id.key())) return;
+    if (const DrapeNode* n = r_.find(id); n && (n->mapped() || n->has(DrapeNode::kExtended))) return;
+    const Vec2 q2 = ply_.pos(id);
+    if (ply_.side(q2) != 0 && ply_.sweep_for_side(ply_.side(q2)) < 0) return;
+    struct Nb {
+      NodeId id;
+      double rest;
+      Position p;
+      ThreadDir dir;
+    };
+    std::vector<Nb> nbs;
+    for (int d = 0; d < 4; ++d) {
+      const auto dir = static_cast<ThreadDir>(d);
+      const auto n = ply_.neighbour(id.i, id.j, dir);
+      if (!n) continue;
+      if (auto p = position(n->id)) nbs.push_back({n->id, n->rest, *p, dir});
+    }
+    auto accept = [&](const SolveResult& res) {
+      if (!(res.status == SolveStatus::kLeftFace && res.extended)) return false;
+      virtual_[id.key()] = Position{res.uv, res.point, false};
+      return true;
+    };
+    for (const Nb& a : nbs)
+      for (const Nb& b : nbs) {
+        if (!is_weft(a.dir) || is_weft(b.dir)) continue;
+        const double side = cross2(ply_.pos(b.id) - ply_.pos(a.id), q2 - ply_.pos(a.id)) > 0 ? 1.0 : -1.0;
+        if (accept(solve_two_spheres(s_, {a.p.point, a.p.uv, a.rest, b.p.point, b.p.uv, b.rest, side, std::nullopt}, st_)))
+          return;
+      }
+    for (const Nb& a : nbs) {
+      // Continue the thread through a: its predecessor beyond a, away from the node.
+      std::optional<PlyNeighbour> before;
+      if (!a.id.is_path_only()) {
+        before = ply_.neighbour(a.id.i, a.id.j, a.dir);
+      } else {
+        for (const auto& tn : ply_.thread_neighbours(a.id))
+          if (tn.dir == a.dir) before = tn.n;
+      }
+      if (!before) continue;
+      const auto pb = position(before->id);
+      if (!pb) continue;
+      if (accept(solve_plane_sphere(s_, {a.p.point, a.p.uv, a.rest, a.p.point - pb->point}, st_))) return;
+    }
+  }
+
+  // Vertex index of a node (creating it).
+  int node_vertex(const NodeId& id) {
+    const auto it = node_vertices_.find(id.key());
+    if (it != node_vertices_.end()) return it->second;
+    Vertex v;
+    v.p2 = ply_.pos(id);
+    if (const auto p = position(id)) {
+      v.has_uv = true;
+      v.uv = p->uv;
+      v.in = p->in;
+    }
+    verts_.push_back(v);
+    const int k = static_cast<int>(verts_.size()) - 1;
+    node_vertices_[id.key()] = k;
+    return k;
+  }
+
+  // Boundary crossings on the edge between vertices a and b, in order from a to b: the
+  // intersections of the edge's (u, v) segment with the face boundary, their count checked
+  // against contains() at the ends (bisection when a node sits on the boundary itself).
+  // Computed once per edge so that both cells sharing it get the same points.
+  std::vector<int> crossings(int a, int b) {
+    const bool flip = b < a;
+    const std::pair<int, int> key = flip ? std::pair{b, a} : std::pair{a, b};
+    auto it = crossings_.find(key);
+    if (it == crossings_.end()) {
+      const Vertex P = verts_[key.first];
+      const Vertex Q = verts_[key.second];
+      const Vec2 pu = P.uv, qu = P.uv + s_.delta(P.uv, Q.uv);
+      std::vector<double> ts;
+      for (const auto& c : index_.crossings(pu, qu)) ts.push_back(c.first);
+      const bool odd = ts.size() % 2 == 1;
+      if (odd != (P.in != Q.in)) {
+        ts.clear();
+        if (P.in != Q.in) {
+          double lo = 0.0, hi = 1.0;
+          for (int k = 0; k < kCrossingBisections; ++k) {
+            const double mid = 0.5 * (lo + hi);
+            ((s_.contains(pu + mid * (qu - pu)) == P.in) ? lo : hi) = mid;
+          }
+          ts.push_back(0.5 * (lo + hi));
+        }
+      }
+      std::vector<int> ids;
+      for (double t : ts) {
+        Vertex x;
+        x.p2 = P.p2 + t * (Q.p2 - P.p2);
+        x.uv = s_.wrap(pu + t * (qu - pu));
+        x.has_uv = x.in = true;
+        verts_.push_back(x);
+        ids.push_back(static_cast<int>(verts_.size()) - 1);
+      }
+      it = crossings_.emplace(key, std::move(ids)).first;
+    }
+    std::vector<int> out = it->second;
+    if (flip) std::reverse(out.begin(), out.end());
+    return out;
+  }
+
+  void add_part(const std::vector<NodeId>& part) {
+    Polygon poly;
+    int nin = 0;
+    bool all_uv = true;
+    for (const NodeId& id : part) {
+      const int v = node_vertex(id);
+      poly.push_back(v);
+      nin += verts_[v].in ? 1 : 0;
+      all_uv = all_uv && verts_[v].has_uv;
+    }
+    if (nin == static_cast<int>(poly.size())) {
+      stair_.push_back(poly);
+      // Still clip: the boundary may cross an edge twice between two mapped nodes.
+    }
+    if (!all_uv) {
+      if (nin == static_cast<int>(poly.size())) exact_.push_back(poly);
+      return;  // a corner without a position: only whole mapped parts count
+    }
+    Polygon c = clip(poly);
+    if (c.size() >= 3) exact_.push_back(std::move(c));
+  }
+
+  // The part of a polygon on the face: its vertices on the face, the boundary crossings on
+  // its edges, and between an exit and the next entry the face boundary itself, carried into
+  // ply coordinates by the part's own piecewise-affine interpolation.
+  Polygon clip(const Polygon& poly) {
+    const std::size_t m = poly.size();
+    std::vector<Vec2> uvw(m);  // unwrapped relative to the first corner
+    for (std::size_t k = 0; k < m; ++k)
+      uvw[k] = verts_[poly[0]].uv + s_.delta(verts_[poly[0]].uv, verts_[poly[k]].uv);
+    struct Item {
+      int v;
+      int kind;  // 0 vertex, 1 exit crossing, 2 entry crossing
+    };
+    std::vector<Item> items;
+    for (std::size_t k = 0; k < m; ++k) {
+      const int a = poly[k], b = poly[(k + 1) % m];
+      bool in = verts_[a].in;
+      if (in) items.push_back({a, 0});
+      for (int x : crossings(a, b)) {
+        items.push_back({x, in ? 1 : 2});
+        in = !in;
+      }
+    }
+    if (items.empty()) return {};
+    Polygon out;
+    const std::size_t n = items.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      out.push_back(items[k].v);
+      if (items[k].kind != 1) continue;
+      for (std::size_t q = 1; q < n; ++q) {
+        const Item& e = items[(k + q) % n];
+        if (e.kind == 2) {
+          for (int w : boundary_walk(items[k].v, e.v, poly, uvw)) out.push_back(w);
+          break;
+        }
+        if (e.kind == 1) break;
+      }
+    }
+    return out;
+  }
+
+  // The boundary segment (loop, index) a crossing lies on: the nearest one.
+  std::pair<int, int> segment_of(const Vec2& uv) const {
+    std::pair<int, int> best{-1, -1};
+    double bd = INFINITY;
+    for (std::size_t l = 0; l < loops_.size(); ++l) {
+      const auto& L = loops_[l];
+      for (std::size_t k = 0; k < L.size(); ++k) {
+        const Vec2 a = uv + s_.delta(uv, L[k]);
+        const Vec2 b = a + s_.delta(L[k], L[(k + 1) % L.size()]);
+        const Vec2 ab = b - a;
+        const double t = ab.squaredNorm() > 0 ? std::clamp((uv - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+        const double d = (a + t * ab - uv).norm();
+        if (d < bd) {
+          bd = d;
+          best = {static_cast<int>(l), static_cast<int>(k)};
+        }
+      }
+    }
+    return best;
+  }
+
+  static bool in_polygon(const std::vector<Vec2>& poly, const Vec2& p) {
+    bool in = false;
+    for (std::size_t k = 0, n = poly.size(); k < n; ++k) {
+      const Vec2& a = poly[k];
+      const Vec2& b = poly[(k + 1) % n];
+      if ((a.y() > p.y()) != (b.y() > p.y()) &&
+          p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
+        in = !in;
+    }
+    return in;
+  }
+
+  // Ply coordinates of a (u, v) point of the part: the fan triangles (0, k, k + 1) map
+  // affinely between (u, v) and the ply.
+  Vec2 to_ply(const Polygon& poly, const std::vector<Vec2>& uvw, const Vec2& uv) const {
+    Vec2 best = verts_[poly[0]].p2;
+    double best_min = -INFINITY;
+    for (std::size_t k = 1; k + 1 < poly.size(); ++k) {
+      const Vec2 a = uvw[0], b = uvw[k], c = uvw[k + 1];
+      const double det = cross2(b - a, c - a);
+      if (det == 0.0) continue;
+      const double l1 = cross2(uv - a, c - a) / det, l2 = cross2(b - a, uv - a) / det;
+      const double l0 = 1.0 - l1 - l2;
+      const double mn = std::min({l0, l1, l2});
+      if (mn > best_min) {
+        best_min = mn;
+        best = l0 * verts_[poly[0]].p2 + l1 * verts_[poly[k]].p2 + l2 * verts_[poly[k + 1]].p2;
+      }
+      if (mn >= -kBarycentricSlack) break;
+    }
+    return best;
+  }
+
+  // Face-boundary vertices between crossings x (exit) and y (entry) that lie inside the
+  // part, as new vertices in ply coordinates; the way round the loop that stays inside.
+  std::vector<int> boundary_walk(int x, int y, const Polygon& poly, const std::vector<Vec2>& uvw) {
+    if (loops_.empty()) return {};
+    const auto sx = segment_of(verts_[x].uv), sy = segment_of(verts_[y].uv);
+    if (sx.first < 0 || sx.first != sy.first || sx.second == sy.second) return {};
+    const auto& L = loops_[sx.first];
+    const int n = static_cast<int>(L.size());
+    std::vector<Vec2> best;
+    bool found = false;
+    for (int dir : {1, -1}) {
+      // Forward: loop vertices sx+1 .. sy; backward: sx .. sy+1; all inside the part.
+      std::vector<Vec2> walk;
+      bool ok = true;
+      int k = dir > 0 ? (sx.second + 1) % n : sx.second;
+      const int stop = dir > 0 ? (sy.second + 1) % n : sy.second;
+      for (int guard = 0; guard <= n && k != stop; ++guard, k = (k + dir + n) % n) {
+        const Vec2 p = uvw[0] + s_.delta(uvw[0], L[k]);
+        if (!in_polygon(uvw, p)) {
+          ok = false;
+          break;
+        }
+        walk.push_back(p);
+      }
+      if (k != stop) ok = false;
+      if (ok && (!found || walk.size() < best.size())) {
+        best = walk;
+        found = true;
+      }
+    }
+    std::vector<int> out;
+    for (const Vec2& p : best) {
+      Vertex v;
+      v.uv = s_.wrap(p);
+      v.has_uv = v.in = true;
+      v.p2 = to_ply(poly, uvw, p);
+      verts_.push_back(v);
+      out.push_back(static_cast<int>(verts_.size()) - 1);
+    }
+    return out;
+  }
+
+  // Boundary of the union of counter-clockwise polygons: edges shared by two polygons (in
+  // opposite directions) cancel; the rest chain into loops, outer ones counter-clockwise.
+  std::vector<OutlineLoop> assemble(const std::vector<Polygon>& polys) const {
+    std::map<std::pair<int, int>, int> edges;  // ordered: deterministic output
+    for (const auto& p : polys) {
+      for (std::size_t k = 0; k < p.size(); ++k) {
+        const int a = p[k], b = p[(k + 1) % p.size()];
+        if (a == b) continue;
+        auto rev = edges.find({b, a});
+        if (rev != edges.end()) {
+          if (--rev->second == 0) edges.erase(rev);
+        } else {
+          ++edges[{a, b}];
+        }
+      }
+    }
+    std::multimap<int, int> out;  // from -> to
+    for (const auto& [e, c] : edges)
+      for (int k = 0; k < c; ++k) out.emplace(e.first, e.second);
+    std::vector<OutlineLoop> loops;
+    while (!out.empty()) {
+      auto it = out.begin();
+      const int start = it->first;
+      int prev = start, cur = it->second;
+      out.erase(it);
+      std::vector<int> ids{start};
+      for (std::size_t guard = 0; cur != start && guard <= edges.size() + 1; ++guard) {
+        ids.push_back(cur);
+        auto range = out.equal_range(cur);
+        if (range.first == range.second) break;  // open chain (should not happen)
+        auto pick = range.first;
+        if (std::next(range.first) != range.second) {
+          // Pinch vertex: the outgoing edge first clockwise from the reversed incoming one
+          // keeps the region on the left and the loops simple.
+          const Vec2 back = verts_[prev].p2 - verts_[cur].p2;
+          double best = INFINITY;
+          for (auto q = range.first; q != range.second; ++q) {
+            const Vec2 d = verts_[q->second].p2 - verts_[cur].p2;
+            double ang = std::atan2(cross2(d, back), d.dot(back));
+            if (ang <= 0) ang += 2 * kPi;
+            if (ang < best) {
+              best = ang;
+              pick = q;
+            }
+          }
+        }
+        prev = cur;
+        cur = pick->second;
+        out.erase(pick);
+      }
+      OutlineLoop l;
+      for (int v : ids) {
+        const Vec2& p = verts_[v].p2;
+        if (l.points.empty() || (p - l.points.back()).norm() > 0.0) l.points.push_back(p);
+      }
+      while (l.points.size() > 1 && l.points.front() == l.points.back()) l.points.pop_back();
+      if (l.points.size() < 3) continue;
+      double a = 0.0, per = 0.0;
+      for (std::size_t k = 0; k < l.points.size(); ++k) {
+        const Vec2& p = l.points[k];
+        const Vec2& q = l.points[(k + 1) % l.points.size()];
+        a += cross2(p, q);
+        per += (q - p).norm();
+      }
+      if (a == 0.0) continue;
+      l.area = std::abs(a) / 2;
+      l.hole = a < 0;
+      l.perimeter = per;
+      loops.push_back(std::move(l));
+    }
+    std::stable_sort(loops.begin(), loops.end(), [](const OutlineLoop& a, const OutlineLoop& b) {
+      if (a.hole != b.hole) return !a.hole;
+      return a.area > b.area;
+    });
+    return loops;
+  }
+
+  const DrapeSurface& s_;
+  const DrapeResult& r_;
+  const Ply& ply_;
+  std::vector<std::vector<Vec2>> loops_;
+  BoundaryIndex index_;
+  SolverSettings st_;
+  std::vector<Vertex> verts_;
+  std::unordered_map<std::uint64_t, int> node_vertices_;
+  std::unordered_map<std::uint64_t, Position> virtual_;
+  std::map<std::pair<int, int>, std::vector<int>> crossings_;
+  std::vector<Polygon> exact_, stair_;
+};
+
+}  // namespace
+
+FlatPattern flat_pattern(const DrapeSurface& surface, const DrapeResult& result,
+                         const FlatPatternOptions&) {
+  if (!result.ply || result.nodes.empty()) return {};
+  return Builder(surface, result).run();
 }
 
 }  // namespace plyfit

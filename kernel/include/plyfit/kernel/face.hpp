@@ -47,6 +47,9 @@ class DrapeSurface {
   virtual double size() const = 0;
   /// Characteristic parametric speeds |dS/du|, |dS/dv| (for scaling parameter tolerances).
   virtual Vec2 speeds() const = 0;
+  /// The face boundary as closed (u, v) polylines: trim loops, or the domain rectangle
+  /// (whose edges across a closed seam are not boundaries: contains() is true on both sides).
+  virtual std::vector<std::vector<Vec2>> boundary_loops() const = 0;
 };
 
 /// A closed polyline in the (u, v) plane; the first point is not repeated at the end.
@@ -81,8 +84,7 @@ class Face final : public DrapeSurface {
   bool closed_u() const { return closed_u_; }
   bool closed_v() const { return closed_v_; }
 
-  /// The face boundary as closed uv polylines: the trim loops, or the domain rectangle.
-  std::vector<std::vector<Vec2>> boundary_loops() const;
+  std::vector<std::vector<Vec2>> boundary_loops() const override;
   /// Area of the face (given, or by Gauss quadrature over the domain with the trims).
   double area() const { return area_; }
   /// Bounding box of points sampled on the face.

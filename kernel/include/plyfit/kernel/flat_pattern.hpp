@@ -29,11 +29,9 @@ struct FlatPattern {
   double perimeter = 0.0;  ///< outline length, holes included
 };
 
-/// Options of the flat pattern.
-struct FlatPatternOptions {
-  /// Longest chord, relative to the spacing, used to follow the face boundary inside a cell.
-  double boundary_chord_rel = 0.25;
-};
+/// Options of the flat pattern (none yet: the crossings are exact to rounding and the
+/// boundary is followed through every vertex of the face's boundary polylines).
+struct FlatPatternOptions {};
 
 /// Computes the flat pattern of a drape on `surface`.
 FlatPattern flat_pattern(const DrapeSurface& surface, const DrapeResult& result,

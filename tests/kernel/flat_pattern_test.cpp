@@ -1,0 +1,168 @@
+#include <plyfit/kernel/analytic_surfaces.hpp>
+#include <plyfit/kernel/builtin_molds.hpp>
+#include <plyfit/kernel/drape.hpp>
+#include <plyfit/kernel/flat_pattern.hpp>
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace plyfit;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Issue 6: outline area and perimeter within 0.1% of exact at a spacing of 1/50 of the part.
+constexpr double kOutlineRel = 1e-3;
+
+Face builtin(const std::string& name, std::map<std::string, double> p = {}) {
+  auto f = Face::create(builtin_mold(name, p).value());
+  REQUIRE(f.ok());
+  return std::move(f).value();
+}
+
+FlatPattern drape_flat(const Face& f, double d, Vec2 b2, std::vector<Vec2> w2, Vec3 s3, Vec3 bn,
+                       std::vector<Vec3> w3) {
+  DrapeProblem pb;
+  pb.ply.d_weft = pb.ply.d_warp = d;
+  pb.ply.start = Vec2(0, 0);
+  pb.ply.base_dir = b2;
+  pb.ply.sweeps = std::move(w2);
+  pb.start = s3;
+  pb.base_normal = bn;
+  pb.sweeps = std::move(w3);
+  auto r = drape(f, pb);
+  REQUIRE(r.ok());
+  REQUIRE(r->metrics.nodes.failed == 0);
+  return flat_pattern(f, *r);
+}
+
+// Loops are simple (no two non-adjacent edges cross), outer counter-clockwise, holes
+// clockwise (signed area), and the reported area/perimeter match the points.
+void check_loops(const FlatPattern& fp) {
+  for (const auto& l : fp.outline) {
+    const auto& p = l.points;
+    const std::size_t n = p.size();
+    double a = 0.0, per = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      a += cross2(p[k], p[(k + 1) % n]);
+      per += (p[(k + 1) % n] - p[k]).norm();
+    }
+    CHECK((a > 0) == !l.hole);
+    CHECK(std::abs(a) / 2 == Approx(l.area).epsilon(1e-12));
+    CHECK(per == Approx(l.perimeter).epsilon(1e-12));
+    int crossings = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = i + 2; j < n; ++j) {
+        if (i == 0 && j == n - 1) continue;
+        const Vec2 a0 = p[i], a1 = p[(i + 1) % n], b0 = p[j], b1 = p[(j + 1) % n];
+        const double d1 = cross2(a1 - a0, b0 - a0), d2 = cross2(a1 - a0, b1 - a0);
+        const double d3 = cross2(b1 - b0, a0 - b0), d4 = cross2(b1 - b0, a1 - b0);
+        if (((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 && d4 != 0)
+          ++crossings;
+      }
+    }
+    CHECK(crossings == 0);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("flat pattern: a cylinder sector develops into the rectangle R alpha x H") {
+  const double R = 10, H = 20, alpha = kPi / 2;
+  const Face f = builtin("cylinder", {{"R", R}, {"H", H}, {"angle", 90}});
+  const double a = 0.37;  // start off-centre, at an arbitrary height
+  const Vec3 s3(R * std::cos(a), R * std::sin(a), 7.3), tang(-std::sin(a), std::cos(a), 0);
+  const double size = std::max(R * alpha, H);  // ~20
+  double prev_area = 0, prev_per = 0;
+  for (double d : {size / 50, size / 100}) {
+    const FlatPattern fp = drape_flat(f, d, Vec2(0, 1), {Vec2(-1, 0), Vec2(1, 0)}, s3, tang, {tang, -tang});
+    REQUIRE(fp.outline.size() == 1);
+    check_loops(fp);
+    const double ea = std::abs(fp.area - R * alpha * H) / (R * alpha * H);
+    const double ep = std::abs(fp.perimeter - 2 * (R * alpha + H)) / (2 * (R * alpha + H));
+    INFO("d = " << d << " area error " << ea << " perimeter error " << ep);
+    CHECK(ea < kOutlineRel);
+    CHECK(ep < kOutlineRel);
+    if (prev_area > 0) {
+      CHECK(ea < prev_area);
+      CHECK(ep < prev_per);
+    }
+    prev_area = ea;
+    prev_per = ep;
+    // The staircase is coarser and inside.
+    REQUIRE_FALSE(fp.staircase.empty());
+    CHECK(fp.staircase[0].area < fp.area);
+  }
+}
+
+TEST_CASE("flat pattern: a cone sector develops into the annular sector") {
+  const double r0 = 20, r1 = 10, H = 15, alpha = kPi / 2;
+  const Face f = builtin("cone", {{"r0", r0}, {"r1", r1}, {"H", H}, {"angle", 90}});
+  const double L = std::hypot(r0 - r1, H);
+  const double ro = r0 * L / (r0 - r1), ri = r1 * L / (r0 - r1), phi = alpha * (r0 - r1) / L;
+  const double A = phi / 2 * (ro * ro - ri * ri), P = phi * (ro + ri) + 2 * L;
+  const double a = kPi / 4;
+  const Vec3 s3(15 * std::cos(a), 15 * std::sin(a), 7.5), tang(-std::sin(a), std::cos(a), 0);
+  double prev_area = 0, prev_per = 0;
+  for (double d : {ro * phi / 50, ro * phi / 100}) {
+    const FlatPattern fp = drape_flat(f, d, Vec2(0, 1), {Vec2(-1, 0), Vec2(1, 0)}, s3, tang, {tang, -tang});
+    REQUIRE(fp.outline.size() == 1);
+    check_loops(fp);
+    const double ea = std::abs(fp.area - A) / A, ep = std::abs(fp.perimeter - P) / P;
+    INFO("d = " << d << " area error " << ea << " perimeter error " << ep);
+    CHECK(ea < kOutlineRel);
+    CHECK(ep < kOutlineRel);
+    if (prev_area > 0) {
+      CHECK(ea < prev_area);
+      CHECK(ep < prev_per);
+    }
+    prev_area = ea;
+    prev_per = ep;
+  }
+}
+
+TEST_CASE("flat pattern: a circular trim hole comes out as a circle of its radius") {
+  FaceData fd;
+  fd.surface = plane_patch(Vec3(0, 0, 0), Vec3(100, 0, 0), Vec3(0, 100, 0));
+  fd.loops.push_back({{Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}});
+  std::vector<Vec2> hole;
+  const int n = 2000;
+  for (int k = 0; k < n; ++k) {
+    const double t = -2 * kPi * k / n;
+    hole.emplace_back(0.6 + 0.15 * std::cos(t), 0.55 + 0.15 * std::sin(t));
+  }
+  fd.loops.push_back({hole});
+  const Face f = Face::create(fd).value();
+  const FlatPattern fp = drape_flat(f, 2.0, Vec2(1, 0.3), {Vec2(0, 1), Vec2(0, -1)},
+                                    Vec3(30, 30, 0), Vec3(-0.3, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)});
+  REQUIRE(fp.outline.size() == 2);
+  check_loops(fp);
+  CHECK_FALSE(fp.outline[0].hole);
+  CHECK(fp.outline[0].area == Approx(10000).epsilon(1e-12));
+  const OutlineLoop& h = fp.outline[1];
+  CHECK(h.hole);
+  // On a plane the ply maps rigidly: 3D (60, 55) is 2D (30, 25) (start (0, 0) on (30, 30),
+  // the base path along (1, 0.3) in both). The trim polygon is within 15 (1 - cos(pi / n))
+  // of the circle.
+  const double chord_gap = 15 * (1 - std::cos(kPi / n));
+  for (const Vec2& p : h.points) {
+    const double r = (p - Vec2(30, 25)).norm();
+    CHECK(r <= 15 * (1 + 1e-12));
+    CHECK(r >= 15 - chord_gap - 1e-9);
+  }
+  CHECK(h.area == Approx(kPi * 225).epsilon(1e-5));
+  CHECK(fp.area == Approx(10000 - h.area).epsilon(1e-12));
+}
+
+TEST_CASE("flat pattern: the paper's sphere cases give one simple outline") {
+  const Face f = builtin("sphere-octant");
+  const FlatPattern fp = drape_flat(f, 1.0, Vec2(1, 0), {Vec2(0, 1)}, Vec3(0, 0, 20), Vec3(0, 1, 0),
+                                    {Vec3(0, 1, 0)});
+  REQUIRE(fp.outline.size() == 1);
+  check_loops(fp);
+  // The cloth that covers the octant is larger than the octant's area (shear shrinks cells
+  // on the surface) but not larger than the staircase plus one ring of cells.
+  CHECK(fp.area > f.area());
+  CHECK(fp.area > fp.staircase[0].area);
+}
