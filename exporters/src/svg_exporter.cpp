@@ -47,7 +47,7 @@ constexpr double kLegendWidth = 190.0;
 constexpr double kLegendHeight = 520.0;
 constexpr int kMaxGridLines = 400;     // thread grid lines per direction drawn in flat.svg
 constexpr double kMinGridPitch = 3.0;  // px: a denser grid is left out
-constexpr double kShearStepDeg = 5.0;  // the colour scale's top is a multiple of this
+constexpr double kMaxTicks = 6.0;      // intervals of the shear colour scale
 // A view direction within this angle (radians) of Z looks down Z: Y is up on the page then.
 constexpr double kViewAlongZ = 1e-6;
 // uv points within this fraction of the domain width of a closed face's seam lie on it.
@@ -126,13 +126,24 @@ std::string loops_path(const std::vector<std::vector<Vec2>>& loops) {
   return d;
 }
 
-// The shear colour scale: top of the scale (radians), a multiple of kShearStepDeg.
-double shear_scale_top(const DrapeResult& r) {
+// The shear colour scale: its top (radians) and the step of its ticks (degrees), a round
+// step with at most kMaxTicks intervals.
+struct ShearScale {
+  double top = 0.0;
+  double step_deg = 5.0;
+};
+ShearScale shear_scale(const DrapeResult& r) {
   double top = 0.0;
   for (const DrapeNode& n : r.nodes) top = std::max(top, detail::node_shear(n));
-  const double deg =
-      std::max(kShearStepDeg, std::ceil(top * kRadToDeg / kShearStepDeg) * kShearStepDeg);
-  return deg / kRadToDeg;
+  const double m = top * kRadToDeg;
+  ShearScale s;
+  for (const double step : {1.0, 2.0, 5.0, 10.0, 15.0, 20.0, 30.0}) {
+    s.step_deg = step;
+    const double t = std::max(step, std::ceil(m / step) * step);
+    s.top = t / kRadToDeg;
+    if (t / step <= kMaxTicks) break;
+  }
+  return s;
 }
 
 std::string cell_fill(double shear, double top) {
@@ -177,10 +188,11 @@ std::string arrow(const Vec2& a, const Vec2& b, const std::string& colour, doubl
 }
 
 // The legend: the shear colour bar from 0 to `top`, the warning level, and symbol entries.
-std::string legend(double x, double y, double top, double warn,
+std::string legend(double x, double y, const ShearScale& scale, double warn,
                    const std::vector<std::pair<std::string, std::string>>& entries,
                    double* end_y = nullptr) {
   std::string o = "<g id=\"legend\">\n";
+  const double top = scale.top;
   o += text(x, y, "shear |90\u00b0 \u2212 \u03b3|", "sub");
   const double bar_w = 22.0, bar_h = 220.0, y0 = y + 14.0;
   o += "<defs><linearGradient id=\"shear-scale\" x1=\"0\" y1=\"1\" x2=\"0\" y2=\"0\">\n";
@@ -194,13 +206,13 @@ std::string legend(double x, double y, double top, double warn,
   o += "<rect x=\"" + px(x) + "\" y=\"" + px(y0) + "\" width=\"" + px(bar_w) + "\" height=\"" +
        px(bar_h) + "\" fill=\"url(#shear-scale)\" stroke=\"#333\" stroke-width=\"0.8\"/>\n";
   const double top_deg = top * kRadToDeg;
-  const int ticks = 5;
+  const int ticks = static_cast<int>(std::lround(top_deg / scale.step_deg));
   for (int k = 0; k <= ticks; ++k) {
-    const double v = top_deg * k / ticks;
-    const double yy = y0 + bar_h * (1.0 - static_cast<double>(k) / ticks);
+    const double v = scale.step_deg * k;
+    const double yy = y0 + bar_h * (1.0 - v / top_deg);
     o += "<line x1=\"" + px(x + bar_w) + "\" y1=\"" + px(yy) + "\" x2=\"" + px(x + bar_w + 5) +
          "\" y2=\"" + px(yy) + "\" stroke=\"#333\"/>\n";
-    o += text(x + bar_w + 8, yy + 4, fixed_text(v, 1) + "\u00b0", "small");
+    o += text(x + bar_w + 8, yy + 4, fixed_text(v, 0) + "\u00b0", "small");
   }
   if (warn <= top) {
     const double yy = y0 + bar_h * (1.0 - warn / top);
@@ -260,7 +272,8 @@ std::string flat_svg(const ExportContext& ctx) {
   const DrapeResult& r = ctx.result;
   const PlySpec& spec = ctx.problem.ply;
   const auto cells = detail::mapped_cells(r);
-  const double top = shear_scale_top(r);
+  const ShearScale scale = shear_scale(r);
+  const double top = scale.top;
   const double warn = ctx.options.warn_shear;
 
   Box2 box;
@@ -383,7 +396,7 @@ std::string flat_svg(const ExportContext& ctx) {
 
   const double lx = f.left + f.width + kMargin;
   double legend_end = 0.0;
-  o += legend(lx, f.top + 10, top, warn,
+  o += legend(lx, f.top + 10, scale, warn,
               {{"<rect x=\"{X}\" y=\"{Y}\" width=\"24\" height=\"12\" fill=\"none\" "
                 "stroke=\"#ff00cc\" stroke-width=\"1.6\"/>",
                 "shear > " + fixed_text(warn * kRadToDeg, 1) + "\u00b0"},
@@ -444,7 +457,8 @@ std::string drape_svg(const ExportContext& ctx) {
   const DrapeResult& r = ctx.result;
   const Face& face = ctx.face;
   const Camera cam = Camera::from(ctx.options.view);
-  const double top = shear_scale_top(r);
+  const ShearScale scale = shear_scale(r);
+  const double top = scale.top;
   const double warn = ctx.options.warn_shear;
   const double d = std::min(ctx.problem.ply.d_weft, ctx.problem.ply.d_warp);
 
@@ -568,7 +582,7 @@ std::string drape_svg(const ExportContext& ctx) {
   }
   const double lx = f.left + f.width + kMargin;
   double legend_end = 0.0;
-  o += legend(lx, f.top + 10, top, warn,
+  o += legend(lx, f.top + 10, scale, warn,
               {{sym_line("#262626", 1.0), "threads"},
                {sym_line("#1f5fd6", 2.2), "base path"},
                {sym_line("#000000", 1.6), "face boundary"},
@@ -598,7 +612,8 @@ constexpr double kHeightRel = 0.45;     // height of pi relative to the plane de
 
 std::string shear_svg(const ExportContext& ctx) {
   const DrapeResult& r = ctx.result;
-  const double top = shear_scale_top(r);
+  const ShearScale scale = shear_scale(r);
+  const double top = scale.top;
   const double warn = ctx.options.warn_shear;
 
   Box2 plane;
@@ -721,7 +736,7 @@ std::string shear_svg(const ExportContext& ctx) {
   o += "<g id=\"field\">\n" + draw_sorted(prims) + "</g>\n";
 
   const double lx = f.left + f.width + kMargin;
-  o += legend(lx, f.top + 10, top, warn,
+  o += legend(lx, f.top + 10, scale, warn,
               {{"<rect x=\"{X}\" y=\"{Y}\" width=\"24\" height=\"12\" fill=\"#ececec\" "
                 "stroke=\"#e8112d\" stroke-width=\"1.2\"/>",
                 "plane development"},
