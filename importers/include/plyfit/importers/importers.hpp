@@ -22,6 +22,9 @@ struct ImportOptions {
   std::string format;
   /// Tolerances; trim_chord_rel sets the accuracy of trim polylines.
   Tolerances tolerances;
+  /// Reading stops with an error when transferring the file's entities takes longer than
+  /// this (seconds): a corrupt file can make the reader's repairs run a very long time.
+  double time_limit_s = 120.0;
 };
 
 /// An opened mold file.

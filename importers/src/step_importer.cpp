@@ -1,0 +1,88 @@
+// STEP importer (AP203, AP214, AP242 through OpenCASCADE's STEPControl_Reader). Everything
+// after the shape is read (face walk, listing, conversion) is shared with IGES in occt_mold.
+
+#include "occt_mold.hpp"
+#include "plugins.hpp"
+
+#include <HeaderSection_FileSchema.hxx>
+#include <Interface_HArray1OfHAsciiString.hxx>
+#include <Interface_Static.hxx>
+#include <STEPControl_Reader.hxx>
+#include <StepData_StepModel.hxx>
+#include <StepGeom_Surface.hxx>
+#include <StepRepr_RepresentationItem.hxx>
+#include <StepShape_FaceSurface.hxx>
+#include <TColStd_SequenceOfAsciiString.hxx>
+#include <XSControl_TransferReader.hxx>
+#include <XSControl_WorkSession.hxx>
+
+namespace plyfit::importers {
+
+namespace {
+
+// The name of the entity that produced a face: the face's own name, else its surface's.
+std::string step_name(const Handle(Standard_Transient) & entity) {
+  const auto item = Handle(StepRepr_RepresentationItem)::DownCast(entity);
+  if (item.IsNull()) return {};
+  std::string name = occt::text(item->Name());
+  if (name.empty()) {
+    if (const auto face = Handle(StepShape_FaceSurface)::DownCast(entity); !face.IsNull())
+      if (!face->FaceGeometry().IsNull()) name = occt::text(face->FaceGeometry()->Name());
+  }
+  if (name == "NONE" || name == "$") name.clear();
+  return name;
+}
+
+Result<occt::ReadOutput> read_step(const std::string& path, occt::Deadline& deadline) {
+  STEPControl_Reader reader;
+  // Geometry comes out in millimetres whatever the file's unit.
+  Interface_Static::SetCVal("xstep.cascade.unit", "MM");
+  const IFSelect_ReturnStatus status = reader.ReadFile(path.c_str());
+  if (status != IFSelect_RetDone)
+    return Error{"not a readable STEP file (the STEP parser failed" +
+                 std::string(status == IFSelect_RetVoid ? ": nothing to read" : "") + ")"};
+  occt::ReadOutput out;
+  const Handle(StepData_StepModel) model = reader.StepModel();
+  if (!model.IsNull()) {
+    const auto schema = Handle(HeaderSection_FileSchema)::DownCast(
+        model->HeaderEntity(STANDARD_TYPE(HeaderSection_FileSchema)));
+    if (!schema.IsNull() && !schema->SchemaIdentifiers().IsNull())
+      for (int i = 1; i <= schema->NbSchemaIdentifiers(); ++i)
+        out.schema +=
+            (out.schema.empty() ? "" : ", ") + occt::text(schema->SchemaIdentifiersValue(i));
+  }
+  if (auto w = occt::summarise_checks(reader.WS()->ModelCheckList(), "load"); !w.empty())
+    out.warnings.push_back(w);
+  TColStd_SequenceOfAsciiString lengths, angles, solid_angles;
+  reader.FileUnits(lengths, angles, solid_angles);
+  for (int i = 1; i <= lengths.Length(); ++i) {
+    const std::string u = lengths(i).ToCString();
+    if (out.unit.find(u) == std::string::npos) out.unit += (out.unit.empty() ? "" : ", ") + u;
+  }
+  if (out.unit.empty()) out.unit = "unspecified (millimetre assumed)";
+
+  reader.TransferRoots(deadline.Start());
+  const Handle(Transfer_TransientProcess) process =
+      reader.WS()->TransferReader()->TransientProcess();
+  if (!process.IsNull())
+    if (auto w = occt::summarise_checks(process->CheckList(Standard_False), "transfer"); !w.empty())
+      out.warnings.push_back(w);
+  out.shape = reader.OneShape();
+  out.shape_names = occt::shape_names(process, step_name);
+  return out;
+}
+
+}  // namespace
+
+Importer make_step_importer() {
+  Importer imp;
+  imp.key = "step";
+  imp.extensions = {"step", "stp"};
+  imp.description = "STEP (ISO 10303-21: AP203, AP214, AP242) via OpenCASCADE";
+  imp.open = [](const std::string& path, const ImportOptions& options) {
+    return occt::open_with(path, "step", options, read_step);
+  };
+  return imp;
+}
+
+}  // namespace plyfit::importers
