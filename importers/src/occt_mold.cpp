@@ -451,7 +451,10 @@ Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const To
   fd.area = info.area;
   fd.name = info.name;
 
-  if (!natural_boundary(work, bs, dom, size)) {
+  // Whether the face is trimmed was decided on the original face (exact geometry); the
+  // conversion maps the face's parameter range onto the NURBS domain, and an approximating
+  // conversion (offset surfaces) may move the recomputed pcurves off the border by its error.
+  if (info.trimmed) {
     auto surf = NurbsSurface::create(d, tol);
     if (!surf) return Error{"invalid NURBS surface: " + surf.error().message};
     const Vec2 speeds(surf->speed_u(), surf->speed_v());

@@ -4,6 +4,9 @@
 #include "occt_mold.hpp"
 #include "plugins.hpp"
 
+#include <algorithm>
+#include <cctype>
+
 #include <HeaderSection_FileSchema.hxx>
 #include <Interface_HArray1OfHAsciiString.hxx>
 #include <Interface_Static.hxx>
@@ -56,7 +59,11 @@ Result<occt::ReadOutput> read_step(const std::string& path, occt::Deadline& dead
   TColStd_SequenceOfAsciiString lengths, angles, solid_angles;
   reader.FileUnits(lengths, angles, solid_angles);
   for (int i = 1; i <= lengths.Length(); ++i) {
-    const std::string u = lengths(i).ToCString();
+    // SI units come named ("millimetre"), conversion-based ones as the file spells them
+    // ("INCH"): lower-case both.
+    std::string u = lengths(i).ToCString();
+    std::transform(u.begin(), u.end(), u.begin(),
+                   [](unsigned char ch) { return std::tolower(ch); });
     if (out.unit.find(u) == std::string::npos) out.unit += (out.unit.empty() ? "" : ", ") + u;
   }
   if (out.unit.empty()) out.unit = "unspecified (millimetre assumed)";
