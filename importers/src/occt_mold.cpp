@@ -39,8 +39,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <mutex>
 #include <sstream>
@@ -541,11 +543,32 @@ Sniffed sniff(const std::string& head) {
 void prepare_occt() {
   static std::once_flag once;
   std::call_once(once, [] {
-    // Faults inside OCC_CATCH_SIGNALS become OSD_Signal exceptions; floating-point traps off.
-    OSD::SetSignal(Standard_False);
     // OpenCASCADE's messages are summarised into Mold::warnings, never printed raw.
     Message::DefaultMessenger()->ChangePrinters().Clear();
   });
+}
+
+namespace {
+// The signals OSD::SetSignal installs handlers for on Linux.
+constexpr int kOsdSignals[] = {SIGHUP, SIGINT,  SIGQUIT, SIGILL, SIGTRAP,
+                               SIGBUS, SIGSEGV, SIGSYS,  SIGFPE};
+}  // namespace
+
+struct SignalScope::Saved {
+  struct sigaction actions[std::size(kOsdSignals)];
+};
+
+SignalScope::SignalScope() : saved_(new Saved) {
+  for (size_t i = 0; i < std::size(kOsdSignals); ++i)
+    sigaction(kOsdSignals[i], nullptr, &saved_->actions[i]);
+  // Faults inside OCC_CATCH_SIGNALS become OSD_Signal exceptions; floating-point traps off.
+  OSD::SetSignal(OSD_SignalMode_Set, Standard_False);
+}
+
+SignalScope::~SignalScope() {
+  for (size_t i = 0; i < std::size(kOsdSignals); ++i)
+    sigaction(kOsdSignals[i], &saved_->actions[i], nullptr);
+  delete saved_;
 }
 
 std::string text(const Handle(TCollection_HAsciiString) & s) {
@@ -650,7 +673,8 @@ Result<std::unique_ptr<MoldFile>> open_with(const std::string& path, const std::
   TopTools_IndexedMapOfShape faces;
   TopExp::MapShapes(ro.shape, TopAbs_FACE, faces);
   if (faces.IsEmpty())
-    return Error{path + ": no faces (nothing in the file transfers to a surface)"};
+    return Error{path + ": no faces (nothing in the file transfers to a surface" +
+                 (ro.warnings.empty() ? std::string() : "; " + ro.warnings.front()) + ")"};
 
   Mold mold;
   mold.source = path;

@@ -66,9 +66,23 @@ enum class Sniffed { kStep, kIges, kUnknown };
 /// Looks at the first bytes of `head` (the start of a file): STEP Part 21 or IGES.
 Sniffed sniff(const std::string& head);
 
-/// Installs the signal handlers that turn faults into exceptions and silences OpenCASCADE's
-/// default messenger (idempotent; called by open_with()).
+/// Silences OpenCASCADE's default messenger (idempotent; called by open_with()).
 void prepare_occt();
+
+/// While alive, OpenCASCADE's signal handlers (OSD::SetSignal) are installed so that a fault
+/// inside an OCC_CATCH_SIGNALS scope becomes an OSD_Signal exception; the previous handlers
+/// (the host program's, a test framework's) are restored on destruction.
+class SignalScope {
+ public:
+  SignalScope();
+  ~SignalScope();
+  SignalScope(const SignalScope&) = delete;
+  SignalScope& operator=(const SignalScope&) = delete;
+
+ private:
+  struct Saved;
+  Saved* saved_;
+};
 
 /// Opens `path` with a format's reader and lists its faces. Checks first that the file exists,
 /// is a regular non-empty file and looks like `format_key` ("step" or "iges"); then reads it
@@ -92,6 +106,7 @@ std::string text(const Handle(TCollection_HAsciiString) & s);
 /// exception (OCC_CATCH_SIGNALS) or a C++ exception becomes an Error "`what`: ...".
 template <typename F>
 auto guarded(const std::string& what, F&& f) -> decltype(f()) {
+  const SignalScope signals;
   try {
     OCC_CATCH_SIGNALS
     return f();
