@@ -468,12 +468,33 @@ Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const To
   return fd;
 }
 
+// An opened file. Reading and transferring happen at open; each face's listing entry (kind,
+// degrees, area, box, trim status) is computed when first needed: all of them on the first call
+// to mold(), only face i by convert_face(i), so that importing one face does not pay for the
+// listing of the others. Not thread-safe.
 class OcctMoldFile final : public MoldFile {
  public:
   OcctMoldFile(Mold mold, TopTools_IndexedMapOfShape faces, ImportOptions options)
-      : mold_(std::move(mold)), faces_(std::move(faces)), options_(std::move(options)) {}
+      : mold_(std::move(mold)),
+        faces_(std::move(faces)),
+        options_(std::move(options)),
+        state_(static_cast<size_t>(faces_.Extent()), State::kPending),
+        failure_(static_cast<size_t>(faces_.Extent())) {}
 
-  const Mold& mold() const override { return mold_; }
+  const Mold& mold() const override {
+    if (!listed_) {
+      int failed = 0;
+      std::string first;
+      for (int i = 0; i < faces_.Extent(); ++i) {
+        if (!describe(i) && failed++ == 0) first = failure_[static_cast<size_t>(i)];
+      }
+      if (failed)
+        mold_.warnings.push_back("listing: " + std::to_string(failed) +
+                                 " faces could not be described (first: " + first + ")");
+      listed_ = true;
+    }
+    return mold_;
+  }
 
   Result<FaceData> convert_face(int index) override {
     const int n = faces_.Extent();
@@ -482,17 +503,43 @@ class OcctMoldFile final : public MoldFile {
                    " out of range (the file has " + std::to_string(n) + " faces, 0.." +
                    std::to_string(n - 1) + ")"};
     const std::string what = mold_.source + ": face " + std::to_string(index);
+    if (!describe(index)) return Error{what + ": " + failure_[static_cast<size_t>(index)]};
     auto r = guarded(what, [&]() -> Result<FaceData> {
-      return convert(TopoDS::Face(faces_(index + 1)), mold_.faces[index], options_.tolerances);
+      return convert(TopoDS::Face(faces_(index + 1)), mold_.faces[static_cast<size_t>(index)],
+                     options_.tolerances);
     });
     if (!r && r.error().message.rfind(what, 0) != 0) return Error{what + ": " + r.error().message};
     return r;
   }
 
  private:
-  Mold mold_;
+  enum class State { kPending, kDone, kFailed };
+
+  // Fills mold_.faces[i] (once); false when OpenCASCADE failed on the face.
+  bool describe(int i) const {
+    const size_t k = static_cast<size_t>(i);
+    if (state_[k] == State::kPending) {
+      auto info = guarded("could not be described", [&]() -> Result<FaceInfo> {
+        return describe_face(TopoDS::Face(faces_(i + 1)), i);
+      });
+      if (info) {
+        info->name = mold_.faces[k].name;
+        mold_.faces[k] = std::move(info).value();
+        state_[k] = State::kDone;
+      } else {
+        failure_[k] = info.error().message;
+        state_[k] = State::kFailed;
+      }
+    }
+    return state_[k] == State::kDone;
+  }
+
+  mutable Mold mold_;
   TopTools_IndexedMapOfShape faces_;
   ImportOptions options_;
+  mutable std::vector<State> state_;
+  mutable std::vector<std::string> failure_;
+  mutable bool listed_ = false;
 };
 
 std::string read_head(std::ifstream& in, size_t n) {
@@ -682,25 +729,13 @@ Result<std::unique_ptr<MoldFile>> open_with(const std::string& path, const std::
   mold.schema = ro.schema;
   mold.unit = ro.unit;
   mold.warnings = ro.warnings;
-  int failed = 0;
-  std::string first_failure;
-  for (int i = 1; i <= faces.Extent(); ++i) {
-    const TopoDS_Face& f = TopoDS::Face(faces(i));
-    auto info = guarded("face " + std::to_string(i - 1),
-                        [&]() -> Result<FaceInfo> { return describe_face(f, i - 1); });
-    if (info) {
-      mold.faces.push_back(std::move(info).value());
-    } else {
-      if (failed++ == 0) first_failure = info.error().message;
-      FaceInfo bad;
-      bad.index = i - 1;
-      bad.kind = "unknown";
-      mold.faces.push_back(bad);
-    }
+  // Placeholders until each face is described (OcctMoldFile::describe).
+  for (int i = 0; i < faces.Extent(); ++i) {
+    FaceInfo pending;
+    pending.index = i;
+    pending.kind = "unknown";
+    mold.faces.push_back(pending);
   }
-  if (failed)
-    mold.warnings.push_back("listing: " + std::to_string(failed) +
-                            " faces could not be described (first: " + first_failure + ")");
   for (const auto& [shape, name] : ro.shape_names) {
     const int k = faces.FindIndex(shape);
     if (k > 0 && mold.faces[k - 1].name.empty()) mold.faces[k - 1].name = name;

@@ -23,10 +23,6 @@ using namespace plyfit::test;
 
 namespace {
 
-/// A corrupted file must be rejected (or read) within this many seconds by the binary; the
-/// largest shared file reads in well under one.
-constexpr int kHangLimitSeconds = 60;
-
 // The error must be one line and name the file.
 void check_error(const Error& e, const std::string& path) {
   INFO(e.message);
@@ -47,24 +43,6 @@ bool open_corrupted(const std::string& path) {
     if (!d) check_error(d.error(), path);
   }
   return false;
-}
-
-struct Run {
-  int code = -1;
-  std::string out, err;
-};
-
-// Runs plyfit with a time limit (coreutils timeout: exit code 124 when it had to stop it).
-Run run_plyfit(const std::string& args, const TempDir& dir) {
-  const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
-  const std::string cmd = "timeout -k 5 " + std::to_string(kHangLimitSeconds) + " '" + PLYFIT_BIN +
-                          "' " + args + " > '" + out + "' 2> '" + err + "'";
-  const int status = std::system(cmd.c_str());
-  Run r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  r.out = read_bytes(out);
-  r.err = read_bytes(err);
-  return r;
 }
 
 // The binary on a bad file: exit code 1, one line on stderr naming the file, not a crash

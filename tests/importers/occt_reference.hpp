@@ -43,10 +43,12 @@
 
 #include "test_util.hpp"
 
+#include <sys/wait.h>
 #include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -355,6 +357,30 @@ inline std::string read_bytes(const std::string& path) {
 inline void write_bytes(const std::string& path, const std::string& bytes) {
   std::ofstream out(path, std::ios::binary);
   out << bytes;
+}
+
+/// A run of plyfit must end within this many seconds (a corrupted file must not hang it; the
+/// largest shared file reads in well under one).
+constexpr int kHangLimitSeconds = 60;
+
+/// Exit code and output of a run of the plyfit binary.
+struct Run {
+  int code = -1;
+  std::string out, err;
+};
+
+/// Runs the built plyfit binary with `args` under a time limit (coreutils timeout: exit code
+/// 124 when it had to stop it; 128 + N when a signal N killed it).
+inline Run run_plyfit(const std::string& args, const TempDir& dir) {
+  const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
+  const std::string cmd = "timeout -k 5 " + std::to_string(kHangLimitSeconds) + " '" + PLYFIT_BIN +
+                          "' " + args + " > '" + out + "' 2> '" + err + "'";
+  const int status = std::system(cmd.c_str());
+  Run r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.out = read_bytes(out);
+  r.err = read_bytes(err);
+  return r;
 }
 
 }  // namespace plyfit::test

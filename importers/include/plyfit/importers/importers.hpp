@@ -27,11 +27,15 @@ struct ImportOptions {
   double time_limit_s = 120.0;
 };
 
-/// An opened mold file.
+/// An opened mold file. Faces are indexed 0.. in the order of a depth-first walk of the file's
+/// transferred shapes (OpenCASCADE's TopExp::MapShapes over faces: solids, shells and
+/// compounds in file order, each face once). Lengths are in millimetres whatever the file's
+/// unit. Not thread-safe.
 class MoldFile {
  public:
   virtual ~MoldFile() = default;
-  /// The file's faces and metadata, listed without converting surfaces.
+  /// The file's faces and metadata, listed without converting surfaces (the per-face entries
+  /// are computed on the first call; convert_face() alone does not compute the others).
   virtual const Mold& mold() const = 0;
   /// Converts face `index` (0-based, as listed) to kernel data: the surface as NURBS
   /// restricted to the face, its trim loops in (u, v), its orientation, area and name.
