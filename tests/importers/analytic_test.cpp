@@ -201,11 +201,15 @@ std::set<std::string> check_written_file(const std::string& path, bool iges) {
     with_holes += info.holes > 0;
     auto face = Face::create(std::move(data).value());
     REQUIRE(face.ok());
-    check_surface(*face, of, 25, rng,
-                  info.kind == "offset" ? kOffsetApproxRel : kSurfaceAgreementRel);
+    const double worst = check_surface(
+        *face, of, 25, rng, info.kind == "offset" ? kOffsetApproxRel : kSurfaceAgreementRel);
+    if (info.kind == "offset") WARN("offset face: deviation " << worst << " of the face size");
     if (face->trimmed())
       CHECK(check_contains(*face, face_in_converted_parameters(of), 1200, rng) >= 1000);
   }
+  std::string all;
+  for (const auto& k : kinds) all += k + " ";
+  WARN(path << ": kinds " << all);
   CHECK(reversed > 0);
   CHECK(closed > 0);
   CHECK(with_holes > 0);
