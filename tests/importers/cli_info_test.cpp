@@ -23,6 +23,11 @@ TEST_CASE("importers: plyfit info lists the faces of a file") {
   CHECK(r.out.find("schema: IGES 5.3") != std::string::npos);
   // Nothing from OpenCASCADE's own printers.
   CHECK(r.out.find("***") == std::string::npos);
+  // Reader messages appear summarised after the summary line.
+  const Run w = run_plyfit("info '" + shared_cad("trj7_c2-td-203.stp") + "'", dir);
+  REQUIRE(w.code == 0);
+  CHECK(w.out.find("\nwarning: load: 12 fails") != std::string::npos);
+  CHECK(w.err.empty());
 }
 
 TEST_CASE("importers: plyfit info --json parses and matches the library's listing") {
