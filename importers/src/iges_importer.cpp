@@ -10,9 +10,6 @@
 #include <IGESData_IGESModel.hxx>
 #include <IGESGeom_TrimmedSurface.hxx>
 #include <IGESSolid_Face.hxx>
-#include <Interface_Static.hxx>
-#include <XSControl_TransferReader.hxx>
-#include <XSControl_WorkSession.hxx>
 
 namespace plyfit::importers {
 
@@ -79,12 +76,7 @@ std::string unit_name(int flag, const std::string& given) {
 
 Result<occt::ReadOutput> read_iges(const std::string& path, occt::Deadline& deadline) {
   IGESControl_Reader reader;
-  // Geometry comes out in millimetres whatever the file's unit.
-  Interface_Static::SetCVal("xstep.cascade.unit", "MM");
-  const IFSelect_ReturnStatus status = reader.ReadFile(path.c_str());
-  if (status != IFSelect_RetDone)
-    return Error{"not a readable IGES file (the IGES parser failed" +
-                 std::string(status == IFSelect_RetVoid ? ": nothing to read" : "") + ")"};
+  if (auto st = occt::read_file(reader, path, "IGES"); !st) return st.error();
   occt::ReadOutput out;
   const Handle(IGESData_IGESModel) model = reader.IGESModel();
   if (model.IsNull()) return Error{"not a readable IGES file (no model)"};
@@ -96,17 +88,8 @@ Result<occt::ReadOutput> read_iges(const std::string& path, occt::Deadline& dead
   if (!pre.empty()) out.schema += ", preprocessor '" + pre + "'";
   if (!product.empty()) out.schema += ", product '" + product + "'";
   out.unit = unit_name(g.UnitFlag(), occt::text(g.UnitName()));
-  if (auto w = occt::summarise_checks(reader.WS()->ModelCheckList(), "load"); !w.empty())
-    out.warnings.push_back(w);
 
-  reader.TransferRoots(deadline.Start());
-  const Handle(Transfer_TransientProcess) process =
-      reader.WS()->TransferReader()->TransientProcess();
-  if (!process.IsNull())
-    if (auto w = occt::summarise_checks(process->CheckList(Standard_False), "transfer"); !w.empty())
-      out.warnings.push_back(w);
-  out.shape = reader.OneShape();
-  out.shape_names = occt::shape_names(process, iges_name);
+  occt::transfer_roots(reader, deadline, iges_name, out);
   return out;
 }
 

@@ -24,6 +24,7 @@
 #include <Geom_SurfaceOfRevolution.hxx>
 #include <Geom_ToroidalSurface.hxx>
 #include <Interface_Check.hxx>
+#include <Interface_Static.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <OSD.hxx>
@@ -36,6 +37,8 @@
 #include <TopoDS_Iterator.hxx>
 #include <TopoDS_Wire.hxx>
 #include <TransferBRep.hxx>
+#include <XSControl_TransferReader.hxx>
+#include <XSControl_WorkSession.hxx>
 
 #include <algorithm>
 #include <cmath>
@@ -625,6 +628,32 @@ std::string text(const Handle(TCollection_HAsciiString) & s) {
   if (a == std::string::npos) return {};
   const size_t b = t.find_last_not_of(" \t\r\n");
   return t.substr(a, b - a + 1);
+}
+
+Status read_file(XSControl_Reader& reader, const std::string& path,
+                 const std::string& format_name) {
+  // Geometry comes out in millimetres whatever the file's unit.
+  Interface_Static::SetCVal("xstep.cascade.unit", "MM");
+  const IFSelect_ReturnStatus status = reader.ReadFile(path.c_str());
+  if (status != IFSelect_RetDone)
+    return Error{"not a readable " + format_name + " file (the " + format_name + " parser failed" +
+                 std::string(status == IFSelect_RetVoid ? ": nothing to read" : "") + ")"};
+  return ok_status();
+}
+
+void transfer_roots(XSControl_Reader& reader, Deadline& deadline,
+                    const std::function<std::string(const Handle(Standard_Transient) &)>& name_of,
+                    ReadOutput& out) {
+  if (auto w = summarise_checks(reader.WS()->ModelCheckList(), "load"); !w.empty())
+    out.warnings.push_back(w);
+  reader.TransferRoots(deadline.Start());
+  const Handle(Transfer_TransientProcess) process =
+      reader.WS()->TransferReader()->TransientProcess();
+  if (!process.IsNull())
+    if (auto w = summarise_checks(process->CheckList(Standard_False), "transfer"); !w.empty())
+      out.warnings.push_back(w);
+  out.shape = reader.OneShape();
+  out.shape_names = shape_names(process, name_of);
 }
 
 std::string summarise_checks(const Interface_CheckIterator& checks, const std::string& stage) {

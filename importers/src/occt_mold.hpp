@@ -16,6 +16,7 @@
 #include <TCollection_HAsciiString.hxx>
 #include <TopoDS_Shape.hxx>
 #include <Transfer_TransientProcess.hxx>
+#include <XSControl_Reader.hxx>
 
 #include <chrono>
 #include <exception>
@@ -89,6 +90,16 @@ class SignalScope {
 /// under the guard and deadline.
 Result<std::unique_ptr<MoldFile>> open_with(const std::string& path, const std::string& format_key,
                                             const ImportOptions& options, const ReadFunction& read);
+
+/// Reads `path` with an OpenCASCADE reader (STEP or IGES, `format_name` for messages) and
+/// sets the length unit of its output to millimetres. Errors have no path prefix.
+Status read_file(XSControl_Reader& reader, const std::string& path, const std::string& format_name);
+
+/// Transfers every root of a reader's model (under `deadline`) into `out`: the shape, the
+/// load and transfer check summaries, and the face names found by `name_of`.
+void transfer_roots(XSControl_Reader& reader, Deadline& deadline,
+                    const std::function<std::string(const Handle(Standard_Transient) &)>& name_of,
+                    ReadOutput& out);
 
 /// One-line summary of the fails and warnings of a check list, grouped by message
 /// ("load: 3 warnings (2x 'A', 1x 'B')"); empty when there are none.

@@ -9,15 +9,12 @@
 
 #include <HeaderSection_FileSchema.hxx>
 #include <Interface_HArray1OfHAsciiString.hxx>
-#include <Interface_Static.hxx>
 #include <STEPControl_Reader.hxx>
 #include <StepData_StepModel.hxx>
 #include <StepGeom_Surface.hxx>
 #include <StepRepr_RepresentationItem.hxx>
 #include <StepShape_FaceSurface.hxx>
 #include <TColStd_SequenceOfAsciiString.hxx>
-#include <XSControl_TransferReader.hxx>
-#include <XSControl_WorkSession.hxx>
 
 namespace plyfit::importers {
 
@@ -38,12 +35,7 @@ std::string step_name(const Handle(Standard_Transient) & entity) {
 
 Result<occt::ReadOutput> read_step(const std::string& path, occt::Deadline& deadline) {
   STEPControl_Reader reader;
-  // Geometry comes out in millimetres whatever the file's unit.
-  Interface_Static::SetCVal("xstep.cascade.unit", "MM");
-  const IFSelect_ReturnStatus status = reader.ReadFile(path.c_str());
-  if (status != IFSelect_RetDone)
-    return Error{"not a readable STEP file (the STEP parser failed" +
-                 std::string(status == IFSelect_RetVoid ? ": nothing to read" : "") + ")"};
+  if (auto st = occt::read_file(reader, path, "STEP"); !st) return st.error();
   occt::ReadOutput out;
   const Handle(StepData_StepModel) model = reader.StepModel();
   if (!model.IsNull()) {
@@ -54,8 +46,6 @@ Result<occt::ReadOutput> read_step(const std::string& path, occt::Deadline& dead
         out.schema +=
             (out.schema.empty() ? "" : ", ") + occt::text(schema->SchemaIdentifiersValue(i));
   }
-  if (auto w = occt::summarise_checks(reader.WS()->ModelCheckList(), "load"); !w.empty())
-    out.warnings.push_back(w);
   TColStd_SequenceOfAsciiString lengths, angles, solid_angles;
   reader.FileUnits(lengths, angles, solid_angles);
   for (int i = 1; i <= lengths.Length(); ++i) {
@@ -68,14 +58,7 @@ Result<occt::ReadOutput> read_step(const std::string& path, occt::Deadline& dead
   }
   if (out.unit.empty()) out.unit = "unspecified (millimetre assumed)";
 
-  reader.TransferRoots(deadline.Start());
-  const Handle(Transfer_TransientProcess) process =
-      reader.WS()->TransferReader()->TransientProcess();
-  if (!process.IsNull())
-    if (auto w = occt::summarise_checks(process->CheckList(Standard_False), "transfer"); !w.empty())
-      out.warnings.push_back(w);
-  out.shape = reader.OneShape();
-  out.shape_names = occt::shape_names(process, step_name);
+  occt::transfer_roots(reader, deadline, step_name, out);
   return out;
 }
 
