@@ -16,6 +16,14 @@ constexpr double kGaussX[5] = {-0.9061798459386640, -0.5384693101056831, 0.0,
 constexpr double kGaussW[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
                                0.4786286704993665, 0.2369268850561891};
 
+// Projection: Levenberg-Marquardt iteration cap and damping schedule (relative to the
+// diagonal of the Gauss-Newton matrix).
+constexpr int kProjectMaxIterations = 200;
+constexpr double kProjectDampingStart = 1e-6;
+constexpr double kProjectDampingUp = 8.0;
+constexpr double kProjectDampingDown = 0.25;
+constexpr double kProjectMaxDamping = 1e16;
+
 // Distinct knot values inside the domain: the breakpoints of the polynomial pieces.
 std::vector<double> breakpoints(const std::vector<double>& knots, double a, double b) {
   std::vector<double> out;
@@ -161,19 +169,34 @@ SurfaceNormal Face::normal(const Vec2& uv) const {
   return n;
 }
 
+namespace {
+// Parameter values covering [a, b]: every knot span gets at least degree + 1 points (so
+// strongly non-uniform knot vectors are sampled where the geometry is), n in all at least.
+std::vector<double> span_samples(const std::vector<double>& knots, int degree, double a, double b,
+                                 int n) {
+  const auto br = breakpoints(knots, a, b);
+  const int spans = std::max(1, static_cast<int>(br.size()) - 1);
+  const int per = std::max(degree + 1, (n + spans - 1) / spans);
+  std::vector<double> out;
+  for (int i = 0; i < spans; ++i) {
+    const double lo = br.size() > 1 ? br[i] : a, hi = br.size() > 1 ? br[i + 1] : b;
+    for (int k = 0; k < per; ++k) out.push_back(lo + (hi - lo) * k / per);
+  }
+  out.push_back(b);
+  return out;
+}
+}  // namespace
+
 std::vector<std::pair<Vec2, Vec3>> sample_face(const Face& face, int n) {
   const auto& s = face.surface();
   const auto& d = s.domain();
-  const auto bu = breakpoints(s.data().knots_u, d.u0, d.u1);
-  const auto bv = breakpoints(s.data().knots_v, d.v0, d.v1);
-  const int nu = std::clamp(static_cast<int>(bu.size() - 1) * (s.data().degree_u + 1), n, 4 * n);
-  const int nv = std::clamp(static_cast<int>(bv.size() - 1) * (s.data().degree_v + 1), n, 4 * n);
+  const auto us = span_samples(s.data().knots_u, s.data().degree_u, d.u0, d.u1, n);
+  const auto vs = span_samples(s.data().knots_v, s.data().degree_v, d.v0, d.v1, n);
   std::vector<std::pair<Vec2, Vec3>> out;
-  out.reserve(static_cast<size_t>(nu + 1) * (nv + 1));
-  for (int i = 0; i <= nu; ++i) {
-    const double u = d.u0 + d.width_u() * i / nu;
-    for (int j = 0; j <= nv; ++j) {
-      const Vec2 uv(u, d.v0 + d.width_v() * j / nv);
+  out.reserve(us.size() * vs.size());
+  for (double u : us) {
+    for (double v : vs) {
+      const Vec2 uv(u, v);
       if (!face.contains(uv)) continue;
       const SurfaceEval1 e = face.eval1(uv);
       if (e.ok) out.emplace_back(uv, e.p);
@@ -231,52 +254,67 @@ Projection Face::project(const Vec3& p) const {
     return (samples[a].second - p).squaredNorm() < (samples[b].second - p).squaredNorm();
   });
   const auto& d = domain();
-  const double step_tol = tol_.param_rel;
+  const Eigen::Array2d width(d.width_u(), d.width_v());
   for (size_t si = 0; si < nseed; ++si) {
     Vec2 uv = samples[order[si]].first;
     double dist = (samples[order[si]].second - p).norm();
-    // Newton on the point-inversion equations Su.(S - p) = Sv.(S - p) = 0, Levenberg-
-    // Marquardt damped, with a line search on the distance; stays inside the face.
+    // Levenberg-Marquardt on |S(u, v) - p|^2 with Marquardt scaling: the full Hessian where
+    // it is positive definite, Gauss-Newton elsewhere; damping grows when a step is refused
+    // (longer distance or off the face) and shrinks when one is taken.
     double lambda = 0.0;
-    for (int it = 0; it < tol_.newton_max_iterations; ++it) {
+    for (int it = 0; it < kProjectMaxIterations; ++it) {
       const SurfaceEval2 e = eval2(uv);
       if (!e.ok) break;
       const Vec3 r = e.p - p;
       const Vec2 g(e.du.dot(r), e.dv.dot(r));
-      Eigen::Matrix2d J;
-      J << e.du.dot(e.du) + r.dot(e.duu), e.du.dot(e.dv) + r.dot(e.duv),
-          e.du.dot(e.dv) + r.dot(e.duv), e.dv.dot(e.dv) + r.dot(e.dvv);
-      const double scale = J.diagonal().cwiseAbs().maxCoeff() + 1e-300;
-      if (J.determinant() <= 0.0 || J(0, 0) <= 0.0) lambda = std::max(lambda * 10, 1e-9);
-      Eigen::Matrix2d Jd = J;
-      Jd(0, 0) += lambda * scale;
-      Jd(1, 1) += lambda * scale;
-      Vec2 step = -Jd.fullPivLu().solve(g);
-      if (!step.allFinite()) break;
-      // Line search: accept the largest fraction that reduces the distance and stays on the face.
-      bool moved = false;
-      for (int h = 0; h < tol_.line_search_max_halvings; ++h) {
+      Eigen::Matrix2d A;
+      A << e.du.dot(e.du), e.du.dot(e.dv), e.du.dot(e.dv), e.dv.dot(e.dv);
+      Eigen::Matrix2d H = A;
+      H(0, 0) += r.dot(e.duu);
+      H(0, 1) += r.dot(e.duv);
+      H(1, 0) += r.dot(e.duv);
+      H(1, 1) += r.dot(e.dvv);
+      if (!(H.determinant() > 0.0 && H(0, 0) > 0.0)) H = A;
+      const Vec2 D(std::max(A(0, 0), 1e-300), std::max(A(1, 1), 1e-300));
+      bool taken = false, converged = false;
+      while (lambda < kProjectMaxDamping) {
+        // Solve in Jacobi-scaled variables: |Su| and |Sv| may differ by many orders.
+        const Vec2 sc(1.0 / std::sqrt(D.x()), 1.0 / std::sqrt(D.y()));
+        Eigen::Matrix2d M = sc.asDiagonal() * H * sc.asDiagonal();
+        M(0, 0) += lambda;
+        M(1, 1) += lambda;
+        const Vec2 step = -(sc.asDiagonal() * M.fullPivLu().solve(sc.asDiagonal() * g)).eval();
+        if (!step.allFinite()) break;
         Vec2 cand = uv + step;
         if (!closed_u_) cand.x() = std::clamp(cand.x(), d.u0, d.u1);
         if (!closed_v_) cand.y() = std::clamp(cand.y(), d.v0, d.v1);
         cand = wrap(cand);
+        const bool tiny = (delta(uv, cand).cwiseAbs().array() <= tol_.param_rel * width).all();
+        if (tiny) {
+          converged = true;
+          break;
+        }
         if (contains(cand)) {
           const SurfaceEval1 c = eval1(cand);
           const double cd = (c.p - p).norm();
-          if (c.ok && cd <= dist) {
-            const bool small = (delta(uv, cand).cwiseAbs().array() <=
-                                step_tol * Eigen::Array2d(d.width_u(), d.width_v()))
-                                   .all();
+          // Near the minimum a step of length h changes the distance by O(h^2), below its
+          // rounding: there, a step that keeps the distance and shrinks the (scaled)
+          // gradient is progress too.
+          const Vec3 rc = c.p - p;
+          const double gc = std::hypot(c.du.dot(rc) / std::sqrt(D.x()), c.dv.dot(rc) / std::sqrt(D.y()));
+          const double g0 = std::hypot(g.x() / std::sqrt(D.x()), g.y() / std::sqrt(D.y()));
+          const bool flat = cd <= dist + tol_.roundoff_rel * (p.norm() + dist + size_);
+          if (c.ok && (cd < dist || (flat && gc < g0))) {
             uv = cand;
             dist = cd;
-            moved = !small;
+            taken = true;
+            lambda *= kProjectDampingDown;
             break;
           }
         }
-        step *= 0.5;
+        lambda = lambda == 0.0 ? kProjectDampingStart : lambda * kProjectDampingUp;
       }
-      lambda *= 0.1;
-      if (!moved) break;
+      if (!taken || converged) break;
     }
     if (!best.ok || dist < best.distance) {
       best.uv = uv;

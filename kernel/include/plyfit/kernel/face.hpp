@@ -31,6 +31,8 @@ class DrapeSurface {
   virtual SurfaceNormal normal(const Vec2& uv) const = 0;
   /// +1 when the face normal is Su x Sv, -1 when the face is reversed.
   virtual double orientation() const = 0;
+  /// True when the derivatives in `e` span no tangent plane (a pole or collapsed edge).
+  virtual bool degenerate(const SurfaceEval1& e) const = 0;
   /// True when uv (after wrapping) lies on the face: in the domain and inside the trims.
   virtual bool contains(const Vec2& uv) const = 0;
   /// Parameter domain of the underlying surface.
@@ -90,6 +92,9 @@ class Face final : public DrapeSurface {
   SurfaceEval2 eval2(const Vec2& uv) const override;
   SurfaceNormal normal(const Vec2& uv) const override;
   double orientation() const override { return reversed_ ? -1.0 : 1.0; }
+  bool degenerate(const SurfaceEval1& e) const override {
+    return surface_->is_degenerate(e.du, e.dv);
+  }
   bool contains(const Vec2& uv) const override;
   const ParamDomain& domain() const override { return surface_->domain(); }
   Vec2 wrap(const Vec2& uv) const override;

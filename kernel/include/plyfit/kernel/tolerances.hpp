@@ -11,7 +11,10 @@ namespace plyfit {
 /// name says otherwise.
 struct Tolerances {
   /// Newton stop, eq. (9): |F1| + |F2| < newton_residual_rel * d, where both F are lengths.
-  double newton_residual_rel = 1e-11;
+  double newton_residual_rel = 1e-14;
+  /// Floor of the Newton stop: residuals are not asked to go below roundoff_rel times the
+  /// magnitude of the coordinates involved (a few ulps of |F| computed from them).
+  double roundoff_rel = 2e-15;
   /// Iteration cap of every Newton solve.
   int newton_max_iterations = 40;
   /// Cap on step halvings in a line search.

@@ -1,0 +1,474 @@
+#include "drape_job.hpp"
+
+#include <plyfit/exporters/exporters.hpp>
+#include <plyfit/importers/importers.hpp>
+#include <plyfit/kernel/builtin_molds.hpp>
+#include <plyfit/kernel/flat_pattern.hpp>
+
+#include <boost/program_options.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <unistd.h>
+
+namespace po = boost::program_options;
+namespace fs = std::filesystem;
+
+namespace plyfit::cli {
+
+namespace {
+
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+
+std::string all_outputs() {
+  std::string s;
+  for (const auto& e : exporters::registry()) s += (s.empty() ? "" : ",") + e.key;
+  return s;
+}
+
+}  // namespace
+
+const std::vector<OptionSpec>& drape_options() {
+  static const std::vector<OptionSpec> list = {
+      {"mold", "FILE|builtin:NAME[:k=v,...]", "", "mold file (STEP, IGES) or a built-in mold", false, "mold"},
+      {"face", "N", "0", "face index in the mold file (see plyfit info)", false, "mold"},
+      {"format", "KEY", "", "importer to use instead of the file extension (step, iges)", false, "mold"},
+      {"flip-normal", "", "false", "drape on the other side of the surface", false, "mold"},
+      {"spacing", "D", "", "thread spacing d (both directions), model units", false, "ply"},
+      {"spacing-weft", "D", "", "weft link length (spacing of the warp threads, along x)", false, "ply"},
+      {"spacing-warp", "D", "", "warp link length (spacing of the weft threads, along y)", false, "ply"},
+      {"ply", "W,H", "", "cloth rectangle [0,W] x [0,H] (default: unbounded)", false, "ply"},
+      {"start2d", "X,Y", "", "start point of the base path in ply coordinates", false, "start"},
+      {"base2d", "DX,DY", "", "base path direction in ply coordinates", false, "start"},
+      {"sweep2d", "DX,DY", "", "sweep direction in ply coordinates (one per half-plane)", true, "start"},
+      {"start3d", "X,Y,Z", "", "start point on the mold (projected onto the face)", false, "start"},
+      {"base-normal", "NX,NY,NZ", "", "normal of the base plane (through the 3D start)", false, "start"},
+      {"sweep3d", "DX,DY,DZ", "", "3D sweep direction, paired in order with --sweep2d", true, "start"},
+      {"lock-angle", "DEG", "90", "largest shear (90 - thread angle) the cloth takes; 90 = no limit", false, "material"},
+      {"warn-angle", "DEG", "", "shear above which cells are flagged (default: lock angle - 5)", false, "material"},
+      {"material", "TEXT", "woven", "material name for labels", false, "material"},
+      {"ply-name", "TEXT", "ply", "ply name for labels", false, "material"},
+      {"tolerance", "T", "1e-14", "Newton tolerance relative to the spacing (eq. 9)", false, "numerics"},
+      {"max-iterations", "N", "40", "Newton iteration cap per node", false, "numerics"},
+      {"guess", "paper|parallelogram", "paper", "initial guess of the two-sphere solver", false, "numerics"},
+      {"max-nodes", "N", "50000000", "stop after reaching this many nodes", false, "numerics"},
+      {"output", "DIR", "", "output folder (-o)", false, "output"},
+      {"outputs", "LIST", "", "outputs to write, comma-separated (default: all)", false, "output"},
+      {"curve-degree", "1|3", "1", "degree of the thread curves in net.step", false, "output"},
+      {"view", "X,Y,Z", "1,1,1", "view direction of drape.svg (towards the viewer)", false, "output"},
+  };
+  return list;
+}
+
+Result<double> parse_number(const std::string& text, const std::string& what) {
+  std::string t = text;
+  while (!t.empty() && std::isspace(static_cast<unsigned char>(t.back()))) t.pop_back();
+  std::size_t b = 0;
+  while (b < t.size() && std::isspace(static_cast<unsigned char>(t[b]))) ++b;
+  t = t.substr(b);
+  if (t.empty()) return Error{what + ": empty value, expected a number"};
+  char* end = nullptr;
+  errno = 0;
+  const double x = std::strtod(t.c_str(), &end);
+  if (end != t.c_str() + t.size())
+    return Error{what + ": '" + text + "' is not a number"};
+  if (!std::isfinite(x) || errno == ERANGE)
+    return Error{what + ": '" + text + "' is not a finite number"};
+  return x;
+}
+
+namespace {
+
+template <int N>
+Result<Eigen::Matrix<double, N, 1>> parse_vec(const std::string& text, const std::string& what) {
+  Eigen::Matrix<double, N, 1> v;
+  std::stringstream ss(text);
+  std::string part;
+  int k = 0;
+  while (std::getline(ss, part, ',')) {
+    if (k >= N) return Error{what + ": '" + text + "' has more than " + std::to_string(N) + " numbers"};
+    auto x = parse_number(part, what);
+    if (!x) return x.error();
+    v[k++] = *x;
+  }
+  if (k != N)
+    return Error{what + ": '" + text + "' must be " + std::to_string(N) + " comma-separated numbers"};
+  return v;
+}
+
+Result<int> parse_int(const std::string& text, const std::string& what, long lo, long hi) {
+  auto x = parse_number(text, what);
+  if (!x) return x.error();
+  if (*x != std::floor(*x) || *x < lo || *x > hi)
+    return Error{what + ": '" + text + "' must be an integer from " + std::to_string(lo) + " to " +
+                 std::to_string(hi)};
+  return static_cast<int>(*x);
+}
+
+Result<bool> parse_bool(const std::string& text, const std::string& what) {
+  if (text == "true" || text == "1" || text == "yes" || text == "on") return true;
+  if (text == "false" || text == "0" || text == "no" || text == "off") return false;
+  return Error{what + ": '" + text + "' must be true or false"};
+}
+
+const OptionSpec* find_spec(const std::string& key) {
+  for (const auto& s : drape_options())
+    if (s.key == key) return &s;
+  return nullptr;
+}
+
+}  // namespace
+
+Result<RawOptions> raw_from_args(const std::vector<std::string>& args) {
+  po::options_description desc;
+  for (const auto& s : drape_options()) {
+    const std::string name = s.key == "output" ? "output,o" : s.key;
+    if (s.value.empty()) {
+      desc.add_options()(name.c_str(), po::value<std::vector<std::string>>()->zero_tokens()->implicit_value({"true"}, "true"), s.help.c_str());
+    } else {
+      desc.add_options()(name.c_str(), po::value<std::vector<std::string>>()->composing(), s.help.c_str());
+    }
+  }
+  RawOptions raw;
+  raw.origin = "command line";
+  const std::string cwd = fs::current_path().string();
+  try {
+    const po::parsed_options parsed = po::command_line_parser(args).options(desc).run();
+    for (const auto& o : parsed.options) {
+      if (o.position_key >= 0)
+        return Error{"unexpected argument '" + o.value.front() + "' (a scene file must come first)"};
+      const OptionSpec* s = find_spec(o.string_key);
+      if (!s) return Error{"unknown option --" + o.string_key};
+      auto& vals = raw.values[o.string_key];
+      raw.dirs[o.string_key] = cwd;
+      if (!s->repeatable && !vals.empty())
+        return Error{"--" + o.string_key + " given more than once"};
+      if (s->value.empty()) {
+        vals.push_back(o.value.empty() ? "true" : o.value.front());
+      } else {
+        if (o.value.empty()) return Error{"--" + o.string_key + " needs a value (" + s->value + ")"};
+        vals.insert(vals.end(), o.value.begin(), o.value.end());
+      }
+    }
+  } catch (const po::error& e) {
+    return Error{e.what()};
+  }
+  return raw;
+}
+
+Result<RawOptions> raw_from_scene(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return Error{path + ": cannot open the scene file"};
+  RawOptions raw;
+  raw.origin = path;
+  const std::string dir = fs::absolute(fs::path(path)).parent_path().string();
+  try {
+    po::options_description none;
+    const po::parsed_options parsed = po::parse_config_file(in, none, true);
+    for (const auto& o : parsed.options) {
+      // Sections are for grouping: "[ply] spacing = 1" is the key "spacing".
+      std::string key = o.string_key;
+      const auto dot = key.rfind('.');
+      const std::string section = dot == std::string::npos ? "" : key.substr(0, dot);
+      if (dot != std::string::npos) key = key.substr(dot + 1);
+      const OptionSpec* s = find_spec(key);
+      if (!s)
+        return Error{path + ": unknown key '" + key + "'" +
+                     (section.empty() ? "" : " in section [" + section + "]")};
+      auto& vals = raw.values[key];
+      raw.dirs[key] = dir;
+      if (!s->repeatable && !vals.empty()) return Error{path + ": key '" + key + "' given more than once"};
+      for (const auto& v : o.value) vals.push_back(v);
+      if (o.value.empty()) return Error{path + ": key '" + key + "' has no value"};
+    }
+  } catch (const po::error& e) {
+    return Error{path + ": " + e.what()};
+  }
+  return raw;
+}
+
+RawOptions merge(const RawOptions& base, const RawOptions& over) {
+  RawOptions out = base;
+  for (const auto& [k, v] : over.values) {
+    out.values[k] = v;
+    const auto d = over.dirs.find(k);
+    if (d != over.dirs.end()) out.dirs[k] = d->second;
+  }
+  return out;
+}
+
+Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
+  const std::string where = raw.origin == "command line" ? "" : raw.origin + ": ";
+  auto get = [&](const std::string& k) -> const std::vector<std::string>* {
+    auto it = raw.values.find(k);
+    return it == raw.values.end() || it->second.empty() ? nullptr : &it->second;
+  };
+  auto one = [&](const std::string& k) -> std::optional<std::string> {
+    const auto* v = get(k);
+    if (v) return v->front();
+    const OptionSpec* s = find_spec(k);
+    if (s && !s->def.empty()) return s->def;
+    return std::nullopt;
+  };
+  auto name = [&](const std::string& k) { return where + (where.empty() ? "--" : "key '") + k + (where.empty() ? "" : "'"); };
+  auto dir_for = [&](const std::string& k) {
+    const auto d = raw.dirs.find(k);
+    return d == raw.dirs.end() ? std::string() : d->second;
+  };
+  auto resolve = [&](const std::string& k, const std::string& p) {
+    if (p.rfind("builtin:", 0) == 0 || fs::path(p).is_absolute() || dir_for(k).empty()) return p;
+    return (fs::path(dir_for(k)) / p).lexically_normal().string();
+  };
+  DrapeJob job;
+  // Required keys.
+  for (const char* k : {"mold", "start2d", "base2d", "sweep2d", "start3d", "base-normal", "sweep3d"})
+    if (!get(k)) return Error{where + "missing required " + (where.empty() ? "option --" : "key '") + k + (where.empty() ? "" : "'")};
+  if (need_output && !get("output")) return Error{where + "missing the output folder (" + (where.empty() ? "-o DIR" : "key 'output'") + ")"};
+  job.mold = resolve("mold", *one("mold"));
+  if (auto f = parse_int(*one("face"), name("face"), 0, 1 << 30); f) job.face = *f; else return f.error();
+  job.format = one("format").value_or("");
+  if (auto b = parse_bool(*one("flip-normal"), name("flip-normal")); b) job.flip_normal = *b; else return b.error();
+
+  auto& ply = job.problem.ply;
+  const auto sp = one("spacing"), sw = one("spacing-weft"), sv = one("spacing-warp");
+  if (!sp && !(sw && sv)) return Error{where + "missing the spacing (" + (where.empty() ? "--spacing D" : "key 'spacing'") + ")"};
+  double d = 0;
+  if (sp) {
+    auto x = parse_number(*sp, name("spacing"));
+    if (!x) return x.error();
+    d = *x;
+  }
+  ply.d_weft = ply.d_warp = d;
+  if (sw) { auto x = parse_number(*sw, name("spacing-weft")); if (!x) return x.error(); ply.d_weft = *x; }
+  if (sv) { auto x = parse_number(*sv, name("spacing-warp")); if (!x) return x.error(); ply.d_warp = *x; }
+  for (const auto& [k, v] : {std::pair{"spacing", sp ? d : 1.0}, {"spacing-weft", ply.d_weft}, {"spacing-warp", ply.d_warp}})
+    if (!(v > 0.0)) return Error{name(k) + ": the spacing must be positive"};
+  if (auto r = one("ply")) {
+    auto v = parse_vec<2>(*r, name("ply"));
+    if (!v) return v.error();
+    if (!(v->x() > 0 && v->y() > 0)) return Error{name("ply") + ": W and H must be positive"};
+    ply.rect = *v;
+  }
+  if (auto v = parse_vec<2>(*one("start2d"), name("start2d")); v) ply.start = *v; else return v.error();
+  if (auto v = parse_vec<2>(*one("base2d"), name("base2d")); v) ply.base_dir = *v; else return v.error();
+  if (!(ply.base_dir.norm() > 0)) return Error{name("base2d") + ": the direction must be non-zero"};
+  for (const auto& s : *get("sweep2d")) {
+    auto v = parse_vec<2>(s, name("sweep2d"));
+    if (!v) return v.error();
+    ply.sweeps.push_back(*v);
+  }
+  if (auto v = parse_vec<3>(*one("start3d"), name("start3d")); v) job.problem.start = *v; else return v.error();
+  if (auto v = parse_vec<3>(*one("base-normal"), name("base-normal")); v) job.problem.base_normal = *v; else return v.error();
+  for (const auto& s : *get("sweep3d")) {
+    auto v = parse_vec<3>(s, name("sweep3d"));
+    if (!v) return v.error();
+    job.problem.sweeps.push_back(*v);
+  }
+  if (ply.sweeps.size() > 2) return Error{name("sweep2d") + ": at most two sweep directions"};
+  if (ply.sweeps.size() != job.problem.sweeps.size())
+    return Error{where + "give one 3D sweep direction per 2D sweep direction (" +
+                 std::to_string(ply.sweeps.size()) + " 2D, " + std::to_string(job.problem.sweeps.size()) + " 3D)"};
+  for (std::size_t k = 0; k < ply.sweeps.size(); ++k)
+    if (std::abs(cross2(ply.base_dir.normalized(), ply.sweeps[k].normalized())) < job.drape.tol.ply_merge_rel ||
+        !(ply.sweeps[k].norm() > 0))
+      return Error{name("sweep2d") + ": sweep direction " + std::to_string(k + 1) + " is parallel to the base path"};
+
+  if (auto x = parse_number(*one("lock-angle"), name("lock-angle")); x) job.lock_angle_deg = *x; else return x.error();
+  if (!(job.lock_angle_deg > 0 && job.lock_angle_deg <= 90)) return Error{name("lock-angle") + ": must be in (0, 90] degrees"};
+  job.drape.lock_angle = job.lock_angle_deg * kDegToRad;
+  job.warn_angle_deg = job.lock_angle_deg - 5.0;
+  if (auto w = one("warn-angle")) {
+    auto x = parse_number(*w, name("warn-angle"));
+    if (!x) return x.error();
+    if (!(*x >= 0 && *x <= 90)) return Error{name("warn-angle") + ": must be in [0, 90] degrees"};
+    job.warn_angle_deg = *x;
+  }
+  job.material = *one("material");
+  job.ply_name = *one("ply-name");
+  if (auto x = parse_number(*one("tolerance"), name("tolerance")); x) job.tolerance_rel = *x; else return x.error();
+  if (!(job.tolerance_rel > 0 && job.tolerance_rel < 1)) return Error{name("tolerance") + ": must be in (0, 1)"};
+  job.drape.tol.newton_residual_rel = job.tolerance_rel;
+  if (auto x = parse_int(*one("max-iterations"), name("max-iterations"), 1, 10000); x) job.max_iterations = *x; else return x.error();
+  job.drape.tol.newton_max_iterations = job.max_iterations;
+  const std::string g = *one("guess");
+  if (g == "paper") job.drape.guess = GuessRule::kPaper;
+  else if (g == "parallelogram") job.drape.guess = GuessRule::kParallelogram;
+  else return Error{name("guess") + ": '" + g + "' must be paper or parallelogram"};
+  if (auto x = parse_number(*one("max-nodes"), name("max-nodes")); x) {
+    if (!(*x >= 1 && *x == std::floor(*x))) return Error{name("max-nodes") + ": must be a positive integer"};
+    job.drape.max_nodes = static_cast<std::uint64_t>(*x);
+  } else return x.error();
+  if (auto o = one("output")) job.outdir = resolve("output", *o);
+  const std::string outs = one("outputs").value_or(all_outputs());
+  std::stringstream ss(outs);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    if (item.empty()) continue;
+    if (!exporters::find_exporter(item))
+      return Error{name("outputs") + ": unknown output '" + item + "' (known: " + exporters::supported_keys() + ")"};
+    job.outputs.push_back(item);
+  }
+  if (auto x = parse_int(*one("curve-degree"), name("curve-degree"), 1, 3); x) {
+    if (*x == 2) return Error{name("curve-degree") + ": must be 1 or 3"};
+    job.curve_degree = *x;
+  } else return x.error();
+  if (auto v = parse_vec<3>(*one("view"), name("view")); v) {
+    if (!(v->norm() > 0)) return Error{name("view") + ": the direction must be non-zero"};
+    job.view = *v;
+  } else return v.error();
+  job.scene = raw.origin == "command line" ? "" : raw.origin;
+  return job;
+}
+
+namespace {
+std::string fmt(double x) {
+  std::ostringstream os;
+  os.precision(17);
+  os << x;
+  return os.str();
+}
+std::string fmt(const Vec2& v) { return fmt(v.x()) + "," + fmt(v.y()); }
+std::string fmt(const Vec3& v) { return fmt(v.x()) + "," + fmt(v.y()) + "," + fmt(v.z()); }
+}  // namespace
+
+std::string dump_scene(const DrapeJob& job) {
+  std::map<std::string, std::vector<std::string>> v;
+  const auto& p = job.problem;
+  v["mold"] = {job.mold};
+  v["face"] = {std::to_string(job.face)};
+  if (!job.format.empty()) v["format"] = {job.format};
+  v["flip-normal"] = {job.flip_normal ? "true" : "false"};
+  if (p.ply.d_weft == p.ply.d_warp) {
+    v["spacing"] = {fmt(p.ply.d_weft)};
+  } else {
+    v["spacing-weft"] = {fmt(p.ply.d_weft)};
+    v["spacing-warp"] = {fmt(p.ply.d_warp)};
+  }
+  if (p.ply.rect) v["ply"] = {fmt(*p.ply.rect)};
+  v["start2d"] = {fmt(p.ply.start)};
+  v["base2d"] = {fmt(p.ply.base_dir)};
+  for (const auto& w : p.ply.sweeps) v["sweep2d"].push_back(fmt(w));
+  v["start3d"] = {fmt(p.start)};
+  v["base-normal"] = {fmt(p.base_normal)};
+  for (const auto& w : p.sweeps) v["sweep3d"].push_back(fmt(w));
+  v["lock-angle"] = {fmt(job.lock_angle_deg)};
+  v["warn-angle"] = {fmt(job.warn_angle_deg)};
+  v["material"] = {job.material};
+  v["ply-name"] = {job.ply_name};
+  v["tolerance"] = {fmt(job.tolerance_rel)};
+  v["max-iterations"] = {std::to_string(job.max_iterations)};
+  v["guess"] = {job.drape.guess == GuessRule::kPaper ? "paper" : "parallelogram"};
+  v["max-nodes"] = {std::to_string(job.drape.max_nodes)};
+  if (!job.outdir.empty()) v["output"] = {job.outdir};
+  std::string outs;
+  for (const auto& o : job.outputs) outs += (outs.empty() ? "" : ",") + o;
+  v["outputs"] = {outs};
+  v["curve-degree"] = {std::to_string(job.curve_degree)};
+  v["view"] = {fmt(job.view)};
+  std::ostringstream os;
+  os << "# plyfit scene (plyfit drape --dump-scene)\n";
+  std::string section;
+  for (const auto& s : drape_options()) {
+    auto it = v.find(s.key);
+    if (it == v.end()) continue;
+    if (s.section != section) {
+      section = s.section;
+      os << "\n[" << section << "]\n";
+    }
+    for (const auto& x : it->second) os << s.key << " = " << x << "\n";
+  }
+  return os.str();
+}
+
+Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel, bool progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto ms_since = [](auto t) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+  };
+  exporters::RunInfo run;
+  run.mold = job.mold;
+  run.face = job.face;
+  run.flip_normal = job.flip_normal;
+  run.tolerance_rel = job.tolerance_rel;
+  run.max_iterations = job.max_iterations;
+  run.lock_angle_deg = job.lock_angle_deg;
+  run.ply_name = job.ply_name;
+  run.material = job.material;
+  run.outputs = job.outputs;
+  // Import: a built-in mold or one face of a file.
+  FaceData data;
+  if (job.mold.rfind("builtin:", 0) == 0) {
+    auto spec = parse_builtin_spec(job.mold.substr(8));
+    if (!spec) return spec.error();
+    if (job.face != 0) return Error{job.mold + ": a built-in mold has only face 0"};
+    auto fd = builtin_mold(spec->first, spec->second);
+    if (!fd) return fd.error();
+    data = std::move(fd).value();
+    run.face_info.name = data.name;
+    run.face_info.kind = "builtin:" + spec->first;
+    run.mold_unit = "mm";
+  } else {
+    importers::ImportOptions io;
+    io.format = job.format;
+    io.tolerances = job.drape.tol;
+    auto file = importers::open_mold(job.mold, io);
+    if (!file) return file.error();
+    const Mold& mold = (*file)->mold();
+    if (job.face < 0 || job.face >= static_cast<int>(mold.faces.size()))
+      return Error{job.mold + ": face " + std::to_string(job.face) + " out of range (the file has " +
+                   std::to_string(mold.faces.size()) + " faces, 0.." + std::to_string(mold.faces.size() - 1) + ")"};
+    run.face_info = mold.faces[job.face];
+    run.mold_unit = mold.unit;
+    run.warnings = mold.warnings;
+    auto fd = (*file)->convert_face(job.face);
+    if (!fd) return fd.error();
+    data = std::move(fd).value();
+  }
+  if (job.flip_normal) data.reversed = !data.reversed;
+  auto face = Face::create(std::move(data), job.drape.tol);
+  if (!face) return Error{job.mold + ": face " + std::to_string(job.face) + ": " + face.error().message};
+  run.import_ms = ms_since(t0);
+
+  DrapeOptions opt = job.drape;
+  opt.cancel = cancel;
+  const bool tty = progress && ::isatty(2);
+  if (tty) {
+    opt.progress = [](std::uint64_t n) { std::cerr << "\rplyfit: " << n << " nodes solved" << std::flush; };
+  }
+  auto res = drape(*face, job.problem, opt);
+  if (tty) std::cerr << "\r\033[K" << std::flush;
+  if (!res) return res.error();
+  if (cancel && cancel->load()) return Error{"cancelled"};
+  run.drape_ms = res->drape_ms;
+  const FlatPattern flat = flat_pattern(*face, *res);
+  exporters::ExportOptions eo;
+  eo.warn_shear = job.warn_angle_deg * kDegToRad;
+  eo.curve_degree = job.curve_degree;
+  eo.view = job.view;
+  run.total_ms = ms_since(t0);
+  const exporters::ExportContext ctx{job.problem, *res, *face, &flat, run, eo};
+  if (!job.outdir.empty()) {
+    if (auto s = exporters::write_outputs(ctx, job.outdir, job.outputs); !s) return s.error();
+  }
+  JobOutcome out;
+  out.status = res->partial ? "partial" : "ok";
+  out.mapped = res->metrics.nodes.mapped;
+  const auto& m = res->metrics;
+  out.shear_max_deg = m.angles ? std::max(std::abs(90.0 - m.gamma_min / kDegToRad),
+                                          std::abs(m.gamma_max / kDegToRad - 90.0))
+                               : 0.0;
+  out.metrics = m;
+  out.face_area = face->area();
+  out.flat_outline_area = flat.area;
+  for (const auto& k : job.outputs)
+    if (const auto* e = exporters::find_exporter(k))
+      for (const auto& f : e->files) out.files.push_back(f);
+  out.total_ms = ms_since(t0);
+  return out;
+}
+
+}  // namespace plyfit::cli

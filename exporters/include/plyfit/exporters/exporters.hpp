@@ -1,0 +1,81 @@
+#pragma once
+/// \file Output writers: a registry of one-file plugins keyed by lower-case extension
+/// (json, dxf, step, svg, vtk). Each writes its files into an output folder, atomically.
+
+#include <plyfit/kernel/drape.hpp>
+#include <plyfit/kernel/face.hpp>
+#include <plyfit/kernel/mold.hpp>
+#include <plyfit/kernel/result.hpp>
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace plyfit {
+struct FlatPattern;  // kernel/flat_pattern.hpp
+}
+
+namespace plyfit::exporters {
+
+/// Inputs of a run that are not part of the DrapeProblem, echoed in the report.
+struct RunInfo {
+  std::string mold;          ///< file path or "builtin:..." as given
+  int face = 0;              ///< face index
+  FaceInfo face_info;        ///< what the mold says about the face
+  std::string mold_unit;     ///< the file's unit (geometry is in mm)
+  bool flip_normal = false;
+  double tolerance_rel = 0;  ///< Newton tolerance relative to d
+  int max_iterations = 0;
+  double lock_angle_deg = 90;
+  std::string ply_name;      ///< for labels
+  std::string material;      ///< for labels
+  double import_ms = 0, drape_ms = 0, total_ms = 0;
+  std::vector<std::string> outputs;  ///< exporter keys being written
+  std::vector<std::string> warnings; ///< import warnings etc.
+};
+
+/// Options of the writers.
+struct ExportOptions {
+  /// Cells whose shear exceeds this (radians) go to the DXF SHEAR_WARN layer and are flagged
+  /// in the pictures; default: 5 degrees below the lock angle.
+  double warn_shear = 1.4835298641951802;
+  bool dxf_threads = true;     ///< THREADS layer in flat.dxf
+  int curve_degree = 1;        ///< net.step thread curves: 1 (polyline) or 3 (interpolated)
+  Vec3 view = Vec3(1, 1, 1);   ///< drape.svg view direction (towards the viewer)
+};
+
+/// Everything a writer may use.
+struct ExportContext {
+  const DrapeProblem& problem;
+  const DrapeResult& result;
+  const Face& face;
+  const FlatPattern* flat;  ///< may be null
+  const RunInfo& run;
+  const ExportOptions& options;
+};
+
+/// A registered writer.
+struct Exporter {
+  std::string key;                 ///< e.g. "json"
+  std::vector<std::string> files;  ///< the files it writes into the output folder
+  std::string description;
+  std::function<Status(const ExportContext&, const std::string& outdir)> write;
+};
+
+/// All writers, in registration order.
+const std::vector<Exporter>& registry();
+/// Writer for a key (case-insensitive), or nullptr.
+const Exporter* find_exporter(const std::string& key);
+/// Comma-separated keys, for messages.
+std::string supported_keys();
+
+/// Writes the selected outputs (keys) into outdir (created if missing). Stops at the first
+/// failure; files already written stay (each is whole).
+Status write_outputs(const ExportContext& ctx, const std::string& outdir,
+                     const std::vector<std::string>& keys);
+
+/// The report as a JSON string (what report.json holds); also used by batch summaries.
+std::string report_json(const ExportContext& ctx);
+
+}  // namespace plyfit::exporters

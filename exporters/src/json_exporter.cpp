@@ -1,0 +1,105 @@
+// report.json: inputs echoed, status, node counts, areas, thread angles, shear energy,
+// residuals, timings. nlohmann-json writes numbers in their shortest exact form, so equal
+// inputs give equal bytes except for the timing_ms fields.
+
+#include <plyfit/exporters/atomic_file.hpp>
+#include <plyfit/exporters/exporters.hpp>
+#include <plyfit/kernel/flat_pattern.hpp>
+
+#include "plugins.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+
+namespace plyfit::exporters {
+
+namespace {
+
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+
+nlohmann::json vec(const Vec2& v) { return nlohmann::json::array({v.x(), v.y()}); }
+nlohmann::json vec(const Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
+
+}  // namespace
+
+std::string report_json(const ExportContext& ctx) {
+  using nlohmann::json;
+  const DrapeResult& r = ctx.result;
+  const DrapeMetrics& m = r.metrics;
+  const DrapeProblem& p = ctx.problem;
+  json j;
+  j["status"] = r.partial ? "partial" : "ok";
+  j["warnings"] = r.warnings;
+  json in;
+  in["mold"] = ctx.run.mold;
+  in["face"] = ctx.run.face;
+  in["flip_normal"] = ctx.run.flip_normal;
+  in["spacing_weft"] = p.ply.d_weft;
+  in["spacing_warp"] = p.ply.d_warp;
+  in["ply"] = p.ply.rect ? vec(*p.ply.rect) : json(nullptr);
+  in["start2d"] = vec(p.ply.start);
+  in["base2d"] = vec(p.ply.base_dir);
+  in["sweep2d"] = json::array();
+  for (const auto& w : p.ply.sweeps) in["sweep2d"].push_back(vec(w));
+  in["start3d"] = vec(p.start);
+  in["base_normal"] = vec(p.base_normal);
+  in["sweep3d"] = json::array();
+  for (const auto& w : p.sweeps) in["sweep3d"].push_back(vec(w));
+  in["lock_angle_deg"] = ctx.run.lock_angle_deg;
+  in["tolerance"] = ctx.run.tolerance_rel;
+  in["max_iterations"] = ctx.run.max_iterations;
+  in["outputs"] = ctx.run.outputs;
+  j["inputs"] = in;
+  json face;
+  face["name"] = ctx.run.face_info.name;
+  face["kind"] = ctx.run.face_info.kind;
+  face["area"] = ctx.face.area();
+  face["bbox"] = {{"min", vec(ctx.face.bbox().min)}, {"max", vec(ctx.face.bbox().max)}};
+  j["mold"] = {{"unit", ctx.run.mold_unit}, {"face", face}, {"warnings", ctx.run.warnings}};
+  j["start"] = {{"point", vec(r.start_point)}, {"uv", vec(r.start_uv)}, {"moved", r.start_moved}};
+  j["base_tangent"] = vec(r.base_tangent);
+  j["nodes"] = {{"mapped", m.nodes.mapped},   {"auxiliary", m.nodes.auxiliary},
+                {"outside", m.nodes.outside}, {"off_ply", m.nodes.off_ply},
+                {"shear_limit", m.nodes.shear_limit}, {"failed", m.nodes.failed}};
+  j["area_mesh_points"] = m.area_mesh_points;
+  j["flat_area"] = m.flat_area;
+  j["surface_area"] = m.surface_area;
+  j["coverage"] = ctx.face.area() > 0 ? m.surface_area / ctx.face.area() : 0.0;
+  j["thread_angle"] = {{"min", m.gamma_min}, {"max", m.gamma_max},
+                       {"min_deg", m.gamma_min * kRadToDeg}, {"max_deg", m.gamma_max * kRadToDeg}};
+  const double shear_max = m.angles ? std::max(std::abs(90.0 - m.gamma_min * kRadToDeg),
+                                               std::abs(m.gamma_max * kRadToDeg - 90.0))
+                                    : 0.0;
+  j["shear_max_deg"] = shear_max;
+  j["shear_energy"] = m.shear_energy;
+  j["residual"] = {{"edge_length_max_rel", m.edge_length_max_rel},
+                   {"surface_distance_max", m.surface_distance_max},
+                   {"base_plane_max_rel", m.base_plane_max_rel}};
+  j["solver"] = {{"solves", m.solves},
+                 {"mean_iterations", m.solves ? double(m.iterations) / m.solves : 0.0},
+                 {"mean_evaluations", m.solves ? double(m.evaluations) / m.solves : 0.0}};
+  if (ctx.flat) {
+    json loops = json::array();
+    for (const auto& l : ctx.flat->outline) {
+      json pts = json::array();
+      for (const auto& q : l.points) pts.push_back(vec(q));
+      loops.push_back({{"hole", l.hole}, {"area", l.area}, {"perimeter", l.perimeter}, {"points", pts}});
+    }
+    j["flat_outline"] = {{"area", ctx.flat->area}, {"perimeter", ctx.flat->perimeter}, {"loops", loops}};
+  }
+  j["memory_bytes_per_node"] = r.bytes_per_node();
+  j["timing_ms"] = {{"import", ctx.run.import_ms}, {"drape", ctx.run.drape_ms}, {"total", ctx.run.total_ms}};
+  return j.dump(2) + "\n";
+}
+
+Exporter make_json_exporter() {
+  return {"json", {"report.json"}, "report.json: status, counts, areas, angles, residuals, timings",
+          [](const ExportContext& ctx, const std::string& outdir) {
+            return write_file_atomic((std::filesystem::path(outdir) / "report.json").string(),
+                                     report_json(ctx));
+          }};
+}
+
+}  // namespace plyfit::exporters

@@ -1,0 +1,181 @@
+#pragma once
+/// \file The drape: initial conditions (§4.2), the base path (§5.1), the frontier scan (§6.2)
+/// and the metrics of §7.1, over a DrapeSurface.
+
+#include <plyfit/kernel/face.hpp>
+#include <plyfit/kernel/ply.hpp>
+#include <plyfit/kernel/result.hpp>
+#include <plyfit/kernel/solvers.hpp>
+#include <plyfit/kernel/tolerances.hpp>
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace plyfit {
+
+/// What became of a node the scan reached.
+enum class NodeStatus : std::uint8_t {
+  kMapped,      ///< on the face, all constraints satisfied
+  kOutside,     ///< its solution lies outside the face (domain or trims)
+  kOffPly,      ///< beyond the ply rectangle: no cloth there
+  kShearLimit,  ///< the thread angle would pass the lock angle (eq. 12)
+  kFailed,      ///< the solver found no solution (see the solver's reason)
+  kPending,     ///< internal: in the frontier
+};
+/// "mapped", "outside", "off_ply", "shear_limit", "failed", "pending".
+const char* to_string(NodeStatus s);
+
+/// A node the drape reached.
+struct DrapeNode {
+  static constexpr std::uint8_t kOnPath = 1;    ///< a base-path node (auxiliary or crossing)
+  static constexpr std::uint8_t kExtended = 2;  ///< kOutside with a solution on the surface
+                                                ///< extended past the face (point/uv valid)
+  static constexpr std::uint8_t kHasAngle = 4;  ///< thread_angle is defined
+  static constexpr std::uint8_t kStart = 8;     ///< the start point
+  Vec3 point = Vec3::Zero();  ///< 3D position (mapped, or extended, else zero)
+  Vec2 uv = Vec2::Zero();     ///< surface parameters
+  Vec2 ply = Vec2::Zero();    ///< ply coordinates
+  NodeId id;
+  NodeStatus status = NodeStatus::kPending;
+  std::uint8_t flags = 0;
+  std::uint32_t order = 0;    ///< order in which the node was resolved
+  double thread_angle = 0.0;  ///< gamma between weft and warp at a mapped regular node, radians
+  bool mapped() const { return status == NodeStatus::kMapped; }
+  bool has(std::uint8_t f) const { return (flags & f) != 0; }
+};
+
+/// Map from NodeId to node index: open addressing, memory linear in the nodes reached.
+class NodeIndex {
+ public:
+  /// Index of `id`, or -1.
+  std::int64_t find(const NodeId& id) const;
+  /// Inserts id -> index (id must be absent).
+  void insert(const NodeId& id, std::uint32_t index);
+  std::size_t size() const { return size_; }
+  std::size_t memory_bytes() const { return slots_.size() * sizeof(Slot); }
+
+ private:
+  struct Slot {
+    std::uint64_t key = kEmpty;
+    std::uint32_t value = 0;
+  };
+  // The key of NodeId::path(INT32_MIN): no node has it (path indices stay within
+  // +-Ply::kMaxPathNodes). (All ones would be the key of regular node (-1, -1).)
+  static constexpr std::uint64_t kEmpty = (std::uint64_t{0x7fffffff} << 32) | 0x80000000u;
+  void grow();
+  std::vector<Slot> slots_;
+  std::size_t size_ = 0;
+};
+
+/// A link between two nodes.
+enum class LinkKind : std::uint8_t { kWeft, kWarp, kBase };
+struct DrapeLink {
+  std::uint32_t a = 0, b = 0;  ///< node indices
+  double rest = 0.0;           ///< rest length (the 2D distance)
+  LinkKind kind = LinkKind::kWeft;
+};
+
+/// 3D initial conditions (§4.2.2) and the 2D ply with its initial conditions (§4.2.1).
+struct DrapeProblem {
+  PlySpec ply;
+  Vec3 start = Vec3::Zero();  ///< 3D start point; projected onto the face
+  Vec3 base_normal = Vec3::UnitY();  ///< base-plane normal; the plane passes through the start
+  std::vector<Vec3> sweeps;   ///< 3D sweep directions, paired in order with ply.sweeps
+};
+
+/// Initial guess of the two-sphere solver.
+enum class GuessRule : std::uint8_t {
+  kPaper,          ///< eqs. (10)-(11): both threads continued; else the cell's parallelogram
+  kParallelogram,  ///< the cell's fourth corner: uv_a + uv_b - uv_c; else eqs. (10)-(11)
+};
+
+/// Options of the drape.
+struct DrapeOptions {
+  /// Lock angle (radians): the largest shear pi/2 - gamma allowed; gamma_min = pi/2 - lock,
+  /// gamma_max = pi/2 + lock (eq. 12). pi/2 (the default) disables the test.
+  double lock_angle = 1.5707963267948966;
+  GuessRule guess = GuessRule::kPaper;
+  Tolerances tol;
+  /// Stop (status partial) once this many nodes have been reached.
+  std::uint64_t max_nodes = 50'000'000;
+  /// Set by another thread to stop the drape (status partial, "cancelled").
+  const std::atomic<bool>* cancel = nullptr;
+  /// Called about every 65536 resolved nodes with the number of mapped nodes.
+  std::function<void(std::uint64_t mapped)> progress;
+};
+
+/// Node counts by status (regular and auxiliary nodes apart).
+struct NodeCounts {
+  std::uint64_t mapped = 0;       ///< mapped regular mesh points (the paper's "area")
+  std::uint64_t auxiliary = 0;    ///< mapped auxiliary base-path points
+  std::uint64_t outside = 0;
+  std::uint64_t off_ply = 0;
+  std::uint64_t shear_limit = 0;
+  std::uint64_t failed = 0;
+};
+
+/// The metrics of §7.1 and independent residual checks.
+struct DrapeMetrics {
+  NodeCounts nodes;
+  std::uint64_t area_mesh_points = 0;  ///< = nodes.mapped
+  double flat_area = 0.0;     ///< 2D area of the mapped cells (cells cut by the path count
+                              ///< their mapped parts)
+  double surface_area = 0.0;  ///< 3D area those cells cover
+  double gamma_min = 0.0, gamma_max = 0.0;  ///< thread angles, radians (0 if none)
+  double shear_energy = 0.0;  ///< sum of cos^2(gamma) over mapped regular nodes
+  std::uint64_t angles = 0;   ///< nodes with a thread angle
+  /// max | |p_a - p_b| - rest | / d over links between mapped nodes.
+  double edge_length_max_rel = 0.0;
+  /// max |S(u, v) - p| over mapped nodes, with S evaluated afresh (model units).
+  double surface_distance_max = 0.0;
+  /// max distance of mapped base-path nodes from the base plane / d.
+  double base_plane_max_rel = 0.0;
+  /// Solver statistics.
+  std::uint64_t solves = 0, iterations = 0, evaluations = 0;
+};
+
+/// Everything the drape computed.
+struct DrapeResult {
+  bool partial = false;                ///< stopped early or some nodes failed
+  std::vector<std::string> warnings;   ///< why partial, and other notes
+  std::vector<DrapeNode> nodes;        ///< every node reached, in resolution order
+  NodeIndex index;                     ///< NodeId -> position in `nodes`
+  std::vector<std::uint32_t> base_path;  ///< mapped base-path nodes in path order
+  std::shared_ptr<const Ply> ply;
+  DrapeMetrics metrics;
+  Vec3 start_point = Vec3::Zero();     ///< the start on the face
+  Vec2 start_uv = Vec2::Zero();
+  double start_moved = 0.0;            ///< distance from the given 3D start to the face
+  Vec3 base_normal = Vec3::UnitY();    ///< unit base-plane normal
+  Vec3 base_tangent = Vec3::UnitX();   ///< 3D direction of the base path at the start
+  double gamma_min_limit = 0.0;        ///< gamma_min used (radians)
+  double drape_ms = 0.0;               ///< wall time of drape()
+
+  /// Node by id, or nullptr.
+  const DrapeNode* find(const NodeId& id) const {
+    const auto k = index.find(id);
+    return k < 0 ? nullptr : &nodes[static_cast<std::size_t>(k)];
+  }
+  /// The node across the thread link from `id` in direction dir, if reached.
+  const DrapeNode* neighbour(const NodeId& id, ThreadDir dir) const;
+  /// Every link between two mapped nodes (thread links, split at the base path, and the
+  /// base path's own links), each once.
+  std::vector<DrapeLink> links() const;
+  /// Threads as maximal runs of consecutive mapped nodes (auxiliary points included where a
+  /// thread crosses the path), at least two nodes each, as node indices in increasing x
+  /// (weft) or y (warp).
+  std::vector<std::vector<std::uint32_t>> threads(bool weft) const;
+  /// Approximate bytes held per reached node (nodes + index).
+  double bytes_per_node() const;
+};
+
+/// Drapes the ply on `surface`. Errors (bad input) name the problem; numerical trouble during
+/// the scan is reported per node, never as an error.
+Result<DrapeResult> drape(const DrapeSurface& surface, const DrapeProblem& problem,
+                          const DrapeOptions& options = {});
+
+}  // namespace plyfit

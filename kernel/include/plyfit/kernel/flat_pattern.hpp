@@ -1,0 +1,42 @@
+#pragma once
+/// \file The flat pattern: the region of the 2D ply that lands on the face, as outline loops
+/// in ply coordinates.
+
+#include <plyfit/kernel/drape.hpp>
+#include <plyfit/kernel/face.hpp>
+
+#include <vector>
+
+namespace plyfit {
+
+/// A closed outline loop in ply coordinates (the first point is not repeated).
+struct OutlineLoop {
+  std::vector<Vec2> points;
+  bool hole = false;       ///< holes run clockwise, outer loops counter-clockwise
+  double area = 0.0;       ///< enclosed area (positive)
+  double perimeter = 0.0;
+};
+
+/// Outlines of the ply region on the face.
+struct FlatPattern {
+  /// Exact outline: where a thread segment or cell crosses the face boundary the crossing
+  /// is found on the surface and carried back to ply coordinates by the cell's own
+  /// interpolation.
+  std::vector<OutlineLoop> outline;
+  /// The coarser boundary of the mapped cells (the paper's "bold segments").
+  std::vector<OutlineLoop> staircase;
+  double area = 0.0;       ///< outline area, holes subtracted
+  double perimeter = 0.0;  ///< outline length, holes included
+};
+
+/// Options of the flat pattern.
+struct FlatPatternOptions {
+  /// Longest chord, relative to the spacing, used to follow the face boundary inside a cell.
+  double boundary_chord_rel = 0.25;
+};
+
+/// Computes the flat pattern of a drape on `surface`.
+FlatPattern flat_pattern(const DrapeSurface& surface, const DrapeResult& result,
+                         const FlatPatternOptions& options = {});
+
+}  // namespace plyfit
