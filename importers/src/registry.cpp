@@ -18,6 +18,8 @@ std::string lower(std::string s) {
 const std::vector<Importer>& registry() {
   // One registration line per format.
   static const std::vector<Importer> list = {
+      make_step_importer(),
+      make_iges_importer(),
   };
   return list;
 }
@@ -44,15 +46,15 @@ Result<std::unique_ptr<MoldFile>> open_mold(const std::string& path, const Impor
   if (!options.format.empty()) {
     imp = find_importer(options.format);
     if (!imp)
-      return Error{"unknown format '" + options.format + "' (supported: " +
-                   supported_extensions() + ")"};
+      return Error{"unknown format '" + options.format + "' (supported: " + supported_extensions() +
+                   ")"};
   } else {
     std::string ext = std::filesystem::path(path).extension().string();
     if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
     imp = find_importer(ext);
     if (!imp)
-      return Error{path + ": unknown file extension '" + ext + "' (supported: " +
-                   supported_extensions() + "; --format overrides)"};
+      return Error{path + ": unknown file extension '" + ext +
+                   "' (supported: " + supported_extensions() + "; --format overrides)"};
   }
   return imp->open(path, options);
 }

@@ -22,16 +22,26 @@ struct ImportOptions {
   std::string format;
   /// Tolerances; trim_chord_rel sets the accuracy of trim polylines.
   Tolerances tolerances;
+  /// Reading stops with an error when transferring the file's entities takes longer than
+  /// this (seconds): a corrupt file can make the reader's repairs run a very long time.
+  double time_limit_s = 120.0;
 };
 
-/// An opened mold file.
+/// An opened mold file. Faces are indexed 0.. in the order of a depth-first walk of the file's
+/// transferred shapes (OpenCASCADE's TopExp::MapShapes over faces: solids, shells and
+/// compounds in file order, each face once). Lengths are in millimetres whatever the file's
+/// unit. Not thread-safe.
 class MoldFile {
  public:
   virtual ~MoldFile() = default;
-  /// The file's faces and metadata, listed without converting surfaces.
+  /// The file's faces and metadata, listed without converting surfaces (the per-face entries
+  /// are computed on the first call; convert_face() alone does not compute the others).
   virtual const Mold& mold() const = 0;
   /// Converts face `index` (0-based, as listed) to kernel data: the surface as NURBS
-  /// restricted to the face, its trim loops in (u, v), its orientation, area and name.
+  /// restricted to the face (periodic surfaces clamped, closed_u/v set when the face spans a
+  /// whole period), its trim loops in (u, v) as polylines within
+  /// tolerances.trim_chord_rel * face size (none for a face bounded by its surface's natural
+  /// boundary), its orientation (reversed), area and name. Converts that face alone.
   virtual Result<FaceData> convert_face(int index) = 0;
 };
 
@@ -39,7 +49,9 @@ class MoldFile {
 struct Importer {
   std::string key;                      ///< e.g. "step"
   std::vector<std::string> extensions;  ///< lower-case, without the dot
-  std::string description;
+  std::string description;              ///< one line for help texts
+  /// Opens a file: reads it and lists its faces (see MoldFile), or returns an Error naming the
+  /// file and the problem.
   std::function<Result<std::unique_ptr<MoldFile>>(const std::string& path,
                                                   const ImportOptions& options)>
       open;
