@@ -47,20 +47,25 @@ constexpr LayerDef kLayers[] = {{"0", 7},      {"OUTLINE", 7},    {"THREADS", 8}
                                 {"ORIGIN", 3}, {"SHEAR_WARN", 1}, {"LABELS", 7}};
 constexpr int kLayerCount = static_cast<int>(sizeof(kLayers) / sizeof(kLayers[0]));
 
-// Text for a DXF string value: printable ASCII as is, other characters as \U+XXXX, the
-// AutoCAD control sequences (%% and ^) neutralised, no line breaks.
+// User text for a DXF string value: printable ASCII and U+00A0..U+00FF as single bytes of the
+// file's code page (ANSI_1252), other characters as \U+XXXX (AutoCAD decodes these), the
+// AutoCAD control sequences (%%x and ^x) neutralised, no line breaks.
 std::string dxf_text(const std::string& s) {
   static const char* kHex = "0123456789ABCDEF";
   std::string o;
-  for (const char32_t c : detail::utf8_decode(s)) {
-    if (c == U'%') {
-      o += "%%%";
+  const std::u32string text = detail::utf8_decode(s);
+  for (std::size_t k = 0; k < text.size(); ++k) {
+    const char32_t c = text[k];
+    if (c == U'%' && k + 1 < text.size() && text[k + 1] == U'%') {
+      o += "%%%";  // a literal percent sign, so that "%%" starts no control code
     } else if (c == U'^') {
       o += "^ ";
     } else if (c < 0x20 || c == 0x7F) {
       o += ' ';
     } else if (c < 0x7F) {
       o += static_cast<char>(c);
+    } else if (c >= 0xA0 && c <= 0xFF) {
+      o += static_cast<char>(c);  // $DWGCODEPAGE ANSI_1252 agrees with Latin-1 here
     } else if (c <= 0xFFFF) {
       o += "\\U+";
       for (int sh = 12; sh >= 0; sh -= 4) o += kHex[(c >> sh) & 0xF];
@@ -167,11 +172,12 @@ class DxfWriter {
     entity_head("POINT", layer, "AcDbPoint");
     point(p, 10);
   }
+  // `s` is DXF text already: user parts escaped with dxf_text(), "%%d" for a degree sign.
   void text(const char* layer, const Vec2& at, double height, const std::string& s) {
     entity_head("TEXT", layer, "AcDbText");
     point(at, 10);
     real(40, height);
-    tag(1, dxf_text(s));
+    tag(1, s);
     tag(7, "Standard");
     tag(100, "AcDbText");
   }
@@ -283,14 +289,14 @@ std::string build_dxf(const ExportContext& ctx) {
                                                    std::abs(m.gamma_max * detail::kRadToDeg - 90.0))
                                         : 0.0;
   const std::vector<std::string> labels = {
-      "PLY: " + ctx.run.ply_name,
-      "MATERIAL: " + ctx.run.material,
+      "PLY: " + dxf_text(ctx.run.ply_name),
+      "MATERIAL: " + dxf_text(ctx.run.material),
       "SPACING: " + fixed_text(spec.d_weft, 6) + " x " + fixed_text(spec.d_warp, 6) +
           " mm (weft x warp link)",
       "AREA: " + fixed_text(ctx.flat ? ctx.flat->area : 0.0, 3) + " mm2",
       "MAX SHEAR: " + fixed_text(shear_max_deg, 2) + "%%d (warn above " +
           fixed_text(warn * detail::kRadToDeg, 2) + "%%d)",
-      "MOLD: " + ctx.run.mold + " face " + std::to_string(ctx.run.face),
+      "MOLD: " + dxf_text(ctx.run.mold) + " face " + std::to_string(ctx.run.face),
   };
   const double lo_y = box.empty() ? 0.0 : box.lo.y();
   const double lo_x = box.empty() ? 0.0 : box.lo.x();

@@ -4,6 +4,7 @@
 // SVG files are checked by ezdxf and Python's XML parser (tests/exporters/*.py).
 
 #include <plyfit/exporters/exporters.hpp>
+#include <plyfit/importers/importers.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
 #include <plyfit/kernel/drape.hpp>
 #include <plyfit/kernel/flat_pattern.hpp>
@@ -59,11 +60,8 @@ struct Case {
   exporters::ExportContext ctx() const { return {problem, result, face, &flat, run, options}; }
 };
 
-std::unique_ptr<Case> make_case(const std::string& mold, std::map<std::string, double> params,
-                                DrapeProblem pb) {
-  auto fd = builtin_mold(mold, params);
-  REQUIRE(fd.ok());
-  auto face = Face::create(std::move(fd).value());
+std::unique_ptr<Case> make_case(const std::string& mold, Result<Face> face, DrapeProblem pb) {
+  INFO(mold << ": " << (face.ok() ? std::string() : face.error().message));
   REQUIRE(face.ok());
   auto r = drape(*face, pb);
   INFO((r.ok() ? std::string() : r.error().message));
@@ -71,10 +69,17 @@ std::unique_ptr<Case> make_case(const std::string& mold, std::map<std::string, d
   FlatPattern flat = flat_pattern(*face, *r);
   auto c = std::unique_ptr<Case>(
       new Case{mold, std::move(face).value(), pb, std::move(r).value(), std::move(flat), {}, {}});
-  c->run.mold = "builtin:" + mold;
+  c->run.mold = mold;
   c->run.ply_name = "test ply";
   c->run.material = "plain weave";
   return c;
+}
+
+std::unique_ptr<Case> make_case(const std::string& mold, std::map<std::string, double> params,
+                                DrapeProblem pb) {
+  auto fd = builtin_mold(mold, params);
+  REQUIRE(fd.ok());
+  return make_case("builtin:" + mold, Face::create(std::move(fd).value()), std::move(pb));
 }
 
 DrapeProblem problem(double d, Vec2 s2, Vec2 b2, std::vector<Vec2> w2, Vec3 s3, Vec3 bn,
@@ -108,6 +113,11 @@ std::vector<std::unique_ptr<Case>> cases() {
   v.push_back(make_case("torus", {},
                         problem(2, {0, 0}, {1, 0}, {{0, 1}, {0, -1}}, {40, 0, 0}, {0, 0, 1},
                                 {{0, 0, 1}, {0, 0, -1}})));
+  // A trimmed CATIA face from ../shared/cad (IGES), swept both ways.
+  const std::string cad = std::string(PLYFIT_SHARED_DIR) + "/cad/PRO20359-L1.igs";
+  v.push_back(make_case(cad, importers::load_face(cad, 0),
+                        problem(2, {0, 0}, {1, 0}, {{0, 1}, {0, -1}}, {-687.6, 558.9, 454.4},
+                                {0, 1, 0}, {{0, 1, 0}, {0, -1, 0}})));
   return v;
 }
 
