@@ -11,6 +11,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "net_util.hpp"  // exporters/src: the writers' cell enumeration
 #include "test_util.hpp"
 
 #include <BRep_Tool.hxx>
@@ -448,4 +449,21 @@ TEST_CASE("exporters: flat.dxf leaves out the thread grid when asked") {
   };
   CHECK(count_threads(true) > 0);
   CHECK(count_threads(false) == 0);
+}
+
+TEST_CASE("exporters: the writers' mapped cells are the kernel's (their area is flat_area)") {
+  for (const auto& c : cases()) {
+    INFO(c->name);
+    const DrapeResult& r = c->result;
+    double area = 0.0;
+    for (const auto& cell : exporters::detail::mapped_cells(r)) {
+      for (std::size_t k = 1; k + 1 < cell.nodes.size(); ++k) {
+        const Vec2 p0 = r.nodes[cell.nodes[0]].ply, p1 = r.nodes[cell.nodes[k]].ply,
+                   p2 = r.nodes[cell.nodes[k + 1]].ply;
+        area += 0.5 * std::abs(cross2(p1 - p0, p2 - p0));
+      }
+    }
+    REQUIRE(r.metrics.flat_area > 0.0);
+    CHECK(std::abs(area - r.metrics.flat_area) <= test::kRoundoffRel * r.metrics.flat_area);
+  }
 }
