@@ -1,10 +1,11 @@
 #include "net_util.hpp"
 
+#include <plyfit/kernel/cells.hpp>
+
 #include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
-#include <set>
 #include <utility>
 
 namespace plyfit::exporters::detail {
@@ -37,101 +38,15 @@ double node_shear(const DrapeNode& n) {
   return std::abs(kPi / 2 - n.thread_angle);
 }
 
-namespace {
-
-// The parts of cell (i, j) as node ids, counter-clockwise: the whole cell, or the two sides
-// of the base path when it crosses the cell (path nodes on its edges, and the start when it
-// lies strictly inside the cell). Mirrors the kernel's definition of a mapped cell.
-std::vector<std::vector<NodeId>> cell_parts(const Ply& ply, std::int32_t i, std::int32_t j) {
-  const std::array<NodeId, 4> corner = {NodeId::regular(i, j), NodeId::regular(i + 1, j),
-                                        NodeId::regular(i + 1, j + 1), NodeId::regular(i, j + 1)};
-  const std::array<ThreadDir, 4> edge_dir = {ThreadDir::kPlusX, ThreadDir::kPlusY,
-                                             ThreadDir::kMinusX, ThreadDir::kMinusY};
-  std::vector<NodeId> ring;
-  bool split = false;
-  for (int e = 0; e < 4; ++e) {
-    ring.push_back(corner[e]);
-    const auto nb = ply.neighbour(corner[e].i, corner[e].j, edge_dir[e]);
-    if (!nb) return {};
-    if (nb->id.is_path_only()) {
-      ring.push_back(nb->id);
-      split = true;
-    }
-  }
-  int sides = 0;
-  for (const NodeId& c : corner) {
-    const int s = ply.side(ply.pos(c.i, c.j));
-    sides |= (s > 0 ? 1 : 0) | (s < 0 ? 2 : 0);
-  }
-  std::vector<NodeId> inside;
-  if (const PathNode* p0 = ply.path_node_if(0); p0 && p0->id.is_path_only() && !p0->link_from) {
-    const Vec2 lo = ply.pos(i, j), hi = ply.pos(i + 1, j + 1);
-    if (p0->pos.x() > lo.x() && p0->pos.x() < hi.x() && p0->pos.y() > lo.y() &&
-        p0->pos.y() < hi.y()) {
-      inside.push_back(p0->id);
-      split = true;
-    }
-  }
-  if (!split && sides != 3) return {ring};
-  std::vector<std::vector<NodeId>> parts;
-  for (int s : {1, -1}) {
-    std::vector<NodeId> part;
-    bool has_side = false;
-    for (const NodeId& id : ring) {
-      const int sd = id.is_path_only() ? 0 : ply.side(ply.pos(id.i, id.j));
-      if (sd == s || sd == 0) part.push_back(id);
-      if (sd == s) has_side = true;
-    }
-    if (!has_side) continue;
-    for (const NodeId& id : inside) part.push_back(id);
-    if (part.size() < 3) continue;
-    Vec2 c = Vec2::Zero();
-    for (const NodeId& id : part) c += ply.pos(id);
-    c /= static_cast<double>(part.size());
-    std::sort(part.begin(), part.end(), [&](const NodeId& a, const NodeId& b) {
-      const Vec2 pa = ply.pos(a) - c, pb = ply.pos(b) - c;
-      return std::atan2(pa.y(), pa.x()) < std::atan2(pb.y(), pb.x());
-    });
-    parts.push_back(std::move(part));
-  }
-  return parts;
-}
-
-}  // namespace
-
 std::vector<NetCell> mapped_cells(const DrapeResult& r) {
   std::vector<NetCell> out;
-  if (!r.ply) return out;
-  const Ply& ply = *r.ply;
-  const double dx = ply.spec().d_weft, dy = ply.spec().d_warp;
-  std::set<std::pair<std::int32_t, std::int32_t>> cells;  // (j, i): row by row
-  for (const DrapeNode& n : r.nodes) {
-    if (!n.mapped()) continue;
-    std::int32_t i = n.id.i, j = n.id.j;
-    if (n.id.is_path_only()) {
-      i = static_cast<std::int32_t>(std::floor(n.ply.x() / dx));
-      j = static_cast<std::int32_t>(std::floor(n.ply.y() / dy));
-    }
-    for (int a = -1; a <= 0; ++a)
-      for (int b = -1; b <= 0; ++b) cells.insert({j + b, i + a});
-  }
-  for (const auto& [j, i] : cells) {
-    for (const auto& part : cell_parts(ply, i, j)) {
-      NetCell c;
-      c.i = i;
-      c.j = j;
-      bool all = true;
-      for (const NodeId& id : part) {
-        const auto k = r.index.find(id);
-        if (k < 0 || !r.nodes[static_cast<std::size_t>(k)].mapped()) {
-          all = false;
-          break;
-        }
-        c.nodes.push_back(static_cast<std::uint32_t>(k));
-        c.shear = std::max(c.shear, node_shear(r.nodes[static_cast<std::size_t>(k)]));
-      }
-      if (all) out.push_back(std::move(c));
-    }
+  for (const MappedCell& m : plyfit::mapped_cells(r)) {
+    NetCell c;
+    c.i = m.i;
+    c.j = m.j;
+    c.nodes = m.nodes;
+    for (std::uint32_t k : c.nodes) c.shear = std::max(c.shear, node_shear(r.nodes[k]));
+    out.push_back(std::move(c));
   }
   return out;
 }

@@ -32,9 +32,8 @@ struct NetCell {
   double shear = -1.0;
 };
 
-/// Every mapped cell part, the same parts the kernel counts in DrapeMetrics::flat_area (a
-/// cell the path crosses is split into two convex parts at the path nodes on its edges; a part
-/// counts when all its nodes are mapped). Sorted by (j, i), parts in ply order: deterministic.
+/// Every mapped cell part (plyfit::mapped_cells: the parts the kernel counts in
+/// DrapeMetrics::flat_area), with its shear. Sorted by (j, i): deterministic.
 std::vector<NetCell> mapped_cells(const DrapeResult& r);
 
 /// An RGB colour.

@@ -1,6 +1,6 @@
 #include <plyfit/kernel/drape.hpp>
 
-#include "cells.hpp"
+#include <plyfit/kernel/cells.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -587,55 +587,18 @@ void thread_angles(DrapeResult& res) {
   }
 }
 
-// 2D and 3D area of the mapped cells. A cell the base path crosses is split by the path
-// into two convex parts, each counted if all its corners are mapped (detail::cell_parts);
-// the others are the quadrilaterals of four mapped regular nodes, as two triangles.
+// 2D and 3D area of the mapped cells (each part as a fan of triangles).
 void cell_areas(DrapeResult& res) {
-  const Ply& ply = *res.ply;
   double a2 = 0.0, a3 = 0.0;
-  std::unordered_set<std::uint64_t> crossed;
-  for (std::uint32_t k : res.base_path) {
-    const DrapeNode& p = res.nodes[k];
-    const auto i = static_cast<std::int32_t>(std::floor(p.ply.x() / ply.spec().d_weft));
-    const auto j = static_cast<std::int32_t>(std::floor(p.ply.y() / ply.spec().d_warp));
-    for (int a = -1; a <= 1; ++a)
-      for (int b = -1; b <= 1; ++b) crossed.insert(NodeId::regular(i + a, j + b).key());
-  }
-  // Cells near the path whose parts are not the one whole cell (split, or a splitting path
-  // node never generated).
-  auto is_crossed = [&](std::int32_t i, std::int32_t j) {
-    return crossed.count(NodeId::regular(i, j).key()) && detail::cell_parts(ply, i, j).size() != 1;
-  };
-  for (const DrapeNode& n : res.nodes) {
-    if (!n.mapped() || n.id.is_path_only()) continue;
-    if (is_crossed(n.id.i, n.id.j)) continue;
-    const DrapeNode* x = res.neighbour(n, ThreadDir::kPlusX);
-    const DrapeNode* y = res.neighbour(n, ThreadDir::kPlusY);
-    const DrapeNode* xy = x ? res.neighbour(*x, ThreadDir::kPlusY) : nullptr;
-    if (!x || !y || !xy || !x->mapped() || !y->mapped() || !xy->mapped()) continue;
-    a2 += tri_area2(n.ply, x->ply, xy->ply) + tri_area2(n.ply, xy->ply, y->ply);
-    a3 += tri_area(n.point, x->point, xy->point) + tri_area(n.point, xy->point, y->point);
-  }
-  // Cells the path crosses (near it only).
-  for (std::uint64_t key : crossed) {
-    const auto i = static_cast<std::int32_t>(key >> 32), j = static_cast<std::int32_t>(key & 0xffffffffu);
-    if (!is_crossed(i, j)) continue;
-    for (const auto& part : detail::cell_parts(ply, i, j)) {
-      std::vector<const DrapeNode*> poly;
-      for (const NodeId& id : part) {
-        const DrapeNode* v = res.find(id);
-        if (!v || !v->mapped()) {
-          poly.clear();
-          break;
-        }
-        poly.push_back(v);
-      }
-      for (std::size_t k = 1; k + 1 < poly.size(); ++k) {
-        a2 += tri_area2(poly[0]->ply, poly[k]->ply, poly[k + 1]->ply);
-        a3 += tri_area(poly[0]->point, poly[k]->point, poly[k + 1]->point);
-      }
+  for_each_mapped_cell(res, [&](std::int32_t, std::int32_t, const std::uint32_t* v, int n) {
+    const DrapeNode& o = res.nodes[v[0]];
+    for (int k = 1; k + 1 < n; ++k) {
+      const DrapeNode& b = res.nodes[v[k]];
+      const DrapeNode& c = res.nodes[v[k + 1]];
+      a2 += tri_area2(o.ply, b.ply, c.ply);
+      a3 += tri_area(o.point, b.point, c.point);
     }
-  }
+  });
   res.metrics.flat_area = a2;
   res.metrics.surface_area = a3;
 }
