@@ -43,10 +43,8 @@ Result<NurbsSurface> NurbsSurface::create(NurbsSurfaceData data, const Tolerance
   }
   s.domain_ = {d.knots_u[d.degree_u], d.knots_u[d.count_u], d.knots_v[d.degree_v],
                d.knots_v[d.count_v]};
-  detail::span_range(d.knots_u.data(), d.count_u - 1, d.degree_u, s.first_span_u_,
-                     s.last_span_u_);
-  detail::span_range(d.knots_v.data(), d.count_v - 1, d.degree_v, s.first_span_v_,
-                     s.last_span_v_);
+  detail::span_range(d.knots_u.data(), d.count_u - 1, d.degree_u, s.first_span_u_, s.last_span_u_);
+  detail::span_range(d.knots_v.data(), d.count_v - 1, d.degree_v, s.first_span_v_, s.last_span_v_);
   const double size = std::max(s.bbox_.diagonal(), 1e-300);
   s.speed_u_ = size / s.domain_.width_u();
   s.speed_v_ = size / s.domain_.width_v();
@@ -55,17 +53,29 @@ Result<NurbsSurface> NurbsSurface::create(NurbsSurfaceData data, const Tolerance
   return s;
 }
 
+namespace {
+
+// What evaluation needs of a surface, so that the fixed-degree kernels below can be free
+// function templates.
+struct EvalView {
+  const double* U;
+  const double* V;
+  const double* hpoles;  // stride 4
+  int p, q, count_v;
+  int first_u, last_u, first_v, last_v;
+};
+
 // out[c] = homogeneous derivative combination c: 0 S, 1 Su, 2 Sv, (ND=2) 3 Suu, 4 Suv, 5 Svv.
-template <int ND, bool Rational>
-void NurbsSurface::eval_homogeneous(double u, double v, double out[][4]) const {
-  const int p = data_.degree_u, q = data_.degree_v;
-  const double* U = data_.knots_u.data();
-  const double* V = data_.knots_v.data();
-  const int su = detail::find_span(U, first_span_u_, last_span_u_, u);
-  const int sv = detail::find_span(V, first_span_v_, last_span_v_, v);
+// P, Q > 0 fix the degrees at compile time (fully unrolled loops, the same arithmetic in the
+// same order as the run-time degrees, hence the same bits); 0 means "run-time degree".
+template <int ND, bool Rational, int P, int Q>
+void eval_fixed(const EvalView& s, double u, double v, double out[][4]) {
+  const int p = (P > 0) ? P : s.p, q = (Q > 0) ? Q : s.q;
+  const int su = detail::find_span(s.U, s.first_u, s.last_u, u);
+  const int sv = detail::find_span(s.V, s.first_v, s.last_v, v);
   double Nu[ND + 1][detail::kMaxBasis], Nv[ND + 1][detail::kMaxBasis];
-  detail::ders_basis<ND>(U, su, p, u, Nu);
-  detail::ders_basis<ND>(V, sv, q, v, Nv);
+  detail::ders_basis<ND, P>(s.U, su, p, u, Nu);
+  detail::ders_basis<ND, Q>(s.V, sv, q, v, Nv);
   constexpr int W = Rational ? 4 : 3;
   constexpr int NC = (ND + 1) * (ND + 2) / 2;
   for (int c = 0; c < NC; ++c)
@@ -73,16 +83,16 @@ void NurbsSurface::eval_homogeneous(double u, double v, double out[][4]) const {
   if constexpr (!Rational) {
     for (int c = 0; c < NC; ++c) out[c][3] = (c == 0) ? 1.0 : 0.0;
   }
-  const int cv = data_.count_v;
+  const int cv = s.count_v;
   for (int i = 0; i <= p; ++i) {
     // T[l] = sum_j Nv[l][j] * P(su - p + i, sv - q + j)
     double T[ND + 1][4] = {};
-    const double* row = &hpoles_[4 * (static_cast<size_t>(su - p + i) * cv + (sv - q))];
+    const double* row = s.hpoles + 4 * (static_cast<size_t>(su - p + i) * cv + (sv - q));
     for (int j = 0; j <= q; ++j) {
-      const double* P = row + 4 * j;
+      const double* Pij = row + 4 * j;
       for (int l = 0; l <= ND; ++l) {
         const double b = Nv[l][j];
-        for (int k = 0; k < W; ++k) T[l][k] += b * P[k];
+        for (int k = 0; k < W; ++k) T[l][k] += b * Pij[k];
       }
     }
     const double a0 = Nu[0][i];
@@ -101,8 +111,48 @@ void NurbsSurface::eval_homogeneous(double u, double v, double out[][4]) const {
   }
 }
 
+}  // namespace
+
+template <int ND, bool Rational>
+void NurbsSurface::eval_homogeneous(double u, double v, double out[][4]) const {
+  const EvalView s{data_.knots_u.data(), data_.knots_v.data(), hpoles_.data(), data_.degree_u,
+                   data_.degree_v,       data_.count_v,        first_span_u_,  last_span_u_,
+                   first_span_v_,        last_span_v_};
+  // Fixed-degree kernels for the degrees CAD surfaces mostly have (planes, ruled and
+  // extruded surfaces, quadrics and tori, bicubic and biquintic free forms).
+  constexpr auto key = [](int p, int q) { return p * 32 + q; };
+  switch (key(s.p, s.q)) {
+    case key(1, 1):
+      return eval_fixed<ND, Rational, 1, 1>(s, u, v, out);
+    case key(1, 2):
+      return eval_fixed<ND, Rational, 1, 2>(s, u, v, out);
+    case key(1, 3):
+      return eval_fixed<ND, Rational, 1, 3>(s, u, v, out);
+    case key(2, 1):
+      return eval_fixed<ND, Rational, 2, 1>(s, u, v, out);
+    case key(2, 2):
+      return eval_fixed<ND, Rational, 2, 2>(s, u, v, out);
+    case key(2, 3):
+      return eval_fixed<ND, Rational, 2, 3>(s, u, v, out);
+    case key(3, 1):
+      return eval_fixed<ND, Rational, 3, 1>(s, u, v, out);
+    case key(3, 2):
+      return eval_fixed<ND, Rational, 3, 2>(s, u, v, out);
+    case key(3, 3):
+      return eval_fixed<ND, Rational, 3, 3>(s, u, v, out);
+    case key(4, 4):
+      return eval_fixed<ND, Rational, 4, 4>(s, u, v, out);
+    case key(5, 5):
+      return eval_fixed<ND, Rational, 5, 5>(s, u, v, out);
+    default:
+      return eval_fixed<ND, Rational, 0, 0>(s, u, v, out);
+  }
+}
+
 namespace {
-inline Vec3 xyz(const double* h) { return Vec3(h[0], h[1], h[2]); }
+inline Vec3 xyz(const double* h) {
+  return Vec3(h[0], h[1], h[2]);
+}
 }  // namespace
 
 Vec3 NurbsSurface::point(double u, double v) const {
