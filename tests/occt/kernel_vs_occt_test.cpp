@@ -13,9 +13,10 @@
 //  - the kernel must match the exact reference to the tolerance, always;
 //  - its points must match OCCT's Value to the tolerance, always;
 //  - its points, first and second derivatives must match OCCT's D2 to the tolerance for
-//    every object and quantity where OCCT's own error (against the reference) is within the
-//    tolerance. Where it is not, the deviation is reported, not asserted: no evaluation in
-//    double can agree to 1e-12 with a value that is itself further than that from exact.
+//    every object and quantity where OCCT's own error (against the reference) is within half
+//    the tolerance (kOcctTrustedRel). Where it is not, the deviation is reported, not
+//    asserted: no evaluation in double can be held to 1e-12 against a value that is itself
+//    about that far from exact.
 //
 // Scales (what "relative deviation" means):
 //  - points: the diagonal of the bounding box of the control net (it contains the surface or
@@ -67,6 +68,12 @@ namespace {
 /// Required agreement between the kernel and OpenCASCADE, relative to the scales above (the
 /// issue's figure: 1e-12 of the bounding-box size).
 constexpr double kOcctAgreementRel = 1e-12;
+/// OCCT serves as a reference for a quantity of an object only where its own error against
+/// the exact values is at most this: a reference must be clearly more accurate than the
+/// tolerance it checks, or a kernel within the tolerance of the exact value could still miss
+/// it by OCCT's error. Half the tolerance guarantees that a kernel within half the tolerance
+/// of the exact values passes (triangle inequality).
+constexpr double kOcctTrustedRel = 0.5 * kOcctAgreementRel;
 /// Random parameters per random surface (x 60 surfaces) and per analytic surface.
 constexpr int kSamplesPerSurface = 200;
 /// Random parameters per random curve.
@@ -180,9 +187,14 @@ std::vector<double> random_knots(Rng& rng, int count, int degree, bool clamped) 
   }
 }
 
-// Random poles in a box of random size and position.
-std::vector<Vec3> random_poles(Rng& rng, int n, double size) {
-  const Vec3 centre(rng.uniform(-size, size), rng.uniform(-size, size), rng.uniform(-size, size));
+// Random poles in a box of random size and position; `far` > 0 moves the box that many box
+// sizes away from the origin in a random direction (a part in a large assembly's frame).
+std::vector<Vec3> random_poles(Rng& rng, int n, double size, double far = 0.0) {
+  Vec3 centre(rng.uniform(-size, size), rng.uniform(-size, size), rng.uniform(-size, size));
+  if (far > 0.0) {
+    const Vec3 dir(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    centre += far * size * dir.normalized();
+  }
   std::vector<Vec3> p(n);
   for (auto& x : p)
     x = centre + 0.5 * size * Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
@@ -197,7 +209,7 @@ std::vector<double> random_weights(Rng& rng, int n) {
 }
 
 NurbsSurfaceData random_surface(Rng& rng, int p, int q, bool clamped_u, bool clamped_v,
-                                bool rational) {
+                                bool rational, double far = 0.0) {
   NurbsSurfaceData d;
   d.degree_u = p;
   d.degree_v = q;
@@ -207,19 +219,19 @@ NurbsSurfaceData random_surface(Rng& rng, int p, int q, bool clamped_u, bool cla
   d.knots_u = random_knots(rng, d.count_u, p, clamped_u);
   d.knots_v = random_knots(rng, d.count_v, q, clamped_v);
   const double size = std::pow(10.0, rng.uniform(-1.0, 3.0));
-  d.poles = random_poles(rng, d.count_u * d.count_v, size);
+  d.poles = random_poles(rng, d.count_u * d.count_v, size, far);
   if (rational) d.weights = random_weights(rng, d.count_u * d.count_v);
   return d;
 }
 
 template <int Dim>
-NurbsCurveData<Dim> random_curve(Rng& rng, int p, bool clamped, bool rational) {
+NurbsCurveData<Dim> random_curve(Rng& rng, int p, bool clamped, bool rational, double far = 0.0) {
   NurbsCurveData<Dim> d;
   d.degree = p;
   const int n = p + 2 + rng.integer(0, p > 7 ? 4 : 12);
   d.knots = random_knots(rng, n, p, clamped);
   const double size = std::pow(10.0, rng.uniform(-1.0, 3.0));
-  for (const Vec3& x : random_poles(rng, n, size)) d.poles.push_back(x.head<Dim>());
+  for (const Vec3& x : random_poles(rng, n, size, far)) d.poles.push_back(x.head<Dim>());
   if (rational) d.weights = random_weights(rng, n);
   return d;
 }
@@ -369,7 +381,7 @@ struct Coverage {
 };
 
 /// The checks every comparison must pass (see the file comment). Returns true when OCCT was
-/// accurate to the tolerance in all of point, D1 and D2, i.e. when the object was compared
+/// accurate to kOcctTrustedRel in all of point, D1 and D2, i.e. when the object was compared
 /// with OCCT in full.
 bool check_comparison(const Comparison& c) {
   INFO("kernel-OCCT point " << c.kernel_occt.point << " D1 " << c.kernel_occt.d1 << " D2 "
@@ -384,7 +396,7 @@ bool check_comparison(const Comparison& c) {
   bool full = true;
   const double Deviation::*quantities[3] = {&Deviation::point, &Deviation::d1, &Deviation::d2};
   for (auto q : quantities) {
-    if (c.occt_ref.*q <= kOcctAgreementRel) {
+    if (c.occt_ref.*q <= kOcctTrustedRel) {
       CHECK(c.kernel_occt.*q <= kOcctAgreementRel);
     } else {
       full = false;
@@ -476,7 +488,7 @@ Comparison check_curve(Rng& rng, const NurbsCurveData<Dim>& data, Coverage& cov)
 
 void report(const std::string& what, const Coverage& cov, const Comparison& c) {
   std::cout << "kernel vs OCCT, " << what << ": " << cov.objects << " objects, " << cov.full_objects
-            << " where OCCT's D2 is accurate to " << kOcctAgreementRel << " (" << cov.full_samples
+            << " where OCCT's D2 is accurate to " << kOcctTrustedRel << " (" << cov.full_samples
             << " parameters); max relative deviation kernel-OCCT point " << c.kernel_occt.point
             << " D1 " << c.kernel_occt.d1 << " D2 " << c.kernel_occt.d2 << " (Value "
             << c.kernel_occt_value << "); kernel-reference " << c.kernel_ref.worst()
@@ -608,6 +620,36 @@ TEST_CASE("occt: random curves match Geom_BSplineCurve and Geom2d_BSplineCurve")
   report("2D curves of degree >= 12", ch2, high2);
   CHECK(cl3.full_samples + ch3.full_samples >= 10000);
   CHECK(cl2.full_samples + ch2.full_samples >= 10000);
+}
+
+TEST_CASE("occt: surfaces and curves far from the origin match as well") {
+  // A part of size L placed 10 L to 500 L from the origin (a mold in an aircraft's frame).
+  // Points are then only representable to ~1e-16 of their distance from the origin, but
+  // derivatives depend only on pole differences and must stay as accurate as near the
+  // origin: the scales are still the part's own size.
+  Rng rng(4242);
+  Comparison surfaces, curves3, curves2;
+  Coverage cov_s, cov_3, cov_2;
+  for (int trial = 0; trial < 24; ++trial) {
+    const int p = 1 + trial % 7, q = rng.integer(1, 7);
+    const bool rational = trial % 2 == 1;
+    const double far = std::pow(10.0, rng.uniform(1.0, 2.7));
+    INFO("trial " << trial << " degrees " << p << "x" << q << (rational ? " rational" : "")
+                  << " at " << far << " sizes from the origin");
+    const NurbsSurfaceData data =
+        random_surface(rng, p, q, trial % 3 != 0, trial % 4 != 1, rational, far);
+    auto s = NurbsSurface::create(data);
+    REQUIRE(s.ok());
+    const auto uv = surface_samples(rng, *s, kSamplesPerSurface / 2);
+    const Comparison c = check_surface(data, uv);
+    tally(cov_s, check_comparison(c), static_cast<int>(uv.size()));
+    surfaces.add(c);
+    curves3.add(check_curve<3>(rng, random_curve<3>(rng, p, trial % 3 != 0, rational, far), cov_3));
+    curves2.add(check_curve<2>(rng, random_curve<2>(rng, p, trial % 3 != 0, rational, far), cov_2));
+  }
+  report("surfaces far from the origin", cov_s, surfaces);
+  report("3D curves far from the origin", cov_3, curves3);
+  report("2D curves far from the origin", cov_2, curves2);
 }
 
 TEST_CASE("occt: the comparison detects a knot moved by 1e-9 of the domain") {
