@@ -165,9 +165,12 @@ Vec2 v2(const gp_Vec2d& p) {
 // ---- random data ----------------------------------------------------------------------------
 
 // Random flat knot vector for `count` poles of `degree` with random spacing and repeated knots:
-// interior multiplicities 1..degree (OCCT's limit for interior knots), end multiplicity
-// degree + 1 when clamped, 1..degree when not (a non-periodic unclamped vector: OCCT accepts
-// end multiplicities from 1 to degree + 1, and its domain is then [U_p, U_n] like ours).
+// interior multiplicities 1..degree, end multiplicity degree + 1 when clamped, 1..degree when
+// not. What OCCT 7.6 represents (checked by building curves): non-periodic vectors with end
+// multiplicities 1..degree + 1, i.e. unclamped ones too, with the domain [U_p, U_n] like the
+// kernel's (the tests check Bounds()); interior multiplicities only up to degree. An interior
+// knot of multiplicity degree + 1 (a break, which the kernel accepts) makes OCCT throw "# Poles
+// and degree mismatch"; such a surface would have to be split in two, so it is not compared.
 std::vector<double> random_knots(Rng& rng, int count, int degree, bool clamped) {
   const int total = count + degree + 1;
   for (;;) {
