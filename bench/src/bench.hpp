@@ -1,10 +1,11 @@
 #pragma once
 // plyfit-bench: programs that print figures. Each benchmark is one file that registers a
-// subcommand; shared timing helpers live here. Time figures are medians of repeated runs;
-// comparisons are ratios measured in the same run.
+// subcommand; shared timing helpers and the table type live here. Time figures are medians
+// of repeated runs; comparisons are ratios measured in the same run.
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <functional>
 #include <string>
 #include <vector>
@@ -34,17 +35,65 @@ inline double time_once(const std::function<void()>& f) {
   return std::chrono::duration<double>(t1 - t0).count();
 }
 
-/// Median of `runs` timings of f (seconds); at least 5 runs.
-inline double median_time(const std::function<void()>& f, int runs = 5) {
-  std::vector<double> t;
-  for (int i = 0; i < std::max(runs, 5); ++i) t.push_back(time_once(f));
+/// Minimum number of timed runs behind every time figure.
+constexpr int kMinRuns = 5;
+
+/// Median of a sample (the upper middle one for an even count).
+inline double median(std::vector<double> t) {
+  if (t.empty()) return 0.0;
   std::nth_element(t.begin(), t.begin() + t.size() / 2, t.end());
   return t[t.size() / 2];
+}
+
+/// Median of `runs` timings of f (seconds); at least kMinRuns runs.
+inline double median_time(const std::function<void()>& f, int runs = kMinRuns) {
+  std::vector<double> t;
+  for (int i = 0; i < std::max(runs, kMinRuns); ++i) t.push_back(time_once(f));
+  return median(t);
 }
 
 /// True if `flag` is among args.
 inline bool has_flag(const std::vector<std::string>& args, const std::string& flag) {
   return std::find(args.begin(), args.end(), flag) != args.end();
 }
+
+/// The value after `option` in args, or `fallback`.
+inline std::string option_value(const std::vector<std::string>& args, const std::string& option,
+                                const std::string& fallback) {
+  for (std::size_t i = 0; i + 1 < args.size(); ++i)
+    if (args[i] == option) return args[i + 1];
+  return fallback;
+}
+
+/// printf-style formatting into a std::string.
+template <typename... Args>
+std::string fmt(const char* format, Args... args) {
+  const int n = std::snprintf(nullptr, 0, format, args...);
+  std::string s(static_cast<std::size_t>(std::max(n, 0)) + 1, '\0');
+  std::snprintf(s.data(), s.size(), format, args...);
+  s.resize(static_cast<std::size_t>(std::max(n, 0)));
+  return s;
+}
+
+/// A table of formatted cells: printed as Markdown, saved as CSV. `caption` says what was
+/// measured and how (printed above the table).
+struct Table {
+  std::string caption;
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  /// Column alignment in Markdown: true = right-aligned (figures).
+  std::vector<bool> right;
+
+  /// Adds a row (as many cells as the header).
+  void add(std::vector<std::string> row) { rows.push_back(std::move(row)); }
+  /// The caption, an empty line, and the Markdown table.
+  std::string markdown() const;
+  /// Comma-separated values with a header line (cells quoted when they hold a comma or a
+  /// quote).
+  std::string csv() const;
+};
+
+/// Writes `text` to `path` (creating parent folders); false on failure.
+bool write_text_file(const std::string& path, const std::string& text);
 
 }  // namespace plyfit::bench

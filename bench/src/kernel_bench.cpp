@@ -5,13 +5,11 @@
 #include <plyfit/kernel/nurbs_surface.hpp>
 
 #include "bench.hpp"
+#include "occt_util.hpp"
+#include "tables.hpp"
 
 #include <GeomAdaptor_Surface.hxx>
 #include <Geom_BSplineSurface.hxx>
-#include <TColStd_Array1OfInteger.hxx>
-#include <TColStd_Array1OfReal.hxx>
-#include <TColStd_Array2OfReal.hxx>
-#include <TColgp_Array2OfPnt.hxx>
 #include <gp_Pnt.hxx>
 #include <gp_Vec.hxx>
 
@@ -70,43 +68,6 @@ NurbsSurfaceData make_surface(std::mt19937_64& g, int degree, bool rational) {
   return d;
 }
 
-Handle(Geom_BSplineSurface) to_occt(const NurbsSurfaceData& d) {
-  auto compress = [](const std::vector<double>& flat, TColStd_Array1OfReal& knots,
-                     TColStd_Array1OfInteger& mults) {
-    std::vector<double> k;
-    std::vector<int> m;
-    for (double x : flat) {
-      if (!k.empty() && x == k.back()) {
-        ++m.back();
-      } else {
-        k.push_back(x);
-        m.push_back(1);
-      }
-    }
-    knots.Resize(1, static_cast<int>(k.size()), false);
-    mults.Resize(1, static_cast<int>(k.size()), false);
-    for (size_t i = 0; i < k.size(); ++i) {
-      knots(static_cast<int>(i) + 1) = k[i];
-      mults(static_cast<int>(i) + 1) = m[i];
-    }
-  };
-  TColStd_Array1OfReal uk(1, 1), vk(1, 1);
-  TColStd_Array1OfInteger um(1, 1), vm(1, 1);
-  compress(d.knots_u, uk, um);
-  compress(d.knots_v, vk, vm);
-  TColgp_Array2OfPnt poles(1, d.count_u, 1, d.count_v);
-  TColStd_Array2OfReal w(1, d.count_u, 1, d.count_v);
-  for (int i = 0; i < d.count_u; ++i)
-    for (int j = 0; j < d.count_v; ++j) {
-      const Vec3& p = d.pole(i, j);
-      poles(i + 1, j + 1) = gp_Pnt(p.x(), p.y(), p.z());
-      w(i + 1, j + 1) = d.weight(i, j);
-    }
-  if (d.weights.empty())
-    return new Geom_BSplineSurface(poles, uk, vk, um, vm, d.degree_u, d.degree_v);
-  return new Geom_BSplineSurface(poles, w, uk, vk, um, vm, d.degree_u, d.degree_v);
-}
-
 Vec3 v3(const gp_XYZ& p) {
   return Vec3(p.X(), p.Y(), p.Z());
 }
@@ -115,11 +76,6 @@ struct CaseResult {
   std::string name;
   double native_ns = 0, occt_ns = 0, occt_cached_ns = 0, max_rel_dev = 0;
 };
-
-double median(std::vector<double> t) {
-  std::nth_element(t.begin(), t.begin() + t.size() / 2, t.end());
-  return t[t.size() / 2];
-}
 
 CaseResult run_case(const Case& c, std::mt19937_64& g) {
   const NurbsSurface s = NurbsSurface::create(c.data).value();
@@ -193,8 +149,7 @@ CaseResult run_case(const Case& c, std::mt19937_64& g) {
   return r;
 }
 
-int run_kernel_bench(const std::vector<std::string>& args) {
-  const bool json = has_flag(args, "--json");
+std::vector<CaseResult> run_cases() {
   std::mt19937_64 g(20240601);
   std::vector<Case> cases;
   cases.push_back({"bicubic 20x20", make_surface(g, 3, false)});
@@ -202,7 +157,27 @@ int run_kernel_bench(const std::vector<std::string>& args) {
   cases.push_back({"rational biquadratic 20x20", make_surface(g, 2, true)});
   std::vector<CaseResult> results;
   for (const Case& c : cases) results.push_back(run_case(c, g));
+  return results;
+}
 
+Table make_table(const std::vector<CaseResult>& results) {
+  Table t;
+  t.caption =
+      fmt("Point + first derivatives at %d random (u, v), median of %d runs", kEvaluations, kRuns);
+  t.header = {"surface",           "native eval1 (ns)",           "OCCT D1 (ns)",
+              "speed-up",          "OCCT cached adaptor D1 (ns)", "speed-up vs cached",
+              "max rel. deviation"};
+  t.right = {false, true, true, true, true, true, true};
+  for (const CaseResult& r : results)
+    t.add({r.name, fmt("%.1f", r.native_ns), fmt("%.1f", r.occt_ns),
+           fmt("%.2fx", r.occt_ns / r.native_ns), fmt("%.1f", r.occt_cached_ns),
+           fmt("%.2fx", r.occt_cached_ns / r.native_ns), fmt("%.1e", r.max_rel_dev)});
+  return t;
+}
+
+int run_kernel_bench(const std::vector<std::string>& args) {
+  const bool json = has_flag(args, "--json");
+  const std::vector<CaseResult> results = run_cases();
   if (json) {
     std::printf("{\n  \"benchmark\": \"kernel\",\n  \"evaluations\": %d,\n  \"runs\": %d,\n",
                 kEvaluations, kRuns);
@@ -218,16 +193,7 @@ int run_kernel_bench(const std::vector<std::string>& args) {
     std::printf("  ]\n}\n");
     return 0;
   }
-  std::printf("Point + first derivatives at %d random (u, v), median of %d runs\n", kEvaluations,
-              kRuns);
-  std::printf(
-      "| surface | native eval1 (ns) | OCCT D1 (ns) | speed-up | OCCT cached adaptor "
-      "D1 (ns) | speed-up vs cached | max rel. deviation |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---:|\n");
-  for (const CaseResult& r : results)
-    std::printf("| %s | %.1f | %.1f | %.2fx | %.1f | %.2fx | %.1e |\n", r.name.c_str(), r.native_ns,
-                r.occt_ns, r.occt_ns / r.native_ns, r.occt_cached_ns,
-                r.occt_cached_ns / r.native_ns, r.max_rel_dev);
+  std::printf("%s", make_table(results).markdown().c_str());
   return 0;
 }
 
@@ -237,4 +203,9 @@ const BenchmarkRegistrar kRegistrar({"kernel",
                                      run_kernel_bench});
 
 }  // namespace
+
+Table kernel_table() {
+  return make_table(run_cases());
+}
+
 }  // namespace plyfit::bench

@@ -7,6 +7,7 @@
 
 #include "bench.hpp"
 #include "support/solver_cases.hpp"
+#include "tables.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -72,24 +73,23 @@ Row measure(const std::string& surface, const std::string& solver, int n, double
   return row;
 }
 
-int run(const std::vector<std::string>& args) {
-  const bool json = has_flag(args, "--json");
+bool run_rows(std::vector<Row>& rows) {
   const int n = 4000;
   struct Surf {
     std::string name;
     NurbsSurfaceData data;
     double d;
   };
-  const std::vector<Surf> surfs = {{"bicubic 9x9", random_bicubic(), 1.0},
-                                   {"rational torus", torus_patch(30.0, 10.0, -2.5, 2.5, 0.0, 4.0), 1.0}};
-  std::vector<Row> rows;
+  const std::vector<Surf> surfs = {
+      {"bicubic 9x9", random_bicubic(), 1.0},
+      {"rational torus", torus_patch(30.0, 10.0, -2.5, 2.5, 0.0, 4.0), 1.0}};
   for (const auto& sf : surfs) {
     FaceData fd;
     fd.surface = sf.data;
     auto face = Face::create(fd);
     if (!face) {
       std::fprintf(stderr, "plyfit-bench: %s\n", face.error().message.c_str());
-      return 1;
+      return false;
     }
     const Face& f = *face;
     SolverSettings st;
@@ -113,6 +113,32 @@ int run(const std::vector<std::string>& args) {
       return solve_plane_sphere(f, {k.c, k.uc, sf.d, k.a - k.c}, st);
     }));
   }
+  return true;
+}
+
+Table make_table(const std::vector<Row>& rows) {
+  Table t;
+  t.caption =
+      "Solves of independently built configurations (tests/support/solver_cases.hpp), d = 1; "
+      "ns/solve: median of 7 runs over all cases; residual (|F1| + |F2|) / d of the converged "
+      "solves: percentiles and histogram";
+  t.header = {
+      "surface",        "solver", "converged", "mean iterations", "mean evaluations", "ns/solve",
+      "residual/d p50", "p99",    "max",       "<1e-15",          "<1e-14",           "<1e-13",
+      "<1e-12",         ">=1e-12"};
+  t.right = {false, false, true, true, true, true, true, true, true, true, true, true, true, true};
+  for (const auto& r : rows)
+    t.add({r.surface, r.solver, fmt("%d/%d", r.converged, r.solves), fmt("%.2f", r.mean_it),
+           fmt("%.2f", r.mean_eval), fmt("%.0f", r.ns), fmt("%.1e", r.r50), fmt("%.1e", r.r99),
+           fmt("%.1e", r.rmax), fmt("%d", r.hist[0]), fmt("%d", r.hist[1]), fmt("%d", r.hist[2]),
+           fmt("%d", r.hist[3]), fmt("%d", r.hist[4])});
+  return t;
+}
+
+int run(const std::vector<std::string>& args) {
+  const bool json = has_flag(args, "--json");
+  std::vector<Row> rows;
+  if (!run_rows(rows)) return 1;
   if (json) {
     std::printf("{\"cases\": [\n");
     for (size_t i = 0; i < rows.size(); ++i) {
@@ -121,20 +147,13 @@ int run(const std::vector<std::string>& args) {
           "  {\"surface\": \"%s\", \"solver\": \"%s\", \"solves\": %d, \"converged\": %d, "
           "\"mean_iterations\": %.3f, \"mean_evaluations\": %.3f, \"ns_per_solve\": %.1f, "
           "\"residual_rel_p50\": %.3g, \"residual_rel_p99\": %.3g, \"residual_rel_max\": %.3g}%s\n",
-          r.surface.c_str(), r.solver.c_str(), r.solves, r.converged, r.mean_it, r.mean_eval,
-          r.ns, r.r50, r.r99, r.rmax, i + 1 < rows.size() ? "," : "");
+          r.surface.c_str(), r.solver.c_str(), r.solves, r.converged, r.mean_it, r.mean_eval, r.ns,
+          r.r50, r.r99, r.rmax, i + 1 < rows.size() ? "," : "");
     }
     std::printf("]}\n");
     return 0;
   }
-  std::printf("| surface | solver | converged | mean iterations | mean evaluations | ns/solve | "
-              "residual/d p50 | p99 | max | <1e-15 | <1e-14 | <1e-13 | <1e-12 | >=1e-12 |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  for (const auto& r : rows)
-    std::printf("| %s | %s | %d/%d | %.2f | %.2f | %.0f | %.1e | %.1e | %.1e | %d | %d | %d | %d | %d |\n",
-                r.surface.c_str(), r.solver.c_str(), r.converged, r.solves, r.mean_it,
-                r.mean_eval, r.ns, r.r50, r.r99, r.rmax, r.hist[0], r.hist[1], r.hist[2],
-                r.hist[3], r.hist[4]);
+  std::printf("%s", make_table(rows).markdown().c_str());
   return 0;
 }
 
@@ -142,4 +161,11 @@ const BenchmarkRegistrar kRegister{
     {"solvers", "the three mapping solvers: iterations, ns per solve, residuals [--json]", run}};
 
 }  // namespace
+
+Table solvers_table() {
+  std::vector<Row> rows;
+  if (!run_rows(rows)) return {};
+  return make_table(rows);
+}
+
 }  // namespace plyfit::bench

@@ -1,0 +1,118 @@
+// plyfit-bench batch: batch throughput of `plyfit batch` with -j1 against -j2 .. -jN (N the
+// number of cores), on generated scene files (drapes of the built-in wave), each a separate
+// child process writing every output.
+
+#include "bench.hpp"
+#include "tables.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <thread>
+
+namespace plyfit::bench {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Scenes per batch and their ply spacing on the 100 x 100 mm wave (about 30,000 nodes each:
+// the drape, not process start-up, dominates).
+constexpr int kScenes = 8;
+constexpr double kSceneSpacing = 0.6;
+
+std::string plyfit_binary() {
+  if (const char* env = std::getenv("PLYFIT_BIN")) return env;
+#ifdef PLYFIT_BIN
+  return PLYFIT_BIN;
+#else
+  return "plyfit";
+#endif
+}
+
+// Runs a shell command quietly; its exit status.
+int run_quiet(const std::string& cmd) {
+  const int rc = std::system((cmd + " >/dev/null 2>&1").c_str());
+  return (rc != -1 && WIFEXITED(rc)) ? WEXITSTATUS(rc) : -1;
+}
+
+std::string scene_text(int k) {
+  // Base paths at different angles, so that the scenes are different drapes.
+  const double a = 0.15 * k;
+  return fmt(
+      "# plyfit-bench batch scene %d\n[mold]\nmold = builtin:wave\n\n[ply]\nspacing = %.3f\n\n"
+      "[start]\nstart2d = 0,0\nbase2d = 1,0\nsweep2d = 0,1\nsweep2d = 0,-1\n"
+      "start3d = 50,50,0\nbase-normal = %.6f,%.6f,0\nsweep3d = %.6f,%.6f,0\nsweep3d = "
+      "%.6f,%.6f,0\n",
+      k, kSceneSpacing, -std::sin(a), std::cos(a), -std::sin(a), std::cos(a), std::sin(a),
+      -std::cos(a));
+}
+
+}  // namespace
+
+Table batch_table(bool* available) {
+  Table t;
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  t.caption =
+      fmt("`plyfit batch` on %d generated scenes (built-in wave, spacing %.1f mm, base paths at "
+          "different angles; every output written), one child process per scene. Time: median of "
+          "%d runs of the whole batch; speed-up against -j1 measured in the same invocation.",
+          kScenes, kSceneSpacing, kMinRuns);
+  t.header = {"jobs", "batch time (s)", "scenes/s", "speed-up vs -j1"};
+  t.right = {false, true, true, true};
+  const std::string bin = plyfit_binary();
+  if (run_quiet(bin + " batch --help") != 0) {
+    if (available) *available = false;
+    t.caption += fmt(" Not measured: `%s batch` is not available in this build.", bin.c_str());
+    return t;
+  }
+  if (available) *available = true;
+  const fs::path dir = fs::temp_directory_path() / fmt("plyfit-bench-batch-%d", ::getpid());
+  fs::create_directories(dir);
+  std::string scenes;
+  for (int k = 0; k < kScenes; ++k) {
+    const fs::path p = dir / fmt("scene%02d.ini", k);
+    write_text_file(p.string(), scene_text(k));
+    scenes += " '" + p.string() + "'";
+  }
+  double t1 = 0.0;
+  for (unsigned j = 1; j <= cores; ++j) {
+    const fs::path out = dir / fmt("out-j%u", j);
+    bool ok = true;
+    const double sec = median_time([&] {
+      fs::remove_all(out);
+      ok = ok && run_quiet(fmt("'%s' batch%s -j %u -o '%s'", bin.c_str(), scenes.c_str(), j,
+                               out.string().c_str())) == 0;
+    });
+    if (!ok) {
+      t.add({fmt("-j%u", j), "failed", "-", "-"});
+      continue;
+    }
+    if (j == 1) t1 = sec;
+    t.add({fmt("-j%u", j), fmt("%.2f", sec), fmt("%.2f", kScenes / sec),
+           t1 > 0 ? fmt("%.2fx", t1 / sec) : std::string("-")});
+    std::fprintf(stderr, "batch: -j%u: %.2f s\n", j, sec);
+  }
+  fs::remove_all(dir);
+  return t;
+}
+
+namespace {
+
+int run_batch(const std::vector<std::string>&) {
+  bool available = false;
+  const Table t = batch_table(&available);
+  std::printf("%s", t.markdown().c_str());
+  return available ? 0 : 1;
+}
+
+const BenchmarkRegistrar kBatch{
+    {"batch", "plyfit batch -j1 against -j2 .. -jN on generated scenes", run_batch}};
+
+}  // namespace
+
+}  // namespace plyfit::bench

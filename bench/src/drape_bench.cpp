@@ -1,0 +1,626 @@
+// plyfit-bench throughput | tolerance | convergence | hard: full drapes.
+//   throughput   drape time, mapped nodes per second and peak memory per node for plies of
+//                100^2 .. 2000^2 nodes on three faces; fitted exponent of time against n
+//   tolerance    drape time against the constraint errors for Newton tolerances 1e-3 .. 1e-14
+//   convergence  discretisation error against spacing on cases with exact answers
+//   hard         hard cases, one full drape each
+
+#include <plyfit/kernel/analytic_surfaces.hpp>
+#include <plyfit/kernel/flat_pattern.hpp>
+
+#include "bench.hpp"
+#include "drape_cases.hpp"
+#include "occt_util.hpp"
+#include "tables.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+namespace plyfit::bench {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// The report's faces.
+constexpr double kSphereRadius = 20.0;
+constexpr const char* kTrimmedFile = "occ22470.igs";
+constexpr int kTrimmedIndex = 16;
+// Ply sizes (nodes per side) of the tolerance table.
+constexpr int kToleranceSizeBicubic = 500;
+constexpr int kToleranceSizeSphere = 300;
+
+/// Least-squares slope of log(y) against log(x).
+double loglog_slope(const std::vector<double>& x, const std::vector<double>& y) {
+  const std::size_t n = x.size();
+  if (n < 2) return 0.0;
+  double mx = 0, my = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    mx += std::log(x[k]);
+    my += std::log(y[k]);
+  }
+  mx /= static_cast<double>(n);
+  my /= static_cast<double>(n);
+  double sxy = 0, sxx = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    sxy += (std::log(x[k]) - mx) * (std::log(y[k]) - my);
+    sxx += (std::log(x[k]) - mx) * (std::log(x[k]) - mx);
+  }
+  return sxx > 0 ? sxy / sxx : 0.0;
+}
+
+void print_error(const std::string& what, const Error& e) {
+  std::fprintf(stderr, "plyfit-bench: %s: %s\n", what.c_str(), e.message.c_str());
+}
+
+/// A face of the throughput and tolerance tables with its drape problem at spacing d.
+struct ReportFace {
+  std::string name;
+  FacePtr face;
+  std::function<Result<DrapeProblem>(double d)> problem;
+};
+
+Result<std::vector<ReportFace>> report_faces() {
+  std::vector<ReportFace> out;
+  auto wave = builtin_face("wave", {});
+  if (!wave) return wave.error();
+  const FacePtr w = *wave;
+  out.push_back({"bicubic free-form (wave, 12x12 poles)", w,
+                 [w](double d) { return middle_problem(*w, d, true); }});
+  auto sphere = builtin_face("sphere-octant", {{"R", kSphereRadius}});
+  if (!sphere) return sphere.error();
+  // The paper's case (b): the base path on the meridian y = 0 from its midpoint, swept +Y.
+  out.push_back({"rational sphere octant (R 20)", *sphere, [](double d) -> Result<DrapeProblem> {
+                   const double R = kSphereRadius;
+                   return make_problem(d, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)},
+                                       Vec3(R / 2, 0, R / 2), Vec3(0, 1, 0), {Vec3(0, 1, 0)});
+                 }});
+  auto cad = cad_face(kTrimmedFile, kTrimmedIndex);
+  if (!cad) return cad.error();
+  const FacePtr c = *cad;
+  out.push_back({std::string("trimmed CAD face (") + kTrimmedFile + " #" +
+                     std::to_string(kTrimmedIndex) + ", rational)",
+                 c, [c](double d) { return middle_problem(*c, d, true); }});
+  return out;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------
+// Table 1
+
+ThroughputReport throughput_report(const ThroughputOptions& o) {
+  ThroughputReport rep;
+  auto faces = report_faces();
+  if (!faces) {
+    print_error("throughput", faces.error());
+    rep.ok = false;
+    return rep;
+  }
+  Table& t = rep.table;
+  t.caption =
+      fmt("Plies of about size^2 nodes (spacing d = sqrt(face area / size^2)), unbounded ply, "
+          "default options. Time: wall time of drape() (scan and metrics), median of %d runs on "
+          "one core. Nodes: mapped regular and auxiliary nodes. Peak heap: the most heap bytes "
+          "held at once during drape() (replacement operator new counting malloc_usable_size; "
+          "everything: node vector growth, index, frontier, path, metrics), per mapped node. "
+          "Peak RSS: growth of the resident set's high-water mark during the first run. Held: "
+          "DrapeResult::bytes_per_node() after the drape.",
+          std::max(o.runs, kMinRuns));
+  t.header = {"face",
+              "size",
+              "d (mm)",
+              "nodes",
+              "time (ms)",
+              "Mnodes/s",
+              "ns/node",
+              "ns/(n log2 n)",
+              "peak heap B/node",
+              "peak RSS B/node",
+              "held B/node",
+              "link err/d"};
+  t.right = {false, true, true, true, true, true, true, true, true, true, true, true};
+  Table& fit = rep.fit;
+  fit.caption =
+      "Growth of the drape time with the number of nodes n: least-squares slope of log(time) "
+      "against log(n) over all sizes, and between the two largest (1 = linear; n log n "
+      "shows as slightly above 1 and a constant time/(n log2 n)).";
+  fit.header = {"face", "exponent (all sizes)", "exponent (two largest)",
+                "time/(n log2 n) smallest .. largest (ns)"};
+  fit.right = {false, true, true, true};
+  for (std::size_t fi = 0; fi < faces->size(); ++fi) {
+    const ReportFace& rf = (*faces)[fi];
+    std::vector<double> ns, ts, tnl;
+    for (int size : o.sizes) {
+      const double d = spacing_for_nodes(*rf.face, static_cast<double>(size) * size);
+      auto pb = rf.problem(d);
+      if (!pb) {
+        print_error(rf.name, pb.error());
+        rep.ok = false;
+        continue;
+      }
+      DrapeRun first;
+      auto tm = median_drape_time(*rf.face, *pb, {}, o.runs, &first);
+      if (!tm) {
+        print_error(rf.name, tm.error());
+        rep.ok = false;
+        continue;
+      }
+      const double n = static_cast<double>(net_nodes(first.result));
+      const double sec = *tm;
+      const NetErrors err = net_errors(first.result);
+      const double nlogn = n * std::log2(n);
+      ns.push_back(n);
+      ts.push_back(sec);
+      tnl.push_back(sec * 1e9 / nlogn);
+      const double peak = static_cast<double>(first.peak_heap) / n;
+      t.add({rf.name, fmt("%d^2", size), fmt("%.4g", d), fmt("%.0f", n), fmt("%.1f", sec * 1e3),
+             fmt("%.2f", n / sec * 1e-6), fmt("%.0f", sec * 1e9 / n),
+             fmt("%.1f", sec * 1e9 / nlogn), fmt("%.0f", peak),
+             first.peak_rss_bytes >= 0 ? fmt("%.0f", first.peak_rss_bytes / n) : std::string("-"),
+             fmt("%.0f", first.result.bytes_per_node()), fmt("%.1e", err.link_rel)});
+      if (fi == 0) {
+        rep.bicubic_nodes_per_s.push_back(n / sec);
+        rep.bicubic_link_rel = std::max(rep.bicubic_link_rel, err.link_rel);
+      }
+      rep.peak_bytes_per_node.push_back(peak);
+      std::fprintf(stderr, "throughput: %s %d^2: %.0f nodes, %.1f ms\n", rf.name.c_str(), size, n,
+                   sec * 1e3);
+    }
+    const std::size_t k = ns.size();
+    fit.add({rf.name, fmt("%.3f", loglog_slope(ns, ts)),
+             k >= 2 ? fmt("%.3f", loglog_slope({ns[k - 2], ns[k - 1]}, {ts[k - 2], ts[k - 1]}))
+                    : std::string("-"),
+             k >= 1 ? fmt("%.1f .. %.1f", tnl.front(), tnl.back()) : std::string("-")});
+  }
+  return rep;
+}
+
+// ---------------------------------------------------------------------------------------
+// Table 2
+
+ToleranceReport tolerance_report(int runs) {
+  ToleranceReport rep;
+  auto faces = report_faces();
+  if (!faces) {
+    print_error("tolerance", faces.error());
+    rep.ok = false;
+    return rep;
+  }
+  const double default_tol = Tolerances{}.newton_residual_rel;
+  Table& t = rep.table;
+  t.caption =
+      fmt("Newton tolerance newton_residual_rel (x d) against drape time (median of %d runs) and "
+          "the constraint errors measured from the nodes: link length (max | |p_a - p_b| - rest | "
+          "/ d), distance to the surface / d (bicubic: Gauss-Newton foot point on OpenCASCADE's "
+          "Geom_BSplineSurface from each node's (u, v); sphere: | |p| - R |), base-plane distance "
+          "of the path nodes / d, and the largest node displacement from the net at the default "
+          "tolerance / d. The solver's stop is max(tol d, roundoff_rel (|x|max + d)): the floor "
+          "column is that rounding floor over d. Bicubic face at %d^2 nodes, sphere octant at "
+          "%d^2. The default (%.0e) is marked *.",
+          std::max(runs, kMinRuns), kToleranceSizeBicubic, kToleranceSizeSphere, default_tol);
+  t.header = {"face",           "tolerance (x d)",  "floor/d",           "time (ms)",
+              "ns/node",        "iterations/solve", "evaluations/solve", "link err/d",
+              "surface dist/d", "base-plane/d",     "displacement/d"};
+  t.right = {false, true, true, true, true, true, true, true, true, true, true};
+  std::vector<double> tols;
+  for (int e = 3; e <= 14; ++e) tols.push_back(std::pow(10.0, -e));
+  for (std::size_t fi = 0; fi < 2; ++fi) {
+    const ReportFace& rf = (*faces)[fi];
+    const bool sphere = fi == 1;
+    const int size = sphere ? kToleranceSizeSphere : kToleranceSizeBicubic;
+    const double d = spacing_for_nodes(*rf.face, static_cast<double>(size) * size);
+    auto pb = rf.problem(d);
+    if (!pb) {
+      print_error(rf.name, pb.error());
+      rep.ok = false;
+      continue;
+    }
+    // Reference net at the default tolerance, for the displacement column.
+    auto ref = drape(*rf.face, *pb, {});
+    if (!ref) {
+      print_error(rf.name, ref.error());
+      rep.ok = false;
+      continue;
+    }
+    double xmax = 0.0;
+    for (const DrapeNode& n : ref->nodes)
+      if (n.mapped()) xmax = std::max(xmax, n.point.cwiseAbs().maxCoeff());
+    const double floor_rel = Tolerances{}.roundoff_rel * (xmax + d) / d;
+    const OcctDistance occt(rf.face->surface().data());
+    auto distance = [&](const Vec3& p, const Vec2& uv) {
+      return sphere ? std::abs(p.norm() - kSphereRadius) : occt(p, uv);
+    };
+    for (double tol : tols) {
+      DrapeOptions opt;
+      opt.tol.newton_residual_rel = tol;
+      DrapeRun first;
+      auto tm = median_drape_time(*rf.face, *pb, opt, runs, &first);
+      if (!tm) {
+        print_error(rf.name, tm.error());
+        rep.ok = false;
+        continue;
+      }
+      const DrapeResult& r = first.result;
+      const NetErrors err = net_errors(r, distance);
+      double disp = 0.0;
+      for (const DrapeNode& n : r.nodes) {
+        if (!n.mapped()) continue;
+        const DrapeNode* m = ref->find(n.id);
+        if (m && m->mapped()) disp = std::max(disp, (m->point - n.point).norm() / d);
+      }
+      const double n = static_cast<double>(net_nodes(r));
+      const auto& m = r.metrics;
+      t.add({rf.name, fmt("%.0e%s", tol, tol == default_tol ? " *" : ""), fmt("%.1e", floor_rel),
+             fmt("%.1f", *tm * 1e3), fmt("%.0f", *tm * 1e9 / n),
+             fmt("%.2f", static_cast<double>(m.iterations) / static_cast<double>(m.solves)),
+             fmt("%.2f", static_cast<double>(m.evaluations) / static_cast<double>(m.solves)),
+             fmt("%.1e", err.link_rel), fmt("%.1e", err.surface_rel),
+             fmt("%.1e", err.base_plane_rel), fmt("%.1e", disp)});
+      rep.points.push_back(
+          {sphere ? "sphere octant" : "bicubic", tol, *tm * 1e3, err.link_rel, err.surface_rel});
+      std::fprintf(stderr, "tolerance: %s %.0e: %.1f ms, link %.1e\n", rf.name.c_str(), tol,
+                   *tm * 1e3, err.link_rel);
+    }
+  }
+  return rep;
+}
+
+// ---------------------------------------------------------------------------------------
+// Table 3
+
+ConvergenceReport convergence_report() {
+  ConvergenceReport rep;
+  Table& t = rep.table;
+  t.caption =
+      "Error against spacing d = L / k on cases with exact answers (L: part size). Cylinder R "
+      "10, H 40, 120 degrees, base path at 45 degrees to the threads along a generator: the "
+      "max shear |pi/2 - gamma| (exact: 0, the cylinder develops). Flat outline "
+      "(flat_pattern) of a cylinder sector (R 10, H 20, 90 degrees; exact: the rectangle R "
+      "alpha x H) and of a cone sector (r 20 to 10, H 15, 90 degrees; exact: the annular "
+      "sector), relative area and perimeter errors. Order: log-log slope from the previous "
+      "spacing.";
+  t.header = {"case", "L/d", "d (mm)", "nodes", "error", "order"};
+  t.right = {false, true, true, true, true, true};
+  Table& o = rep.orders;
+  o.caption =
+      "Observed order of convergence: least-squares log-log slope of the error "
+      "against d over all spacings, and over the three coarsest.";
+  o.header = {"case", "order (all spacings)", "order (k = 10..50)"};
+  o.right = {false, true, true};
+  const std::vector<int> ks = {10, 20, 50, 100, 200, 400};
+
+  struct Series {
+    std::string name;
+    std::vector<double> d, err;
+  };
+  std::vector<Series> series;
+  auto add_rows = [&](Series& s, const std::vector<double>& nodes) {
+    for (std::size_t k = 0; k < s.d.size(); ++k) {
+      const double L_over_d = ks[k];
+      std::string order = "-";
+      if (k > 0 && s.err[k] > 0 && s.err[k - 1] > 0)
+        order = fmt("%.2f", std::log(s.err[k - 1] / s.err[k]) / std::log(s.d[k - 1] / s.d[k]));
+      t.add({s.name, fmt("%.0f", L_over_d), fmt("%.4g", s.d[k]), fmt("%.0f", nodes[k]),
+             fmt("%.2e", s.err[k]), order});
+    }
+    series.push_back(s);
+  };
+
+  {  // Cylinder at 45 degrees: max shear.
+    const double R = 10, H = 40, alpha = 120 * kPi / 180;
+    auto f = builtin_face("cylinder", {{"R", R}, {"H", H}, {"angle", 120}});
+    if (!f) {
+      print_error("convergence", f.error());
+      rep.ok = false;
+      return rep;
+    }
+    const double a = kPi / 3, L = std::max(R * alpha, H);
+    const Vec3 s3(R * std::cos(a), R * std::sin(a), 20), tang(-std::sin(a), std::cos(a), 0);
+    Series s{"cylinder at 45 deg: max shear (rad)", {}, {}};
+    std::vector<double> nodes;
+    for (int k : ks) {
+      const double d = L / k;
+      auto r = drape(**f, make_problem(d, Vec2(0, 0), Vec2(1, 1), {Vec2(-1, 1), Vec2(1, -1)}, s3,
+                                       tang, {tang, -tang}));
+      if (!r) {
+        print_error("cylinder", r.error());
+        rep.ok = false;
+        return rep;
+      }
+      s.d.push_back(d);
+      s.err.push_back(net_errors(*r).max_shear);
+      nodes.push_back(static_cast<double>(net_nodes(*r)));
+    }
+    add_rows(s, nodes);
+  }
+  // Flat outlines: area and perimeter against the exact development.
+  auto outline = [&](const std::string& name, const FacePtr& f, const Vec3& s3, const Vec3& tang,
+                     double L, double area, double perimeter) {
+    Series sa{name + ": outline area", {}, {}}, sp{name + ": outline perimeter", {}, {}};
+    std::vector<double> nodes;
+    for (int k : ks) {
+      const double d = L / k;
+      auto r = drape(*f, make_problem(d, Vec2(0, 0), Vec2(0, 1), {Vec2(-1, 0), Vec2(1, 0)}, s3,
+                                      tang, {tang, -tang}));
+      if (!r) {
+        print_error(name, r.error());
+        rep.ok = false;
+        return;
+      }
+      const FlatPattern fp = flat_pattern(*f, *r);
+      sa.d.push_back(d);
+      sp.d.push_back(d);
+      sa.err.push_back(std::abs(fp.area - area) / area);
+      sp.err.push_back(std::abs(fp.perimeter - perimeter) / perimeter);
+      nodes.push_back(static_cast<double>(net_nodes(*r)));
+    }
+    add_rows(sa, nodes);
+    add_rows(sp, nodes);
+  };
+  {
+    const double R = 10, H = 20, alpha = kPi / 2;
+    auto f = builtin_face("cylinder", {{"R", R}, {"H", H}, {"angle", 90}});
+    if (!f) {
+      print_error("convergence", f.error());
+      rep.ok = false;
+      return rep;
+    }
+    const double a = 0.37;
+    outline("cylinder sector", *f, Vec3(R * std::cos(a), R * std::sin(a), 7.3),
+            Vec3(-std::sin(a), std::cos(a), 0), std::max(R * alpha, H), R * alpha * H,
+            2 * (R * alpha + H));
+  }
+  {
+    const double r0 = 20, r1 = 10, H = 15, alpha = kPi / 2;
+    auto f = builtin_face("cone", {{"r0", r0}, {"r1", r1}, {"H", H}, {"angle", 90}});
+    if (!f) {
+      print_error("convergence", f.error());
+      rep.ok = false;
+      return rep;
+    }
+    const double L = std::hypot(r0 - r1, H);
+    const double ro = r0 * L / (r0 - r1), ri = r1 * L / (r0 - r1), phi = alpha * (r0 - r1) / L;
+    const double a = kPi / 4;
+    outline("cone sector", *f, Vec3(15 * std::cos(a), 15 * std::sin(a), 7.5),
+            Vec3(-std::sin(a), std::cos(a), 0), ro * phi, phi / 2 * (ro * ro - ri * ri),
+            phi * (ro + ri) + 2 * L);
+  }
+  for (const Series& s : series) {
+    std::vector<double> d3(s.d.begin(), s.d.begin() + std::min<std::size_t>(3, s.d.size()));
+    std::vector<double> e3(s.err.begin(), s.err.begin() + std::min<std::size_t>(3, s.err.size()));
+    o.add({s.name, fmt("%.2f", loglog_slope(s.d, s.err)), fmt("%.2f", loglog_slope(d3, e3))});
+  }
+  return rep;
+}
+
+// ---------------------------------------------------------------------------------------
+// Table 5
+
+namespace {
+
+struct HardCase {
+  std::string name;
+  FacePtr face;
+  DrapeProblem problem;
+  DrapeOptions options;
+};
+
+// A roof of two planes meeting in a C0 crease along x = 0 (degree 2 in u with a double knot),
+// 40 x 60 mm, slopes +-1/2.
+NurbsSurfaceData roof() {
+  NurbsSurfaceData d;
+  d.degree_u = 2;
+  d.degree_v = 1;
+  d.count_u = 5;
+  d.count_v = 2;
+  d.knots_u = {0, 0, 0, 0.5, 0.5, 1, 1, 1};
+  d.knots_v = {0, 0, 1, 1};
+  for (Vec3 p :
+       {Vec3(-20, 0, 0), Vec3(-10, 0, 5), Vec3(0, 0, 10), Vec3(10, 0, 5), Vec3(20, 0, 0)}) {
+    d.poles.push_back(p + Vec3(0, -30, 0));
+    d.poles.push_back(p + Vec3(0, 30, 0));
+  }
+  return d;
+}
+
+// A flat 20 x 20 mm patch with a wild parametrisation: bicubic, knot spans 1000x apart, and
+// (if `weights`) product weights from 0.01 to 100.
+NurbsSurfaceData wild_plane(bool knots, bool weights) {
+  NurbsSurfaceData d;
+  d.degree_u = d.degree_v = 3;
+  d.count_u = d.count_v = 7;
+  if (knots) {
+    d.knots_u = {0, 0, 0, 0, 0.001, 0.002, 1.0, 2.0, 2.0, 2.0, 2.0};
+    d.knots_v = {0, 0, 0, 0, 1.0, 1000.0, 1001.0, 2000.0, 2000.0, 2000.0, 2000.0};
+  } else {
+    d.knots_u = d.knots_v = {0, 0, 0, 0, 0.25, 0.5, 0.75, 1, 1, 1, 1};
+  }
+  const double alpha[7] = {0.1, 10, 0.1, 3, 10, 0.2, 1};
+  const double beta[7] = {10, 0.1, 5, 0.1, 10, 0.1, 1};
+  for (int i = 0; i < 7; ++i)
+    for (int j = 0; j < 7; ++j) {
+      d.poles.emplace_back(-10 + 20.0 * i / 6, -10 + 20.0 * j / 6, 0.0);
+      if (weights) d.weights.push_back(alpha[i] * beta[j]);
+    }
+  return d;
+}
+
+Result<std::vector<HardCase>> hard_cases() {
+  std::vector<HardCase> out;
+  const Vec3 X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1);
+  auto both = [](double d, const Vec3& s3, const Vec3& bn) {
+    return make_problem(d, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)}, s3, bn, {bn, -bn});
+  };
+  {
+    auto f = builtin_face("sphere-octant", {{"R", 20}});
+    if (!f) return f.error();
+    // The paper's case (a): from the pole along the meridian y = 0.
+    out.push_back({"start at a pole (sphere octant R 20, paper case (a)), d 0.5",
+                   *f,
+                   make_problem(0.5, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)}, Vec3(0, 0, 20), Y, {Y}),
+                   {}});
+    // The paper's case (c) with a lock angle of 30 degrees: the shear limit is reached.
+    DrapeOptions lock;
+    lock.lock_angle = 30 * kPi / 180;
+    out.push_back(
+        {"near the shear limit (octant, case (c), lock angle 30 deg), d 0.5", *f,
+         make_problem(0.5, Vec2(15, 0), Vec2(1, 1), {Vec2(-1, 1)}, Vec3(0, 0, 20), Y, {Y}), lock});
+  }
+  {
+    auto f = data_face(roof());
+    if (!f) return f.error();
+    // The base path runs across the crease.
+    out.push_back({"C0 crease (roof, slopes +-1/2), d 0.5", *f, both(0.5, Vec3(-10, 0, 5), Y), {}});
+  }
+  {
+    auto f = data_face(wild_plane(false, true));
+    if (!f) return f.error();
+    out.push_back(
+        {"extreme weights (0.01..100, plane), d 0.2", *f, both(0.2, Vec3(0.3, 0.1, 0), Y), {}});
+    auto g = data_face(wild_plane(true, false));
+    if (!g) return g.error();
+    out.push_back({"non-uniform knots (spans 1000x apart, plane), d 0.2",
+                   *g,
+                   both(0.2, Vec3(0.3, 0.1, 0), Y),
+                   {}});
+  }
+  for (double scale : {1e-3, 1e4}) {
+    NurbsSurfaceData w = wave_surface(100.0, 8.0, 70.0, 10);
+    for (auto& p : w.poles) p *= scale;
+    auto f = data_face(w);
+    if (!f) return f.error();
+    out.push_back({fmt("scale %.0e (wave x %.0e), d %.0e", scale, scale, 0.5 * scale),
+                   *f,
+                   both(0.5 * scale, Vec3(50, 50, 0) * scale, Vec3(-0.3, 1, 0)),
+                   {}});
+  }
+  {
+    auto f = data_face(sphere_patch(1.0, -1.4, 1.5, 0.0, 5.0));
+    if (!f) return f.error();
+    out.push_back({"curvature radius = d (sphere R 1, d 1)", *f, both(1.0, Vec3(1, 0, 0), Y), {}});
+  }
+  {
+    auto f = builtin_face("saddle", {{"size", 40}, {"rho", 20}});
+    if (!f) return f.error();
+    out.push_back(
+        {"saddle (40 mm, rho 20), d 0.2", *f, both(0.2, Vec3(0, 0, 0), Vec3(-0.2, 1, 0)), {}});
+  }
+  for (const auto& [file, index, label] :
+       {std::tuple<const char*, int, const char*>{"bug27693_cornetta-step.stp", 7,
+                                                  "face with 3 holes (rational)"},
+        {"PRO20359-L1.igs", 0, "real trimmed face (5x5, 41x25 poles)"}}) {
+    auto f = cad_face(file, index);
+    if (!f) return f.error();
+    const double d = spacing_for_nodes(**f, 300.0 * 300.0);
+    auto pb = middle_problem(**f, d, true);
+    if (!pb) return pb.error();
+    out.push_back({fmt("%s (%s #%d), d %.3g", label, file, index, d), *f, *pb, {}});
+  }
+  (void)X;
+  (void)Z;
+  return out;
+}
+
+}  // namespace
+
+Table hard_case_table(int runs, bool* ok) {
+  Table t;
+  t.caption =
+      fmt("Hard cases, one full drape each (unbounded ply, default options unless stated). "
+          "Status: complete, or partial with the drape's warnings. Nodes by status: mapped "
+          "(regular + auxiliary), outside the face, at the shear limit, failed. Max residual: the "
+          "largest link-length error / d and base-plane distance / d of the net, measured from "
+          "the nodes. Time: median of %d runs.",
+          std::max(runs, kMinRuns));
+  t.header = {"case",   "status",     "mapped",       "outside",         "shear limit",
+              "failed", "link err/d", "base-plane/d", "max shear (deg)", "time (ms)"};
+  t.right = {false, false, true, true, true, true, true, true, true, true};
+  auto cases = hard_cases();
+  if (!cases) {
+    print_error("hard cases", cases.error());
+    if (ok) *ok = false;
+    return t;
+  }
+  for (const HardCase& c : *cases) {
+    DrapeRun first;
+    auto tm = median_drape_time(*c.face, c.problem, c.options, runs, &first);
+    if (!tm) {
+      t.add({c.name, "error: " + tm.error().message, "-", "-", "-", "-", "-", "-", "-", "-"});
+      if (ok) *ok = false;
+      continue;
+    }
+    const DrapeResult& r = first.result;
+    const NetErrors e = net_errors(r);
+    const auto& m = r.metrics.nodes;
+    t.add({c.name, drape_status(r),
+           fmt("%llu + %llu", (unsigned long long)m.mapped, (unsigned long long)m.auxiliary),
+           fmt("%llu", (unsigned long long)m.outside),
+           fmt("%llu", (unsigned long long)m.shear_limit),
+           fmt("%llu", (unsigned long long)m.failed), fmt("%.1e", e.link_rel),
+           fmt("%.1e", e.base_plane_rel), fmt("%.2f", e.max_shear * 180 / kPi),
+           fmt("%.2f", *tm * 1e3)});
+    std::fprintf(stderr, "hard: %s: %.2f ms\n", c.name.c_str(), *tm * 1e3);
+  }
+  return t;
+}
+
+// ---------------------------------------------------------------------------------------
+// Subcommands
+
+namespace {
+
+int run_throughput(const std::vector<std::string>& args) {
+  ThroughputOptions o;
+  const std::string sizes = option_value(args, "--sizes", "");
+  if (!sizes.empty()) {
+    o.sizes.clear();
+    std::stringstream ss(sizes);
+    std::string item;
+    while (std::getline(ss, item, ',')) o.sizes.push_back(std::stoi(item));
+  }
+  o.runs = std::stoi(option_value(args, "--runs", std::to_string(kMinRuns)));
+  const ThroughputReport r = throughput_report(o);
+  std::printf("%s\n%s", r.table.markdown().c_str(), r.fit.markdown().c_str());
+  return r.ok ? 0 : 1;
+}
+
+int run_tolerance(const std::vector<std::string>& args) {
+  const ToleranceReport r =
+      tolerance_report(std::stoi(option_value(args, "--runs", std::to_string(kMinRuns))));
+  std::printf("%s", r.table.markdown().c_str());
+  return r.ok ? 0 : 1;
+}
+
+int run_convergence(const std::vector<std::string>&) {
+  const ConvergenceReport r = convergence_report();
+  std::printf("%s\n%s", r.table.markdown().c_str(), r.orders.markdown().c_str());
+  return r.ok ? 0 : 1;
+}
+
+int run_hard(const std::vector<std::string>& args) {
+  bool ok = true;
+  const Table t =
+      hard_case_table(std::stoi(option_value(args, "--runs", std::to_string(kMinRuns))), &ok);
+  std::printf("%s", t.markdown().c_str());
+  return ok ? 0 : 1;
+}
+
+const BenchmarkRegistrar kThroughput{
+    {"throughput",
+     "drape time, nodes/s and peak memory per node for 100^2 .. 2000^2 nodes on three faces "
+     "[--sizes 100,300 --runs R]",
+     run_throughput}};
+const BenchmarkRegistrar kTolerance{
+    {"tolerance",
+     "drape time against constraint errors for Newton tolerances 1e-3 .. 1e-14 [--runs R]",
+     run_tolerance}};
+const BenchmarkRegistrar kConvergence{
+    {"convergence", "discretisation error against spacing on cases with exact answers",
+     run_convergence}};
+const BenchmarkRegistrar kHard{{"hard", "hard cases, one full drape each [--runs R]", run_hard}};
+
+}  // namespace
+
+}  // namespace plyfit::bench

@@ -1,0 +1,66 @@
+#pragma once
+// The tables of the benchmark report. Each function runs its measurements and returns
+// formatted tables; the subcommands print them and `plyfit-bench report` collects them into
+// BENCHMARKS.md and bench/results/*.csv.
+
+#include "bench.hpp"
+
+#include <string>
+#include <vector>
+
+namespace plyfit::bench {
+
+/// Table 4a: NurbsSurface::eval1 against OpenCASCADE's Geom_BSplineSurface::D1.
+Table kernel_table();
+/// Table 4b: the three solvers on independently built configurations.
+Table solvers_table();
+
+/// Table 1: drape time, throughput and memory against the number of nodes.
+struct ThroughputOptions {
+  std::vector<int> sizes = {100, 300, 1000, 2000};  ///< plies of size^2 nodes
+  int runs = kMinRuns;
+};
+struct ThroughputReport {
+  Table table;  ///< one row per face and size
+  Table fit;    ///< per face: fitted exponent of time against n
+  /// The bicubic face's rows, for the targets: mapped nodes per second and peak heap bytes
+  /// per mapped node at each size; the worst link error / d.
+  std::vector<double> bicubic_nodes_per_s, peak_bytes_per_node;
+  double bicubic_link_rel = 0.0;
+  bool ok = true;
+};
+ThroughputReport throughput_report(const ThroughputOptions& o);
+
+/// Table 2: time against error for Newton tolerances 1e-3 .. 1e-14 (x d).
+struct TolerancePoint {
+  std::string face;
+  double tol = 0.0, ms = 0.0, link_rel = 0.0, surface_rel = 0.0;
+};
+struct ToleranceReport {
+  Table table;
+  std::vector<TolerancePoint> points;
+  bool ok = true;
+};
+ToleranceReport tolerance_report(int runs);
+
+/// Table 3: discretisation error against spacing on cases with exact answers.
+struct ConvergenceReport {
+  Table table;
+  Table orders;  ///< fitted log-log slopes
+  bool ok = true;
+};
+ConvergenceReport convergence_report();
+
+/// Table 5: hard cases, one full drape each.
+Table hard_case_table(int runs, bool* ok);
+
+/// Batch throughput: `plyfit batch -j1` against `-j2` (and more, up to the cores).
+Table batch_table(bool* available);
+
+/// Where the drape's time goes (perf record on the bicubic face, by part).
+Table profile_table(bool* available);
+
+/// Writes an SVG plot of drape time against link-length error (one series per face).
+std::string time_error_svg(const std::vector<TolerancePoint>& points, double default_tol);
+
+}  // namespace plyfit::bench
