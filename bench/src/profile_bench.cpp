@@ -111,14 +111,14 @@ Table profile_table(bool* available) {
     std::smatch m;
     if (!std::regex_match(line, m, row)) continue;
     const double pct = std::stod(m[1]);
-    const std::string sym = m[3].str() + " " + m[4].str();
-    std::string name = m[4].str();
+    const std::string sym = m[3].str() + " " + m[4].str().substr(0, m[4].str().find("  "));
+    // perf pads the symbol column (and may add more columns after it).
+    std::string name = m[4].str().substr(0, m[4].str().find("  "));
     // Shorten C++ names: drop the namespaces, return types, argument and template lists.
     name = std::regex_replace(name, std::regex("\\(anonymous namespace\\)::|plyfit::|bench::"), "");
     name = std::regex_replace(name, std::regex("\\(.*"), "");
     name = std::regex_replace(name, std::regex("^(void|bool|int|double) "), "");
     name = std::regex_replace(name, std::regex("<.*"), "<>");
-    name = std::regex_replace(name, std::regex("\\s+$"), "");
     if (name.size() > 40) name = name.substr(0, 37) + "...";
     const std::string c = category(sym);
     share[c] += pct;
