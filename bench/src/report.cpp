@@ -103,7 +103,6 @@ std::string fill(std::string text, const std::map<std::string, std::string>& val
 
 int run_report(const std::vector<std::string>& args) {
   const auto start = std::chrono::steady_clock::now();
-  memory::stable_malloc();
   const std::string out = option_value(args, "--out", PLYFIT_SOURCE_DIR);
   const int runs = std::stoi(option_value(args, "--runs", std::to_string(kMinRuns)));
   ThroughputOptions tho;

@@ -1,5 +1,7 @@
 #include <plyfit/kernel/cells.hpp>
 
+#include "mapped_cells.hpp"
+
 #include <algorithm>
 #include <map>
 
@@ -30,7 +32,8 @@ std::vector<std::vector<NodeId>> cell_parts(const Ply& ply, std::int32_t i, std:
   std::vector<NodeId> inside;
   if (const PathNode* p0 = ply.path_node_if(0); p0 && p0->id.is_path_only() && !p0->link_from) {
     const Vec2 lo = ply.pos(i, j), hi = ply.pos(i + 1, j + 1);
-    if (p0->pos.x() > lo.x() && p0->pos.x() < hi.x() && p0->pos.y() > lo.y() && p0->pos.y() < hi.y()) {
+    if (p0->pos.x() > lo.x() && p0->pos.x() < hi.x() && p0->pos.y() > lo.y() &&
+        p0->pos.y() < hi.y()) {
       inside.push_back(p0->id);
       split = true;
     }
@@ -65,54 +68,7 @@ std::vector<std::vector<NodeId>> cell_parts(const Ply& ply, std::int32_t i, std:
 void for_each_mapped_cell(
     const DrapeResult& r,
     const std::function<void(std::int32_t, std::int32_t, const std::uint32_t*, int)>& f) {
-  if (!r.ply) return;
-  const Ply& ply = *r.ply;
-  // Cells near the path (3 x 3 around each path node) may be crossed by it.
-  std::unordered_set<std::uint64_t> near;
-  std::vector<std::pair<std::int32_t, std::int32_t>> near_list;
-  for (std::uint32_t k : r.base_path) {
-    const DrapeNode& p = r.nodes[k];
-    const auto i = static_cast<std::int32_t>(std::floor(p.ply.x() / ply.spec().d_weft));
-    const auto j = static_cast<std::int32_t>(std::floor(p.ply.y() / ply.spec().d_warp));
-    for (int a = -1; a <= 1; ++a)
-      for (int b = -1; b <= 1; ++b)
-        if (near.insert(NodeId::regular(i + a, j + b).key()).second) near_list.push_back({i + a, j + b});
-  }
-  auto crossed = [&](std::int32_t i, std::int32_t j) {
-    return near.count(NodeId::regular(i, j).key()) && cell_parts(ply, i, j).size() != 1;
-  };
-  std::uint32_t quad[4];
-  for (std::uint32_t k = 0; k < r.nodes.size(); ++k) {
-    const DrapeNode& n = r.nodes[k];
-    if (!n.mapped() || n.id.is_path_only()) continue;
-    const std::int32_t i = n.id.i, j = n.id.j;
-    const DrapeNode* x = r.neighbour(n, ThreadDir::kPlusX);
-    const DrapeNode* y = r.neighbour(n, ThreadDir::kPlusY);
-    const DrapeNode* xy = x ? r.neighbour(*x, ThreadDir::kPlusY) : nullptr;
-    if (!x || !y || !xy || !x->mapped() || !y->mapped() || !xy->mapped()) continue;
-    if (x->id != NodeId::regular(i + 1, j) || y->id != NodeId::regular(i, j + 1) ||
-        xy->id != NodeId::regular(i + 1, j + 1) || crossed(i, j))
-      continue;
-    quad[0] = k;
-    quad[1] = static_cast<std::uint32_t>(x - r.nodes.data());
-    quad[2] = static_cast<std::uint32_t>(xy - r.nodes.data());
-    quad[3] = static_cast<std::uint32_t>(y - r.nodes.data());
-    f(i, j, quad, 4);
-  }
-  std::vector<std::uint32_t> idx;
-  for (const auto& [i, j] : near_list) {
-    const auto parts = cell_parts(ply, i, j);
-    if (parts.size() == 1) continue;  // a whole cell: visited above
-    for (const auto& part : parts) {
-      idx.clear();
-      for (const NodeId& id : part) {
-        const auto k = r.index.find(id);
-        if (k < 0 || !r.nodes[static_cast<std::size_t>(k)].mapped()) break;
-        idx.push_back(static_cast<std::uint32_t>(k));
-      }
-      if (idx.size() == part.size()) f(i, j, idx.data(), static_cast<int>(idx.size()));
-    }
-  }
+  detail::visit_mapped_cells(r, f);
 }
 
 std::vector<MappedCell> mapped_cells(const DrapeResult& r) {

@@ -2,6 +2,8 @@
 
 #include <plyfit/kernel/cells.hpp>
 
+#include "mapped_cells.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -23,6 +25,14 @@ constexpr double kMinSweepSin = 1e-6;
 // How often (resolved nodes) the scan checks for cancellation and reports progress.
 constexpr std::uint32_t kCancelEvery = 4096;
 constexpr std::uint32_t kProgressEvery = 65536;
+// Node-count estimate (expected_nodes): samples per cell width across the face, the grid's
+// bounds per direction, a relative margin, boundary-ring nodes per sqrt(nodes), and a floor.
+constexpr double kEstimateSamplesPerCell = 0.3;
+constexpr int kEstimateGridMin = 8;
+constexpr int kEstimateGridMax = 64;
+constexpr double kEstimateMargin = 1.05;
+constexpr double kEstimateRing = 8.0;
+constexpr double kEstimateMinNodes = 64.0;
 
 std::uint64_t mix(std::uint64_t k) {  // splitmix64 finaliser
   k ^= k >> 30;
@@ -145,32 +155,47 @@ double DrapeResult::rest_length(const DrapeNode& n, ThreadDir dir) const {
   return (m->ply - n.ply).norm();  // a link split by the path: the 2D distance
 }
 
-std::vector<DrapeLink> DrapeResult::links() const {
-  std::vector<DrapeLink> out;
+namespace {
+
+// Calls f(a, b, rest, kind) for every link between two mapped nodes: thread links (split at
+// the base path) from their regular end, then the base path's own links; see links().
+template <class F>
+void for_each_link(const DrapeResult& r, F&& f) {
+  const auto& nodes = r.nodes;
   for (std::uint32_t k = 0; k < nodes.size(); ++k) {
     const DrapeNode& n = nodes[k];
     if (!n.mapped() || n.id.is_path_only()) continue;
     for (int d = 0; d < 4; ++d) {
       const auto dir = static_cast<ThreadDir>(d);
-      const DrapeNode* m = neighbour(n, dir);
+      const DrapeNode* m = r.neighbour(n, dir);
       if (!m || !m->mapped()) continue;
       // Regular-regular links once (from their -x / -y end); links to path nodes from the
       // regular end, both sides.
       const bool plus = dir == ThreadDir::kPlusX || dir == ThreadDir::kPlusY;
       if (!m->id.is_path_only() && !plus) continue;
-      out.push_back({k, static_cast<std::uint32_t>(m - nodes.data()), rest_length(n, dir),
-                     is_weft(dir) ? LinkKind::kWeft : LinkKind::kWarp});
+      f(k, static_cast<std::uint32_t>(m - nodes.data()), r.rest_length(n, dir),
+        is_weft(dir) ? LinkKind::kWeft : LinkKind::kWarp);
     }
   }
-  for (std::size_t k = 1; k < base_path.size(); ++k) {
-    const DrapeNode& a = nodes[base_path[k - 1]];
-    const DrapeNode& b = nodes[base_path[k]];
+  const auto& bp = r.base_path;
+  for (std::size_t k = 1; k < bp.size(); ++k) {
+    const DrapeNode& a = nodes[bp[k - 1]];
+    const DrapeNode& b = nodes[bp[k]];
     // A path along a thread between two crossings is that thread's link, listed already.
     if (!a.id.is_path_only() && !b.id.is_path_only() &&
         std::abs(a.id.i - b.id.i) + std::abs(a.id.j - b.id.j) == 1)
       continue;
-    out.push_back({base_path[k - 1], base_path[k], (b.ply - a.ply).norm(), LinkKind::kBase});
+    f(bp[k - 1], bp[k], (b.ply - a.ply).norm(), LinkKind::kBase);
   }
+}
+
+}  // namespace
+
+std::vector<DrapeLink> DrapeResult::links() const {
+  std::vector<DrapeLink> out;
+  for_each_link(*this, [&](std::uint32_t a, std::uint32_t b, double rest, LinkKind kind) {
+    out.push_back({a, b, rest, kind});
+  });
   return out;
 }
 
@@ -285,9 +310,12 @@ class Scanner {
       const auto m = res_.index.find(*nid);
       if (m < 0) continue;
       n.nb[d] = static_cast<std::int32_t>(m);
-      res_.nodes[static_cast<std::size_t>(m)].nb[static_cast<int>(opposite(static_cast<ThreadDir>(d)))] =
+      res_.nodes[static_cast<std::size_t>(m)]
+          .nb[static_cast<int>(opposite(static_cast<ThreadDir>(d)))] =
           static_cast<std::int32_t>(idx);
     }
+    if (res_.nodes.size() == res_.nodes.capacity())  // beyond the estimate: grow by half
+      res_.nodes.reserve(res_.nodes.capacity() + res_.nodes.capacity() / 2 + 16);
     res_.nodes.push_back(n);
     res_.index.insert(id, idx);
     return idx;
@@ -387,7 +415,7 @@ class Scanner {
       if (!q || q->is_path_only()) continue;  // path nodes are mapped by the base path
       const Vec2 qp = ply_.pos(q->i, q->j);
       const int side = ply_.side(qp);
-      if (side == 0) continue;  // on the path: mapped (or not) by the base path
+      if (side == 0) continue;                      // on the path: mapped (or not) by the base path
       if (ply_.sweep_for_side(side) < 0) continue;  // that half-plane is not swept
       if (res_.nodes.size() >= opt_.max_nodes) {
         truncated_ = true;
@@ -420,19 +448,24 @@ class Scanner {
     const DrapeNode* c = nullptr;  // the cell's fourth corner
     if (!a.id.is_path_only() && !b.id.is_path_only()) {
       c = mapped_nb(a, db);
-      if (c && c->id != NodeId::regular(a.id.i + b.id.i - q.id.i, a.id.j + b.id.j - q.id.j)) c = nullptr;
+      if (c && c->id != NodeId::regular(a.id.i + b.id.i - q.id.i, a.id.j + b.id.j - q.id.j))
+        c = nullptr;
     }
     auto paper = [&] {
-      step.guess = two_sphere_guess(s_, a.uv, ap->uv, a.point, ap->point, ra, b.uv, bp->uv,
-                                    b.point, bp->point, rb);
+      step.guess = two_sphere_guess(s_, a.uv, ap->uv, a.point, ap->point, ra, b.uv, bp->uv, b.point,
+                                    bp->point, rb);
     };
     auto parallelogram = [&] { step.guess = a.uv + s_.delta(c->uv, b.uv); };
     if (opt_.guess == GuessRule::kPaper) {
-      if (ap && bp) paper();
-      else if (c) parallelogram();
+      if (ap && bp)
+        paper();
+      else if (c)
+        parallelogram();
     } else {
-      if (c) parallelogram();
-      else if (ap && bp) paper();
+      if (c)
+        parallelogram();
+      else if (ap && bp)
+        paper();
     }
     SolverSettings st = st_;
     if (is_weft(da) == is_weft(db)) st.gamma_min = 0.0;  // same thread: no thread angle
@@ -523,7 +556,8 @@ class Scanner {
               const DrapeNode* b = known[y].n;
               if (!a->id.is_path_only() && !b->id.is_path_only()) {
                 const DrapeNode* c = mapped_nb(*a, known[y].dir);
-                if (c && c->id == NodeId::regular(a->id.i + b->id.i - qn.id.i, a->id.j + b->id.j - qn.id.j))
+                if (c && c->id == NodeId::regular(a->id.i + b->id.i - qn.id.i,
+                                                  a->id.j + b->id.j - qn.id.j))
                   score = 2;
               }
             }
@@ -562,8 +596,12 @@ class Scanner {
   bool truncated_ = false, cancelled_ = false;
 };
 
-double tri_area(const Vec3& a, const Vec3& b, const Vec3& c) { return 0.5 * (b - a).cross(c - a).norm(); }
-double tri_area2(const Vec2& a, const Vec2& b, const Vec2& c) { return 0.5 * std::abs(cross2(b - a, c - a)); }
+double tri_area(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return 0.5 * (b - a).cross(c - a).norm();
+}
+double tri_area2(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return 0.5 * std::abs(cross2(b - a, c - a));
+}
 
 // Thread angles at mapped regular nodes: weft and warp directions by central differences
 // where both neighbours along the thread are mapped, one-sided otherwise.
@@ -574,10 +612,14 @@ void thread_angles(DrapeResult& res) {
       const DrapeNode* p = res.neighbour(n, plus);
       const DrapeNode* m = res.neighbour(n, opposite(plus));
       const bool hp = p && p->mapped(), hm = m && m->mapped();
-      if (hp && hm) out = p->point - m->point;
-      else if (hp) out = p->point - n.point;
-      else if (hm) out = n.point - m->point;
-      else return false;
+      if (hp && hm)
+        out = p->point - m->point;
+      else if (hp)
+        out = p->point - n.point;
+      else if (hm)
+        out = n.point - m->point;
+      else
+        return false;
       return out.norm() > 0.0;
     };
     Vec3 wf, wp;
@@ -590,7 +632,7 @@ void thread_angles(DrapeResult& res) {
 // 2D and 3D area of the mapped cells (each part as a fan of triangles).
 void cell_areas(DrapeResult& res) {
   double a2 = 0.0, a3 = 0.0;
-  for_each_mapped_cell(res, [&](std::int32_t, std::int32_t, const std::uint32_t* v, int n) {
+  detail::visit_mapped_cells(res, [&](std::int32_t, std::int32_t, const std::uint32_t* v, int n) {
     const DrapeNode& o = res.nodes[v[0]];
     for (int k = 1; k + 1 < n; ++k) {
       const DrapeNode& b = res.nodes[v[k]];
@@ -640,19 +682,55 @@ void compute_metrics(const DrapeSurface& s, DrapeResult& res) {
   cell_areas(res);
   // Independent residual checks.
   const double d = res.ply->d();
-  for (const DrapeLink& l : res.links()) {
-    const double len = (res.nodes[l.a].point - res.nodes[l.b].point).norm();
-    m.edge_length_max_rel = std::max(m.edge_length_max_rel, std::abs(len - l.rest) / d);
-  }
+  for_each_link(res, [&](std::uint32_t a, std::uint32_t b, double rest, LinkKind) {
+    const double len = (res.nodes[a].point - res.nodes[b].point).norm();
+    m.edge_length_max_rel = std::max(m.edge_length_max_rel, std::abs(len - rest) / d);
+  });
   for (const DrapeNode& n : res.nodes) {
     if (!n.mapped()) continue;
     const SurfaceEval1 e = s.eval1(n.uv);
-    m.surface_distance_max = std::max(m.surface_distance_max, e.ok ? (e.p - n.point).norm() : INFINITY);
+    m.surface_distance_max =
+        std::max(m.surface_distance_max, e.ok ? (e.p - n.point).norm() : INFINITY);
     if (n.has(DrapeNode::kOnPath))
-      m.base_plane_max_rel = std::max(
-          m.base_plane_max_rel, std::abs(res.base_normal.dot(n.point - res.start_point)) / d);
+      m.base_plane_max_rel = std::max(m.base_plane_max_rel,
+                                      std::abs(res.base_normal.dot(n.point - res.start_point)) / d);
   }
   if (!std::isfinite(m.surface_distance_max)) m.surface_distance_max = 1e300;
+}
+
+// Number of nodes the scan is expected to reach, to size the node vector once (no
+// reallocation copies, no doubled capacity): the face area on the swept side(s) of the base
+// plane, by the midpoint rule on a grid in (u, v), over the cell area, plus a ring of
+// boundary and path nodes; bounded by the ply rectangle and the node cap. The grid has about
+// kEstimateSamplesPerCell samples per ply cell across the face, from kEstimateGridMin to
+// kEstimateGridMax per direction (a fraction of a percent of the drape's time).
+std::size_t expected_nodes(const DrapeSurface& s, const Ply& ply, const Vec3& start,
+                           const Vec3& base_normal, const std::vector<Vec3>& sweeps,
+                           std::uint64_t cap) {
+  const double dw = ply.spec().d_weft, dp = ply.spec().d_warp;
+  const int g = std::clamp(static_cast<int>(kEstimateSamplesPerCell * s.size() / std::min(dw, dp)),
+                           kEstimateGridMin, kEstimateGridMax);
+  bool plus = false, minus = false;
+  for (const Vec3& w : sweeps) (base_normal.dot(w) > 0 ? plus : minus) = true;
+  const ParamDomain& dom = s.domain();
+  const double hu = dom.width_u() / g, hv = dom.width_v() / g;
+  double area = 0.0;
+  for (int a = 0; a < g; ++a) {
+    for (int b = 0; b < g; ++b) {
+      const Vec2 uv(dom.u0 + (a + 0.5) * hu, dom.v0 + (b + 0.5) * hv);
+      if (!s.contains(uv)) continue;
+      const SurfaceEval1 e = s.eval1(uv);
+      if (!e.ok) continue;
+      const double side = base_normal.dot(e.p - start);
+      if (!((side >= 0 && plus) || (side <= 0 && minus))) continue;
+      area += e.du.cross(e.dv).norm() * hu * hv;
+    }
+  }
+  double n = area / (dw * dp);
+  if (ply.spec().rect)
+    n = std::min(n, (ply.spec().rect->x() / dw + 2) * (ply.spec().rect->y() / dp + 2));
+  n = kEstimateMargin * n + kEstimateRing * std::sqrt(n) + kEstimateMinNodes;
+  return static_cast<std::size_t>(std::min(n, static_cast<double>(cap)));
 }
 
 }  // namespace
@@ -683,8 +761,9 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
   const Vec3 n0 = sn.n;
   Vec3 t3 = n0.cross(res.base_normal);
   if (t3.norm() < kMinPlaneCutSin)
-    return Error{"the base plane does not cut the face near the start (it is tangent to the "
-                 "surface there); choose a base-plane normal along the surface"};
+    return Error{
+        "the base plane does not cut the face near the start (it is tangent to the "
+        "surface there); choose a base-plane normal along the surface"};
   t3.normalize();
   // Pairing of 2D and 3D: (base, sweep) has the same handedness about the normal in both.
   const Ply& P = *ply;
@@ -707,12 +786,15 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
     for (double& x : side3) x = -x;
   }
   if (side3.size() == 2 && side3[1] != side2[1])
-    return Error{"the two 3D sweep directions must lie on the two sides of the base path, "
-                 "as the 2D ones do"};
+    return Error{
+        "the two 3D sweep directions must lie on the two sides of the base path, "
+        "as the 2D ones do"};
   res.base_tangent = t3;
   auto mply = std::make_shared<Ply>(std::move(ply).value());  // the scan extends the path
   res.ply = mply;
 
+  res.nodes.reserve(
+      expected_nodes(s, *mply, res.start_point, res.base_normal, pb.sweeps, opt.max_nodes));
   Scanner scanner(s, *mply, opt, res);
   scanner.run(t3);
   compute_metrics(s, res);
@@ -723,14 +805,16 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
   }
   if (scanner.truncated()) {
     res.partial = true;
-    res.warnings.push_back("stopped at the node cap of " + std::to_string(opt.max_nodes) + " nodes");
+    res.warnings.push_back("stopped at the node cap of " + std::to_string(opt.max_nodes) +
+                           " nodes");
   }
   if (res.metrics.nodes.failed > 0) {
     res.partial = true;
     res.warnings.push_back(std::to_string(res.metrics.nodes.failed) +
                            " node(s) where the solver found no solution");
   }
-  res.drape_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  res.drape_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return res;
 }
 

@@ -36,7 +36,9 @@ struct DrapeNode {
                                                 ///< extended past the face (point/uv valid)
   static constexpr std::uint8_t kHasAngle = 4;  ///< thread_angle is defined
   static constexpr std::uint8_t kStart = 8;     ///< the start point
+  // Fields ordered so that Eigen's 16-byte alignment of Vec2 leaves no padding: 96 bytes.
   Vec3 point = Vec3::Zero();  ///< 3D position (mapped, or extended, else zero)
+  double thread_angle = 0.0;  ///< gamma between weft and warp at a mapped regular node, radians
   Vec2 uv = Vec2::Zero();     ///< surface parameters
   Vec2 ply = Vec2::Zero();    ///< ply coordinates
   /// Index in DrapeResult::nodes of the node across the thread link in each ThreadDir
@@ -44,10 +46,9 @@ struct DrapeNode {
   /// leads to the path node on it.
   std::int32_t nb[4] = {-1, -1, -1, -1};
   NodeId id;
+  std::uint32_t order = 0;  ///< order in which the node was resolved
   NodeStatus status = NodeStatus::kPending;
   std::uint8_t flags = 0;
-  std::uint32_t order = 0;    ///< order in which the node was resolved
-  double thread_angle = 0.0;  ///< gamma between weft and warp at a mapped regular node, radians
   bool mapped() const { return status == NodeStatus::kMapped; }
   bool has(std::uint8_t f) const { return (flags & f) != 0; }
 };
@@ -75,11 +76,12 @@ class NodeIndex {
   // +-Ply::kMaxPathNodes). (All ones would be the key of regular node (-1, -1).)
   static constexpr std::uint64_t kEmpty = (std::uint64_t{0x7fffffff} << 32) | 0x80000000u;
   static std::int64_t probe(const std::vector<Slot>& slots, std::uint64_t key);
-  static void put(std::vector<Slot>& slots, std::size_t& count, std::uint64_t key, std::uint32_t value);
-  std::vector<Slot> blocks_;            // block key -> block number
+  static void put(std::vector<Slot>& slots, std::size_t& count, std::uint64_t key,
+                  std::uint32_t value);
+  std::vector<Slot> blocks_;  // block key -> block number
   std::size_t block_count_ = 0;
-  std::vector<std::int32_t> cells_;     // kBlock^2 entries per block, -1 = absent
-  std::vector<Slot> path_;              // path-only node key -> index
+  std::vector<std::int32_t> cells_;  // kBlock^2 entries per block, -1 = absent
+  std::vector<Slot> path_;           // path-only node key -> index
   std::size_t path_count_ = 0;
   std::size_t size_ = 0;
   mutable std::uint64_t last_key_ = kEmpty;  // one-entry cache of the last block looked up
@@ -97,9 +99,9 @@ struct DrapeLink {
 /// 3D initial conditions (§4.2.2) and the 2D ply with its initial conditions (§4.2.1).
 struct DrapeProblem {
   PlySpec ply;
-  Vec3 start = Vec3::Zero();  ///< 3D start point; projected onto the face
+  Vec3 start = Vec3::Zero();         ///< 3D start point; projected onto the face
   Vec3 base_normal = Vec3::UnitY();  ///< base-plane normal; the plane passes through the start
-  std::vector<Vec3> sweeps;   ///< 3D sweep directions, paired in order with ply.sweeps
+  std::vector<Vec3> sweeps;          ///< 3D sweep directions, paired in order with ply.sweeps
 };
 
 /// Initial guess of the two-sphere solver.
@@ -125,8 +127,8 @@ struct DrapeOptions {
 
 /// Node counts by status (regular and auxiliary nodes apart).
 struct NodeCounts {
-  std::uint64_t mapped = 0;       ///< mapped regular mesh points (the paper's "area")
-  std::uint64_t auxiliary = 0;    ///< mapped auxiliary base-path points
+  std::uint64_t mapped = 0;     ///< mapped regular mesh points (the paper's "area")
+  std::uint64_t auxiliary = 0;  ///< mapped auxiliary base-path points
   std::uint64_t outside = 0;
   std::uint64_t off_ply = 0;
   std::uint64_t shear_limit = 0;
@@ -137,12 +139,12 @@ struct NodeCounts {
 struct DrapeMetrics {
   NodeCounts nodes;
   std::uint64_t area_mesh_points = 0;  ///< = nodes.mapped
-  double flat_area = 0.0;     ///< 2D area of the mapped cells (cells cut by the path count
-                              ///< their mapped parts)
-  double surface_area = 0.0;  ///< 3D area those cells cover
+  double flat_area = 0.0;              ///< 2D area of the mapped cells (cells cut by the path count
+                                       ///< their mapped parts)
+  double surface_area = 0.0;           ///< 3D area those cells cover
   double gamma_min = 0.0, gamma_max = 0.0;  ///< thread angles, radians (0 if none)
-  double shear_energy = 0.0;  ///< sum of cos^2(gamma) over mapped regular nodes
-  std::uint64_t angles = 0;   ///< nodes with a thread angle
+  double shear_energy = 0.0;                ///< sum of cos^2(gamma) over mapped regular nodes
+  std::uint64_t angles = 0;                 ///< nodes with a thread angle
   /// max | |p_a - p_b| - rest | / d over links between mapped nodes.
   double edge_length_max_rel = 0.0;
   /// max |S(u, v) - p| over mapped nodes, with S evaluated afresh (model units).
@@ -155,20 +157,20 @@ struct DrapeMetrics {
 
 /// Everything the drape computed.
 struct DrapeResult {
-  bool partial = false;                ///< stopped early or some nodes failed
-  std::vector<std::string> warnings;   ///< why partial, and other notes
-  std::vector<DrapeNode> nodes;        ///< every node reached, in resolution order
-  NodeIndex index;                     ///< NodeId -> position in `nodes`
+  bool partial = false;                  ///< stopped early or some nodes failed
+  std::vector<std::string> warnings;     ///< why partial, and other notes
+  std::vector<DrapeNode> nodes;          ///< every node reached, in resolution order
+  NodeIndex index;                       ///< NodeId -> position in `nodes`
   std::vector<std::uint32_t> base_path;  ///< mapped base-path nodes in path order
   std::shared_ptr<const Ply> ply;
   DrapeMetrics metrics;
-  Vec3 start_point = Vec3::Zero();     ///< the start on the face
+  Vec3 start_point = Vec3::Zero();  ///< the start on the face
   Vec2 start_uv = Vec2::Zero();
-  double start_moved = 0.0;            ///< distance from the given 3D start to the face
-  Vec3 base_normal = Vec3::UnitY();    ///< unit base-plane normal
-  Vec3 base_tangent = Vec3::UnitX();   ///< 3D direction of the base path at the start
-  double gamma_min_limit = 0.0;        ///< gamma_min used (radians)
-  double drape_ms = 0.0;               ///< wall time of drape()
+  double start_moved = 0.0;           ///< distance from the given 3D start to the face
+  Vec3 base_normal = Vec3::UnitY();   ///< unit base-plane normal
+  Vec3 base_tangent = Vec3::UnitX();  ///< 3D direction of the base path at the start
+  double gamma_min_limit = 0.0;       ///< gamma_min used (radians)
+  double drape_ms = 0.0;              ///< wall time of drape()
 
   /// Node by id, or nullptr.
   const DrapeNode* find(const NodeId& id) const {
