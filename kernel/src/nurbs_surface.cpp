@@ -80,13 +80,13 @@ void eval_fixed(const EvalView& s, double u, double v, double out[][4], double o
   double Nu[ND + 1][detail::kMaxBasis], Nv[ND + 1][detail::kMaxBasis];
   detail::ders_basis<ND, P>(s.U, su, p, u, Nu);
   detail::ders_basis<ND, Q>(s.V, sv, q, v, Nv);
-  constexpr int W = Rational ? 4 : 3;
+  // All four homogeneous components are summed even for a non-rational surface (whose
+  // fourth is then unused): four-wide loops vectorise; x, y, z are summed as before.
+  constexpr int W = 4;
   constexpr int NC = (ND + 1) * (ND + 2) / 2;
-  for (int c = 0; c < NC; ++c)
-    for (int k = 0; k < 4; ++k) out[c][k] = 0.0;
-  if constexpr (!Rational) {
-    for (int c = 0; c < NC; ++c) out[c][3] = (c == 0) ? 1.0 : 0.0;
-  }
+  // Sums in a local array (kept in registers: `out` may alias the poles for the compiler),
+  // copied out at the end; the arithmetic is unchanged.
+  double acc[NC][4] = {};
   const int cv = s.count_v;
   const double* o = s.poles + 4 * (static_cast<size_t>(su - p) * cv + (sv - q));
   const double ox = o[0], oy = o[1], oz = o[2];
@@ -114,17 +114,22 @@ void eval_fixed(const EvalView& s, double u, double v, double out[][4], double o
     }
     const double a0 = Nu[0][i];
     for (int k = 0; k < W; ++k) {
-      out[0][k] += a0 * T[0][k];
+      acc[0][k] += a0 * T[0][k];
       if constexpr (ND >= 1) {
-        out[1][k] += Nu[1][i] * T[0][k];
-        out[2][k] += a0 * T[1][k];
+        acc[1][k] += Nu[1][i] * T[0][k];
+        acc[2][k] += a0 * T[1][k];
       }
       if constexpr (ND >= 2) {
-        out[3][k] += Nu[2][i] * T[0][k];
-        out[4][k] += Nu[1][i] * T[1][k];
-        out[5][k] += a0 * T[2][k];
+        acc[3][k] += Nu[2][i] * T[0][k];
+        acc[4][k] += Nu[1][i] * T[1][k];
+        acc[5][k] += a0 * T[2][k];
       }
     }
+  }
+  for (int c = 0; c < NC; ++c)
+    for (int k = 0; k < 4; ++k) out[c][k] = acc[c][k];
+  if constexpr (!Rational) {
+    for (int c = 0; c < NC; ++c) out[c][3] = (c == 0) ? 1.0 : 0.0;
   }
 }
 
