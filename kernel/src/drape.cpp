@@ -33,6 +33,13 @@ constexpr int kEstimateGridMax = 64;
 constexpr double kEstimateMargin = 1.05;
 constexpr double kEstimateRing = 8.0;
 constexpr double kEstimateMinNodes = 64.0;
+// GuessRule::kExtrapolated: the two threads' cubic continuations are used when they agree to
+// this fraction of the cell's step (scaled (u, v) lengths); else the twist-corrected
+// parallelogram.
+constexpr double kExtrapolationAgreement = 1e-4;
+// ... and an extrapolated guess is used only within this fraction of the cell's step from the
+// parallelogram a + b - c (smooth regions: O(d^2) relative; near a pole (u, v) is not smooth).
+constexpr double kExtrapolationTrust = 0.1;
 
 std::uint64_t mix(std::uint64_t k) {  // splitmix64 finaliser
   k ^= k >> 30;
@@ -456,7 +463,11 @@ class Scanner {
                                     bp->point, rb);
     };
     auto parallelogram = [&] { step.guess = a.uv + s_.delta(c->uv, b.uv); };
-    if (opt_.guess == GuessRule::kPaper) {
+    const bool extrapolated = opt_.guess == GuessRule::kExtrapolated && c &&
+                              extrapolated_guess(q, a, da, b, db, *c, step);
+    if (extrapolated) {
+      // step.guess is set
+    } else if (opt_.guess != GuessRule::kParallelogram) {
       if (ap && bp)
         paper();
       else if (c)
@@ -470,6 +481,72 @@ class Scanner {
     SolverSettings st = st_;
     if (is_weft(da) == is_weft(db)) st.gamma_min = 0.0;  // same thread: no thread angle
     return solve_two_spheres(s_, step, st);
+  }
+
+  // GuessRule::kExtrapolated for the node across the cell (a, c, b) from c, a and b its weft
+  // and warp neighbours (directions da, db from the node): both threads continued through
+  // their last four nodes, cubic in (u, v) (equal steps: regular nodes only), if the two
+  // continuations agree to kExtrapolationAgreement of the cell's step; else the parallelogram
+  // a + b - c plus the mean twist of the two neighbouring cells. Only nodes on q's side of the
+  // base path are used. False if neither applies, or if the guess is not trusted (outside the
+  // parameter domain, or far from the parallelogram).
+  bool extrapolated_guess(const DrapeNode& q, const DrapeNode& a, ThreadDir da, const DrapeNode& b,
+                          ThreadDir db, const DrapeNode& c, TwoSphereStep& step) const {
+    if (is_weft(da) == is_weft(db)) return false;
+    // Only nodes swept from the same side of the base path as q: across the path (and at
+    // the path's own nodes, mapped by another solver) the net is not smooth.
+    const int side = ply_.side(q.ply);
+    auto same_side = [&](const DrapeNode& n) { return ply_.side(n.ply) == side; };
+    if (!same_side(a) || !same_side(b) || !same_side(c)) return false;
+    auto regular = [&](const DrapeNode* n, ThreadDir d) -> const DrapeNode* {
+      const DrapeNode* m = n ? mapped_nb(*n, d) : nullptr;
+      return (m && !m->id.is_path_only() && same_side(*m)) ? m : nullptr;
+    };
+    const DrapeNode* a1 = regular(&a, da);
+    const DrapeNode* b1 = regular(&b, db);
+    if (!a1 || !b1) return false;
+    const Vec2 sp = s_.speeds();
+    auto scaled = [&](const Vec2& duv) { return duv.cwiseProduct(sp).norm(); };
+    // A guess is trusted only near the parallelogram a + b - c (within kExtrapolationTrust of
+    // the cell's step): where (u, v) is far from linear (near a pole) extrapolation is not.
+    const Vec2 para = a.uv + s_.delta(c.uv, b.uv);
+    const double cell = scaled(s_.delta(c.uv, a.uv));
+    auto trusted = [&](const Vec2& g) {
+      return scaled(s_.delta(para, g)) < kExtrapolationTrust * cell && in_domain(g);
+    };
+    const DrapeNode* a2 = regular(a1, da);
+    const DrapeNode* b2 = regular(b1, db);
+    const DrapeNode* a3 = regular(a2, da);
+    const DrapeNode* b3 = regular(b2, db);
+    if (a3 && b3) {
+      const Vec2 ca = a.uv + 3.0 * (s_.delta(a1->uv, a.uv) - s_.delta(a2->uv, a1->uv)) +
+                      s_.delta(a3->uv, a2->uv);
+      const Vec2 cb = b.uv + 3.0 * (s_.delta(b1->uv, b.uv) - s_.delta(b2->uv, b1->uv)) +
+                      s_.delta(b3->uv, b2->uv);
+      const Vec2 gap = s_.delta(ca, cb);
+      const Vec2 g = ca + 0.5 * gap;
+      if (scaled(gap) < kExtrapolationAgreement * cell && trusted(g)) {
+        step.guess = g;
+        return true;
+      }
+    }
+    const DrapeNode* c1 = regular(a1, db);  // the cells next to (a, c, b): (a1, c1) and (b1, c1b)
+    const DrapeNode* c1b = regular(b1, da);
+    if (!c1 || !c1b) return false;
+    const Vec2 ca = s_.delta(c.uv, a.uv), cb = s_.delta(c.uv, b.uv);
+    const Vec2 g =
+        a.uv + cb + 0.5 * (ca - s_.delta(c1->uv, a1->uv)) + 0.5 * (cb - s_.delta(c1b->uv, b1->uv));
+    if (!trusted(g)) return false;
+    step.guess = g;
+    return true;
+  }
+
+  // True when uv (wrapped across closed seams) lies in the surface's parameter domain. An
+  // extrapolated guess past the domain edge (e.g. past a pole, where (u, v) is far from
+  // linear) is left to the paper's rule.
+  bool in_domain(const Vec2& uv) const {
+    const Vec2 w = s_.wrap(uv);
+    return s_.domain().contains(w.x(), w.y());
   }
 
   // Solver 3 for q from its one known neighbour a (direction da from q, rest ra).
