@@ -339,6 +339,8 @@ class Scanner {
         n.status = NodeStatus::kMapped;
         n.point = r.point;
         n.uv = r.uv;
+        res_.metrics.solve_residual_max_rel =
+            std::max(res_.metrics.solve_residual_max_rel, r.residual / st_.spacing);
         break;
       case SolveStatus::kLeftFace:
         n.status = NodeStatus::kOutside;

@@ -197,10 +197,14 @@ bool newton(Ctx& c, Vec2 uv, Resid&& resid) {
   return false;
 }
 
-// Tolerance of eq. (9): relative to d, floored at the rounding level of the coordinates.
-double residual_tolerance(const SolverSettings& st, const Vec3& where, double radius) {
+// Tolerance of eq. (9): relative to d, floored at the rounding level of the residual. That
+// level is set by the coordinates involved and by the surface's own evaluation, whose
+// rounding grows with the size of the control net it sums over (a point at the origin of a
+// 40 mm saddle is still evaluated to a few ulps of 40 mm): the face size counts too.
+double residual_tolerance(const DrapeSurface& s, const SolverSettings& st, const Vec3& where,
+                          double radius) {
   return std::max(st.tol.newton_residual_rel * st.spacing,
-                  st.tol.roundoff_rel * (where.cwiseAbs().maxCoeff() + radius));
+                  st.tol.roundoff_rel * (where.cwiseAbs().maxCoeff() + s.size() + radius));
 }
 
 // Finishes a converged solve: in-face test (one contains() query). A solution a hair past
@@ -353,7 +357,7 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Vec2&
     c.res.reason = "no tangent direction at the known point";
     return c.res;
   }
-  c.eps = residual_tolerance(st, x0, rho);
+  c.eps = residual_tolerance(s, st, x0, rho);
   double rad = rho;
   auto resid = [&](const SurfaceEval1& e, Vec2& f, Eigen::Matrix2d& J) {
     const Vec3 r = e.p - x0;
@@ -512,7 +516,7 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
     n_out = n;
     return true;
   };
-  c.eps = residual_tolerance(st, a, std::max(ra, rb));
+  c.eps = residual_tolerance(s, st, a, std::max(ra, rb));
   auto resid = [&](const SurfaceEval1& e, Vec2& f, Eigen::Matrix2d& J) {
     const Vec3 da = e.p - a, db = e.p - b;
     f << (da.squaredNorm() - ra * ra) / (2 * ra), (db.squaredNorm() - rb * rb) / (2 * rb);

@@ -331,6 +331,33 @@ TEST_CASE("solvers: curvature radius equal to d, and a saddle") {
   }
 }
 
+TEST_CASE("solvers: steps from the middle of a large face converge at its rounding level") {
+  // The origin of a 40 mm saddle is evaluated to a few ulps of 40 mm (the size of the control
+  // net summed over), not of its own zero coordinates: with d = 0.2 the residual cannot reach
+  // 1e-14 d there, and the stop must allow for it.
+  const Face f = make_face(saddle_patch(40.0, 20.0));
+  SolverSettings st;
+  st.spacing = 0.2;
+  const Projection p0 = f.project(Vec3(0, 0, 0));
+  REQUIRE(p0.distance < 1e-12);
+  int converged = 0, total = 0;
+  for (int k = 0; k < 72; ++k) {
+    const double t = 2 * kPi * k / 72;
+    const Vec3 dir(std::cos(t), std::sin(t), 0), bn(-std::sin(t), std::cos(t), 0);
+    const SolveResult r = solve_base_path(f, {p0.point, p0.uv, bn, dir, st.spacing}, st);
+    ++total;
+    INFO("direction " << k << ": " << to_string(r.status) << " " << r.reason << " residual "
+                      << r.residual);
+    CHECK(r.status == SolveStatus::kConverged);
+    if (r.status != SolveStatus::kConverged) continue;
+    ++converged;
+    CHECK(sphere_error(r.point, p0.point, st.spacing) < kConstraintRel * st.spacing);
+    CHECK(std::abs(bn.dot(r.point - p0.point)) < kConstraintRel * st.spacing);
+    check_on_surface(f, r);
+  }
+  CHECK(converged == total);
+}
+
 TEST_CASE("solvers: a step past the domain edge or into a trim hole leaves the face promptly") {
   const Face f = make_face(plane_patch(Vec3(0, 0, 0), Vec3(10, 0, 0), Vec3(0, 10, 0)));
   SolverSettings st;

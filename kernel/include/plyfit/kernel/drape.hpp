@@ -159,6 +159,10 @@ struct DrapeMetrics {
   double base_plane_max_rel = 0.0;
   /// Solver statistics.
   std::uint64_t solves = 0, iterations = 0, evaluations = 0;
+  /// Largest final residual |F1| + |F2| of eq. (9) over the solves that mapped a node, / d
+  /// (links closed by no solve, where a node had more known neighbours than a solver uses,
+  /// show in edge_length_max_rel, not here).
+  double solve_residual_max_rel = 0.0;
 };
 
 /// Everything the drape computed.

@@ -6,7 +6,8 @@
 /// Residuals are lengths: a plane gives F = n.(r - x0) with |n| = 1, a sphere of radius rho
 /// about c gives F = (|r - c|^2 - rho^2) / (2 rho), which equals |r - c| - rho to first order.
 /// The stop test is eq. (9), |F1| + |F2| < eps, with eps = newton_residual_rel * d (d the
-/// spacing), floored at the rounding level of the coordinates.
+/// spacing), floored at the rounding level of the residual: roundoff_rel times the largest
+/// coordinate of the known point plus the face size plus the radius.
 
 #include <plyfit/kernel/face.hpp>
 #include <plyfit/kernel/tolerances.hpp>

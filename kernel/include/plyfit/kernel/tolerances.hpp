@@ -13,7 +13,8 @@ struct Tolerances {
   /// Newton stop, eq. (9): |F1| + |F2| < newton_residual_rel * d, where both F are lengths.
   double newton_residual_rel = 1e-14;
   /// Floor of the Newton stop: residuals are not asked to go below roundoff_rel times the
-  /// magnitude of the coordinates involved (a few ulps of |F| computed from them).
+  /// magnitude of the coordinates involved and of the face (a few ulps of |F| computed from
+  /// them: the surface is evaluated to a few ulps of its control net's size).
   double roundoff_rel = 2e-15;
   /// Iteration cap of every Newton solve.
   int newton_max_iterations = 40;
