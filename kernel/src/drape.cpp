@@ -33,6 +33,11 @@ constexpr int kEstimateGridMax = 64;
 constexpr double kEstimateMargin = 1.05;
 constexpr double kEstimateRing = 8.0;
 constexpr double kEstimateMinNodes = 64.0;
+// A regular node farther than this many cell diagonals from the base path line has plain
+// regular neighbours (no link split by the path); the extrapolated guess's stencil spans
+// kStencilCells cell diagonals.
+constexpr double kFarFromPathCells = 2.0;
+constexpr double kStencilCells = 6.0;
 // GuessRule::kExtrapolated: the two threads' cubic continuations are used when they agree to
 // this fraction of the cell's step (scaled (u, v) lengths); else the twist-corrected
 // parallelogram.
@@ -272,6 +277,7 @@ class Scanner {
     st_.tol = opt.tol;
     st_.gamma_min = std::max(0.0, kPi / 2 - opt.lock_angle);
     res_.gamma_min_limit = st_.gamma_min;
+    far_ = kFarFromPathCells * std::hypot(ply.spec().d_weft, ply.spec().d_warp);
   }
 
   void run(const Vec3& t3) {
@@ -288,6 +294,15 @@ class Scanner {
   // The id across the thread link from `id` in direction d, if that node can exist.
   std::optional<NodeId> neighbour_id(const NodeId& id, ThreadDir d) const {
     if (!id.is_path_only()) {
+      if (far_from_path(ply_.pos(id.i, id.j))) {  // no link of (i, j) is split by the path
+        const int k = static_cast<int>(d);
+        return NodeId::regular(id.i + (k == 0   ? 1
+                                       : k == 1 ? -1
+                                                : 0),
+                               id.j + (k == 2   ? 1
+                                       : k == 3 ? -1
+                                                : 0));
+      }
       const auto n = ply_.neighbour(id.i, id.j, d);
       return n ? std::optional<NodeId>(n->id) : std::nullopt;
     }
@@ -300,6 +315,12 @@ class Scanner {
                                                : NodeId::regular(a.i, a.j + 1);
     }
     return std::nullopt;
+  }
+
+  // True when ply point p lies so far from the base path line that no thread link from it
+  // (and no link within kFarFromPathCells - 1 cells of it) can cross the path.
+  bool far_from_path(const Vec2& p) const {
+    return std::abs(cross2(ply_.base_dir(), p - ply_.spec().start)) > far_;
   }
 
   // Node for id, created (pending) at ply position `pos` if absent, linked both ways to the
@@ -498,7 +519,10 @@ class Scanner {
     // Only nodes swept from the same side of the base path as q: across the path (and at
     // the path's own nodes, mapped by another solver) the net is not smooth.
     const int side = ply_.side(q.ply);
-    auto same_side = [&](const DrapeNode& n) { return ply_.side(n.ply) == side; };
+    // The stencil reaches 4 cells from q: far from the path it is all on q's side.
+    const bool far = std::abs(cross2(ply_.base_dir(), q.ply - ply_.spec().start)) >
+                     kStencilCells * far_ / kFarFromPathCells;
+    auto same_side = [&](const DrapeNode& n) { return far || ply_.side(n.ply) == side; };
     if (!same_side(a) || !same_side(b) || !same_side(c)) return false;
     auto regular = [&](const DrapeNode* n, ThreadDir d) -> const DrapeNode* {
       const DrapeNode* m = n ? mapped_nb(*n, d) : nullptr;
@@ -670,6 +694,7 @@ class Scanner {
   SolverSettings st_;
   std::priority_queue<FrontierEntry, std::vector<FrontierEntry>, FrontierLater> heap_;
   std::unordered_map<std::uint32_t, std::uint32_t> path_pos_;  // node -> position on the path
+  double far_ = 0.0;  // distance from the path line beyond which far_from_path() holds
   std::uint32_t order_ = 0;
   std::uint64_t path_off_ply_ = 0;
   bool truncated_ = false, cancelled_ = false;
