@@ -90,6 +90,7 @@ class NurbsSurface {
   NurbsSurface() = default;
   template <int ND, bool Rational>
   void eval_homogeneous(double u, double v, double out[][4], double origin[3]) const;
+  void build_bezier();
 
   NurbsSurfaceData data_;
   std::vector<double> hpoles_;  // poles and weights (x, y, z, w), stride 4
@@ -99,6 +100,14 @@ class NurbsSurface {
   double speed_u_ = 1.0, speed_v_ = 1.0;
   double min_weight_ = 1.0;
   double degenerate_rel_ = 1e-8;
+  // Bezier form of every knot-span pair, for the degrees with fixed-degree kernels (1..3 x
+  // 1..3, 4 x 4, 5 x 5), built by create() and read-only after (thread-safe): per span pair
+  // the first pole of its B-spline window (the origin, padded to 4 doubles) and the
+  // (p + 1) x (q + 1) homogeneous Bezier poles (w (B - origin), w). Empty for other degrees
+  // or when the table would be too large; evaluation then sums the B-spline basis.
+  std::vector<double> bezier_;
+  std::vector<double> bezier_u_, bezier_v_;  // per span: first knot, 1 / span width
+  int bezier_spans_v_ = 0;                   // spans along v (last_span_v_ - first_span_v_ + 1)
 };
 
 }  // namespace plyfit
