@@ -143,8 +143,7 @@ void eval_bezier(const EvalView& s, double u, double v, double out[][4], double 
   bernstein<ND, Q>((v - s.bv[2 * iv]) * s.bv[2 * iv + 1], s.bv[2 * iv + 1], Nv);
   constexpr int NC = (ND + 1) * (ND + 2) / 2;
   constexpr std::size_t kStride = 4 + 4 * (P + 1) * (Q + 1);
-  const double* patch =
-      s.bezier + kStride * (static_cast<std::size_t>(iu) * s.bezier_spans_v + iv);
+  const double* patch = s.bezier + kStride * (static_cast<std::size_t>(iu) * s.bezier_spans_v + iv);
   origin[0] = patch[0];
   origin[1] = patch[1];
   origin[2] = patch[2];
@@ -342,7 +341,8 @@ void NurbsSurface::build_bezier() {
       double Hv[detail::kMaxBasis][detail::kMaxBasis][4] = {};  // [k][n]: along v converted
       for (int k = 0; k <= p; ++k) {
         for (int l = 0; l <= q; ++l) {
-          const double* P = &hpoles_[4 * (static_cast<std::size_t>(su - p + k) * cv + (sv - q + l))];
+          const double* P =
+              &hpoles_[4 * (static_cast<std::size_t>(su - p + k) * cv + (sv - q + l))];
           const double w = P[3];
           const double H[4] = {w * (P[0] - o[0]), w * (P[1] - o[1]), w * (P[2] - o[2]), w};
           for (int n = 0; n <= q; ++n)
