@@ -145,6 +145,7 @@ Result<RawOptions> raw_from_args(const std::vector<std::string>& args) {
       if (!s) return Error{"unknown option --" + o.string_key};
       auto& vals = raw.values[o.string_key];
       raw.dirs[o.string_key] = cwd;
+      raw.origins[o.string_key] = raw.origin;
       if (!s->repeatable && !vals.empty())
         return Error{"--" + o.string_key + " given more than once"};
       if (s->value.empty()) {
@@ -181,6 +182,7 @@ Result<RawOptions> raw_from_scene(const std::string& path) {
                      (section.empty() ? "" : " in section [" + section + "]")};
       auto& vals = raw.values[key];
       raw.dirs[key] = dir;
+      raw.origins[key] = path;
       if (!s->repeatable && !vals.empty()) return Error{path + ": key '" + key + "' given more than once"};
       for (const auto& v : o.value) vals.push_back(v);
       if (o.value.empty()) return Error{path + ": key '" + key + "' has no value"};
@@ -197,6 +199,8 @@ RawOptions merge(const RawOptions& base, const RawOptions& over) {
     out.values[k] = v;
     const auto d = over.dirs.find(k);
     if (d != over.dirs.end()) out.dirs[k] = d->second;
+    const auto o = over.origins.find(k);
+    out.origins[k] = o != over.origins.end() ? o->second : over.origin;
   }
   return out;
 }
@@ -214,7 +218,13 @@ Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
     if (s && !s->def.empty()) return s->def;
     return std::nullopt;
   };
-  auto name = [&](const std::string& k) { return where + (where.empty() ? "--" : "key '") + k + (where.empty() ? "" : "'"); };
+  // A key is named where its value came from: "--key" for a flag, "FILE: key 'key'" for a
+  // scene file (a default is named like the job's origin).
+  auto name = [&](const std::string& k) {
+    const auto o = raw.origins.find(k);
+    const std::string from = o != raw.origins.end() ? o->second : raw.origin;
+    return from == "command line" || from.empty() ? "--" + k : from + ": key '" + k + "'";
+  };
   auto dir_for = [&](const std::string& k) {
     const auto d = raw.dirs.find(k);
     return d == raw.dirs.end() ? std::string() : d->second;

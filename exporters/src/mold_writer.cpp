@@ -40,6 +40,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <mutex>
 
@@ -47,10 +48,15 @@ namespace plyfit::exporters {
 
 namespace {
 
-/// printf format of every real in the written files: 16 significant digits (relative
-/// rounding <= 5e-16), at most 23 characters, within the writers' 24-byte buffers. Zero
-/// suppression is off (OpenCASCADE's only looks at the first 16 characters).
-constexpr const char* kRealFormat = "%.15E";
+/// printf format of every real in the written files: 17 significant digits, so that every
+/// double reads back bit for bit. At most 23 characters while the exponent has two digits,
+/// within the writers' 24-byte buffers (see kSmallestWritten). Zero suppression is off
+/// (OpenCASCADE's only looks at the first 16 characters).
+constexpr const char* kRealFormat = "%.16E";
+/// Magnitudes outside [kSmallestWritten, kLargestWritten] would need a three-digit exponent:
+/// smaller ones are written as 0, larger ones are refused.
+constexpr double kSmallestWritten = 1e-99;
+constexpr double kLargestWritten = 1e99;
 
 Handle(TCollection_HAsciiString) hstr(const std::string& s) {
   return new TCollection_HAsciiString(s.c_str());
@@ -201,7 +207,19 @@ Status write_mold(const FaceData& face, const std::string& path, const MoldWrite
     return Error{path + ": the mold writer writes untrimmed faces only (this face has " +
                  std::to_string(face.loops.size()) + " trim loops)"};
   // Validate with the kernel's own rules first: OpenCASCADE throws on bad data.
-  auto surface = NurbsSurface::create(face.surface);
+  NurbsSurfaceData data = face.surface;
+  auto fits = [](double& x) {
+    if (std::abs(x) < kSmallestWritten) x = 0.0;
+    return std::abs(x) < kLargestWritten;
+  };
+  bool all_fit = true;
+  for (auto& p : data.poles)
+    for (int k = 0; k < 3; ++k) all_fit = fits(p[k]) && all_fit;
+  for (auto* v : {&data.knots_u, &data.knots_v, &data.weights})
+    for (double& x : *v) all_fit = fits(x) && all_fit;
+  if (!all_fit)
+    return Error{path + ": a pole, weight or knot is 1e99 or larger: not written"};
+  auto surface = NurbsSurface::create(data);
   if (!surface) return Error{path + ": invalid surface: " + surface.error().message};
 
   // OpenCASCADE's data exchange keeps global state (static parameters, messenger): one
@@ -211,7 +229,7 @@ Status write_mold(const FaceData& face, const std::string& path, const MoldWrite
   static std::once_flag quiet;
   std::call_once(quiet, [] { Message::DefaultMessenger()->ChangePrinters().Clear(); });
   try {
-    const Handle(Geom_BSplineSurface) bs = to_occt(face.surface);
+    const Handle(Geom_BSplineSurface) bs = to_occt(data);
     const ParamDomain& dom = surface->domain();
     BRepBuilderAPI_MakeFace make(bs, dom.u0, dom.u1, dom.v0, dom.v1, Precision::Confusion());
     if (!make.IsDone()) return Error{path + ": could not build a face on the surface"};
