@@ -55,21 +55,23 @@ constexpr auto kPollInterval = std::chrono::milliseconds(20);
 constexpr double kProgressRedrawSeconds = 0.2;
 
 std::atomic<int> g_interrupts{0};
-extern "C" void on_batch_interrupt(int) { g_interrupts.fetch_add(1); }
+extern "C" void on_batch_interrupt(int) {
+  g_interrupts.fetch_add(1);
+}
 
 /// One scene of the batch and what became of it.
 struct SceneRun {
-  std::size_t index = 0;  ///< position in the given list
-  std::string path;       ///< scene file as given
-  std::string name;       ///< unique scene name (output folder name)
+  std::size_t index = 0;           ///< position in the given list
+  std::string path;                ///< scene file as given
+  std::string name;                ///< unique scene name (output folder name)
   std::string status = "not run";  ///< ok, partial, error, crashed, cancelled, not run
   std::string error;
-  int exit_code = -1;     ///< -1: none (not run, or killed by a signal)
+  int exit_code = -1;  ///< -1: none (not run, or killed by a signal)
   int signal = 0;
   std::uint64_t mapped = 0;
   double shear_max_deg = 0.0;
   double seconds = 0.0;
-  std::string outdir;     ///< final folder, empty if none
+  std::string outdir;  ///< final folder, empty if none
   std::vector<std::string> files;
   // While running:
   pid_t pid = -1;
@@ -77,7 +79,9 @@ struct SceneRun {
   std::string staging, outcome, log_out, log_err;
 };
 
-bool succeeded(const SceneRun& s) { return s.status == "ok" || s.status == "partial"; }
+bool succeeded(const SceneRun& s) {
+  return s.status == "ok" || s.status == "partial";
+}
 
 std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -132,7 +136,8 @@ Status publish(const SceneRun& r, const fs::path& final_dir) {
     if (ec) return Error{final_dir.string() + ": cannot replace: " + ec.message()};
   }
   fs::rename(r.staging, final_dir, ec);
-  if (ec) return Error{final_dir.string() + ": cannot move the outputs into place: " + ec.message()};
+  if (ec)
+    return Error{final_dir.string() + ": cannot move the outputs into place: " + ec.message()};
   return ok_status();
 }
 
@@ -192,30 +197,32 @@ std::string summary_json(const std::vector<SceneRun>& runs, const std::string& o
                          const std::string& shard, int jobs, bool interrupted, double elapsed) {
   nlohmann::json scenes = nlohmann::json::array();
   for (const auto& r : runs) {
-    nlohmann::json j = {{"index", r.index},
-                        {"name", r.name},
-                        {"scene", r.path},
-                        {"status", r.status},
-                        {"error", r.error},
-                        {"exit_code", r.exit_code >= 0 ? nlohmann::json(r.exit_code) : nullptr},
-                        {"signal", r.signal ? nlohmann::json(r.signal) : nullptr},
-                        {"mapped", r.mapped},
-                        {"shear_max_deg", r.shear_max_deg},
-                        {"time_s", r.seconds},
-                        {"outdir", r.outdir.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.outdir)},
-                        {"files", r.files}};
+    nlohmann::json j = {
+        {"index", r.index},
+        {"name", r.name},
+        {"scene", r.path},
+        {"status", r.status},
+        {"error", r.error},
+        {"exit_code", r.exit_code >= 0 ? nlohmann::json(r.exit_code) : nullptr},
+        {"signal", r.signal ? nlohmann::json(r.signal) : nullptr},
+        {"mapped", r.mapped},
+        {"shear_max_deg", r.shear_max_deg},
+        {"time_s", r.seconds},
+        {"outdir", r.outdir.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.outdir)},
+        {"files", r.files}};
     scenes.push_back(std::move(j));
   }
   nlohmann::json counts;
   for (const auto& [k, v] : count_statuses(runs)) counts[k == "not run" ? "not_run" : k] = v;
   counts["total"] = runs.size();
-  const nlohmann::json j = {{"outroot", outroot},
-                            {"shard", shard.empty() ? nlohmann::json(nullptr) : nlohmann::json(shard)},
-                            {"jobs", jobs},
-                            {"interrupted", interrupted},
-                            {"elapsed_s", elapsed},
-                            {"counts", counts},
-                            {"scenes", scenes}};
+  const nlohmann::json j = {
+      {"outroot", outroot},
+      {"shard", shard.empty() ? nlohmann::json(nullptr) : nlohmann::json(shard)},
+      {"jobs", jobs},
+      {"interrupted", interrupted},
+      {"elapsed_s", elapsed},
+      {"counts", counts},
+      {"scenes", scenes}};
   return j.dump(2) + "\n";
 }
 
@@ -242,8 +249,8 @@ bool launch(SceneRun& r, const fs::path& work) {
   r.outcome = (work / (r.name + ".outcome.json")).string();
   r.log_out = (work / (r.name + ".stdout")).string();
   r.log_err = (work / (r.name + ".stderr")).string();
-  std::vector<std::string> argv_s = {"plyfit", "drape", r.path, "-o", r.staging, "--quiet",
-                                     "--outcome", r.outcome};
+  std::vector<std::string> argv_s = {"plyfit",  "drape",   r.path,      "-o",
+                                     r.staging, "--quiet", "--outcome", r.outcome};
   std::vector<char*> argv;
   for (auto& a : argv_s) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -273,7 +280,8 @@ void finish(SceneRun& r, int wstatus, bool interrupted, const fs::path& outroot)
   auto outcome = outcome_from_json(read_text(r.outcome), &code);
   if (WIFEXITED(wstatus)) {
     r.exit_code = WEXITSTATUS(wstatus);
-    if (r.exit_code == kExitOk && outcome.ok() && (outcome->status == "ok" || outcome->status == "partial")) {
+    if (r.exit_code == kExitOk && outcome.ok() &&
+        (outcome->status == "ok" || outcome->status == "partial")) {
       const fs::path final_dir = outroot / r.name;
       if (auto st = publish(r, final_dir); !st) {
         r.status = "error";
@@ -291,7 +299,7 @@ void finish(SceneRun& r, int wstatus, bool interrupted, const fs::path& outroot)
     } else {
       r.status = "error";
       r.error = outcome.ok() && !outcome->error.empty() ? outcome->error
-                                                       : last_error_line(read_text(r.log_err));
+                                                        : last_error_line(read_text(r.log_err));
       if (r.error.empty()) r.error = "plyfit drape exited with code " + std::to_string(r.exit_code);
     }
   } else if (WIFSIGNALED(wstatus)) {
@@ -401,7 +409,8 @@ int run_batch(const std::vector<std::string>& args) {
   std::error_code ec;
   fs::create_directories(outroot, ec);
   if (ec) {
-    print_error("batch: " + outroot.string() + ": cannot create the output folder: " + ec.message());
+    print_error("batch: " + outroot.string() +
+                ": cannot create the output folder: " + ec.message());
     return kExitFailure;
   }
   const fs::path work = outroot / (".plyfit-batch-" + std::to_string(::getpid()));
@@ -414,7 +423,8 @@ int run_batch(const std::vector<std::string>& args) {
   struct sigaction sa {};
   sa.sa_handler = on_batch_interrupt;
   sigemptyset(&sa.sa_mask);
-  struct sigaction old_int {}, old_term {};
+  struct sigaction old_int {
+  }, old_term{};
   sigaction(SIGINT, &sa, &old_int);
   sigaction(SIGTERM, &sa, &old_term);
 
@@ -447,7 +457,8 @@ int run_batch(const std::vector<std::string>& args) {
     }
     if (interrupted && !killed &&
         (g_interrupts.load() > 1 ||
-         std::chrono::duration<double>(Clock::now() - interrupted_at).count() > kKillGraceSeconds)) {
+         std::chrono::duration<double>(Clock::now() - interrupted_at).count() >
+             kKillGraceSeconds)) {
       killed = true;
       for (auto& r : runs)
         if (r.pid > 0) ::kill(r.pid, SIGKILL);

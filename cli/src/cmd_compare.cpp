@@ -26,11 +26,11 @@ constexpr double kTieRel = 1e-9;
 
 /// One compared criterion: a column of the table.
 struct Criterion {
-  std::string key;      ///< CSV column and `best` entry
-  std::string header;   ///< table header
-  bool larger_better;   ///< else smaller is better
-  bool count;           ///< an integer count (exact ties)
-  int digits;           ///< decimals shown
+  std::string key;     ///< CSV column and `best` entry
+  std::string header;  ///< table header
+  bool larger_better;  ///< else smaller is better
+  bool count;          ///< an integer count (exact ties)
+  int digits;          ///< decimals shown
 };
 
 const std::vector<Criterion>& criteria() {
@@ -50,7 +50,7 @@ struct Row {
   std::string name, path;
   bool ok = false;
   std::string error;
-  std::vector<double> values;     ///< one per criterion
+  std::vector<double> values;  ///< one per criterion
   std::vector<bool> best;
 };
 
@@ -107,8 +107,10 @@ void print_text(const std::vector<Row>& rows, std::ostream& os) {
     for (std::size_t c = 0; c < line.size(); ++c) {
       std::string v = line[c];
       // Scene names left-aligned, figures right-aligned.
-      if (c == 0) v += std::string(w[c] - v.size(), ' ');
-      else v = std::string(w[c] - v.size(), ' ') + v;
+      if (c == 0)
+        v += std::string(w[c] - v.size(), ' ');
+      else
+        v = std::string(w[c] - v.size(), ' ') + v;
       s += (c ? "  " : "") + v;
     }
     os << s << "\n";
@@ -128,9 +130,12 @@ void print_markdown(const std::vector<Row>& rows, std::ostream& os) {
   for (const auto& r : rows) {
     os << "| " << r.name << " |";
     for (std::size_t c = 0; c < criteria().size(); ++c) {
-      if (!r.ok) os << " error |";
-      else if (r.best[c]) os << " **" << cell(r, c) << "** |";
-      else os << " " << cell(r, c) << " |";
+      if (!r.ok)
+        os << " error |";
+      else if (r.best[c])
+        os << " **" << cell(r, c) << "** |";
+      else
+        os << " " << cell(r, c) << " |";
     }
     os << "\n";
   }
@@ -265,17 +270,19 @@ int run_compare(const std::vector<std::string>& args) {
     rows.push_back(std::move(r));
   }
   mark_best(rows);
-  if (vm.count("csv")) print_csv(rows, std::cout);
-  else if (vm.count("markdown")) print_markdown(rows, std::cout);
-  else print_text(rows, std::cout);
+  if (vm.count("csv"))
+    print_csv(rows, std::cout);
+  else if (vm.count("markdown"))
+    print_markdown(rows, std::cout);
+  else
+    print_text(rows, std::cout);
   for (const auto& r : rows)
     if (!r.ok) print_error("compare: " + r.name + ": " + r.error);
   return all_ok ? kExitOk : kExitFailure;
 }
 
-const CommandRegistrar kRegisterCompare{
-    Command{"compare", "compare drapes of one mold face (the paper's Tables 2 and 4)", 40,
-            run_compare}};
+const CommandRegistrar kRegisterCompare{Command{
+    "compare", "compare drapes of one mold face (the paper's Tables 2 and 4)", 40, run_compare}};
 
 }  // namespace
 }  // namespace plyfit::cli

@@ -20,8 +20,8 @@ namespace po = boost::program_options;
 
 int run_sample(const std::vector<std::string>& args) {
   po::options_description opts("plyfit sample NAME[:key=value,...] -o FILE [options]");
-  opts.add_options()("help,h", "show this help")(
-      "output,o", po::value<std::string>(), "mold file to write (.step/.stp or .iges/.igs)")(
+  opts.add_options()("help,h", "show this help")("output,o", po::value<std::string>(),
+                                                 "mold file to write (.step/.stp or .iges/.igs)")(
       "format", po::value<std::string>(), "step or iges, overriding the extension")(
       "name", po::value<std::string>(), "face name written into the file (default: NAME)")(
       "mold", po::value<std::string>(), "built-in mold, as for --mold builtin:NAME");
@@ -70,7 +70,8 @@ int run_sample(const std::vector<std::string>& args) {
     if (f.empty()) {
       f = std::filesystem::path(path).extension().string();
       if (!f.empty()) f.erase(0, 1);
-      std::transform(f.begin(), f.end(), f.begin(), [](unsigned char c) { return std::tolower(c); });
+      std::transform(f.begin(), f.end(), f.begin(),
+                     [](unsigned char c) { return std::tolower(c); });
       if (f == "stp") f = "step";
       if (f == "igs") f = "iges";
     }

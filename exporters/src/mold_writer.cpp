@@ -96,7 +96,8 @@ Handle(Geom_BSplineSurface) to_occt(const NurbsSurfaceData& d) {
   TColStd_Array1OfInteger mu(1, 1), mv(1, 1);
   split_knots(d.knots_u, ku, mu);
   split_knots(d.knots_v, kv, mv);
-  if (d.weights.empty()) return new Geom_BSplineSurface(poles, ku, kv, mu, mv, d.degree_u, d.degree_v);
+  if (d.weights.empty())
+    return new Geom_BSplineSurface(poles, ku, kv, mu, mv, d.degree_u, d.degree_v);
   return new Geom_BSplineSurface(poles, weights, ku, kv, mu, mv, d.degree_u, d.degree_v);
 }
 
@@ -186,7 +187,9 @@ Status write_iges(const TopoDS_Face& face, const std::string& path, const MoldWr
 
 }  // namespace
 
-std::vector<std::string> mold_formats() { return {"step", "iges"}; }
+std::vector<std::string> mold_formats() {
+  return {"step", "iges"};
+}
 
 Status write_mold(const FaceData& face, const std::string& path, const MoldWriteOptions& options) {
   std::string format = options.format;
@@ -217,8 +220,7 @@ Status write_mold(const FaceData& face, const std::string& path, const MoldWrite
     for (int k = 0; k < 3; ++k) all_fit = fits(p[k]) && all_fit;
   for (auto* v : {&data.knots_u, &data.knots_v, &data.weights})
     for (double& x : *v) all_fit = fits(x) && all_fit;
-  if (!all_fit)
-    return Error{path + ": a pole, weight or knot is 1e99 or larger: not written"};
+  if (!all_fit) return Error{path + ": a pole, weight or knot is 1e99 or larger: not written"};
   auto surface = NurbsSurface::create(data);
   if (!surface) return Error{path + ": invalid surface: " + surface.error().message};
 
@@ -237,7 +239,8 @@ Status write_mold(const FaceData& face, const std::string& path, const MoldWrite
     // A forward face's normal is Su x Sv, as plyfit's; a reversed face is flipped.
     if (face.reversed) f.Reverse();
     AtomicFile file(path, true);
-    if (!file.ok()) return Error{path + ": cannot create the file (folder missing or not writable?)"};
+    if (!file.ok())
+      return Error{path + ": cannot create the file (folder missing or not writable?)"};
     const Status st = format == "step" ? write_step(f, path, options, file.stream())
                                        : write_iges(f, path, options, file.stream());
     if (!st) return st;

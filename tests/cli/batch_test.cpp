@@ -78,8 +78,10 @@ struct Background {
     argv.push_back(nullptr);
     posix_spawn_file_actions_t fa;
     posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 1, tmp.file("bg.stdout").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&fa, 2, tmp.file("bg.stderr").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&fa, 1, tmp.file("bg.stdout").c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&fa, 2, tmp.file("bg.stderr").c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
     REQUIRE(posix_spawn(&pid, PLYFIT_BIN, &fa, nullptr, argv.data(), environ) == 0);
     posix_spawn_file_actions_destroy(&fa);
   }
@@ -131,7 +133,8 @@ TEST_CASE("cli: batch runs the good scenes, reports the broken ones and exits 1"
   Scratch tmp("batch_e2e");
   fs::create_directories(tmp.path / "a");
   fs::create_directories(tmp.path / "b");
-  const std::string sample_step = std::string(PLYFIT_SOURCE_DIR) + "/samples/molds/sphere-octant.step";
+  const std::string sample_step =
+      std::string(PLYFIT_SOURCE_DIR) + "/samples/molds/sphere-octant.step";
   spit(tmp.file("a/good.ini"), quick_scene(sample_step));
   spit(tmp.file("b/good.ini"), quick_scene("builtin:sphere-octant"));  // same name: good-2
   spit(tmp.file("builtin.ini"), quick_scene("builtin:sphere-octant"));
@@ -142,11 +145,12 @@ TEST_CASE("cli: batch runs the good scenes, reports the broken ones and exits 1"
   spit(tmp.file("corrupt.ini"), quick_scene("corrupt.step"));
   spit(tmp.file("nomold.ini"), quick_scene("no-such-mold.igs"));
   const std::string out = tmp.file("out");
-  const CliRun r = plyfit_run("batch '" + tmp.file("a/good.ini") + "' '" + tmp.file("missing.ini") + "' '" +
-                                  tmp.file("malformed.ini") + "' '" + tmp.file("b/good.ini") + "' '" +
-                                  tmp.file("corrupt.ini") + "' '" + tmp.file("nomold.ini") + "' '" +
-                                  tmp.file("builtin.ini") + "' -j 3 -o '" + out + "'",
-                              tmp);
+  const CliRun r =
+      plyfit_run("batch '" + tmp.file("a/good.ini") + "' '" + tmp.file("missing.ini") + "' '" +
+                     tmp.file("malformed.ini") + "' '" + tmp.file("b/good.ini") + "' '" +
+                     tmp.file("corrupt.ini") + "' '" + tmp.file("nomold.ini") + "' '" +
+                     tmp.file("builtin.ini") + "' -j 3 -o '" + out + "'",
+                 tmp);
   INFO(r.out << r.err);
   CHECK(r.code == 1);
   CHECK(r.err.empty());  // no progress line when stderr is not a terminal
@@ -155,9 +159,9 @@ TEST_CASE("cli: batch runs the good scenes, reports the broken ones and exits 1"
   CHECK(r.out.find("7 scenes: 3 ok, 0 partial, 4 error, 0 crashed, 0 cancelled, 0 not run") !=
         std::string::npos);
   // Only the good scenes have folders, each whole; nothing else is left in the output root.
-  CHECK(tree(out) == std::set<std::string>{"good", "good/report.json", "good-2", "good-2/report.json",
-                                           "builtin", "builtin/report.json", "summary.json",
-                                           "summary.csv"});
+  CHECK(tree(out) == std::set<std::string>{"good", "good/report.json", "good-2",
+                                           "good-2/report.json", "builtin", "builtin/report.json",
+                                           "summary.json", "summary.csv"});
   CHECK(json::parse(slurp(out + "/good/report.json"))["nodes"]["mapped"] == 716);
   const json s = json::parse(slurp(out + "/summary.json"));
   CHECK(s["counts"]["total"] == 7);
@@ -170,24 +174,29 @@ TEST_CASE("cli: batch runs the good scenes, reports the broken ones and exits 1"
   CHECK(scene_entry(s, "good")["mapped"] == 716);
   CHECK(scene_entry(s, "good")["outdir"] == out + "/good");
   CHECK(scene_entry(s, "good-2")["status"] == "ok");
-  CHECK(scene_entry(s, "missing")["error"] == tmp.file("missing.ini") + ": cannot open the scene file");
+  CHECK(scene_entry(s, "missing")["error"] ==
+        tmp.file("missing.ini") + ": cannot open the scene file");
   CHECK(scene_entry(s, "malformed")["error"] ==
         tmp.file("malformed.ini") + ": key 'lock-angle': 'steep' is not a number");
   CHECK(scene_entry(s, "malformed")["exit_code"] == 1);
   CHECK(scene_entry(s, "corrupt")["status"] == "error");
-  CHECK(scene_entry(s, "corrupt")["error"].get<std::string>().find("corrupt.step") != std::string::npos);
-  CHECK(scene_entry(s, "nomold")["error"].get<std::string>().find("no-such-mold.igs") != std::string::npos);
+  CHECK(scene_entry(s, "corrupt")["error"].get<std::string>().find("corrupt.step") !=
+        std::string::npos);
+  CHECK(scene_entry(s, "nomold")["error"].get<std::string>().find("no-such-mold.igs") !=
+        std::string::npos);
   CHECK(scene_entry(s, "nomold")["outdir"].is_null());
   // The CSV holds the same rows.
   const std::string csv = slurp(out + "/summary.csv");
   CHECK(lines(csv) == 8);
-  CHECK(csv.rfind("index,name,scene,status,exit_code,mapped,shear_max_deg,time_s,outdir,files,error\n", 0) == 0);
+  CHECK(csv.rfind(
+            "index,name,scene,status,exit_code,mapped,shear_max_deg,time_s,outdir,files,error\n",
+            0) == 0);
   CHECK(csv.find("\n1,missing,") != std::string::npos);
   CHECK(csv.find("\n3,good-2,") != std::string::npos);
   // Running the same batch again replaces the previous outputs; all good now: exit 0.
-  const CliRun again = plyfit_run("batch '" + tmp.file("a/good.ini") + "' '" + tmp.file("builtin.ini") +
-                                      "' -o '" + out + "'",
-                                  tmp);
+  const CliRun again = plyfit_run(
+      "batch '" + tmp.file("a/good.ini") + "' '" + tmp.file("builtin.ini") + "' -o '" + out + "'",
+      tmp);
   CHECK(again.code == 0);
   CHECK(json::parse(slurp(out + "/summary.json"))["counts"]["ok"] == 2);
   // A folder holding other files is never replaced.
@@ -195,8 +204,9 @@ TEST_CASE("cli: batch runs the good scenes, reports the broken ones and exits 1"
   const CliRun keep = plyfit_run("batch '" + tmp.file("a/good.ini") + "' -o '" + out + "'", tmp);
   CHECK(keep.code == 1);
   CHECK(slurp(out + "/good/notes.txt") == "mine");
-  CHECK(scene_entry(json::parse(slurp(out + "/summary.json")), "good")["error"].get<std::string>().find(
-            "holds other files") != std::string::npos);
+  CHECK(scene_entry(json::parse(slurp(out + "/summary.json")), "good")["error"]
+            .get<std::string>()
+            .find("holds other files") != std::string::npos);
 }
 
 TEST_CASE("cli: batch command-line errors exit 2") {
@@ -226,7 +236,8 @@ TEST_CASE("cli: batch --shard K/N runs the scenes whose index mod N is K") {
   INFO(r.out << r.err);
   CHECK(r.code == 0);
   CHECK(tree(out) == std::set<std::string>{"s1", "s1/report.json", "s3", "s3/report.json",
-                                           "summary-shard-1-of-2.json", "summary-shard-1-of-2.csv"});
+                                           "summary-shard-1-of-2.json",
+                                           "summary-shard-1-of-2.csv"});
   const json s = json::parse(slurp(out + "/summary-shard-1-of-2.json"));
   CHECK(s["shard"] == "1/2");
   REQUIRE(s["scenes"].size() == 2);
@@ -240,8 +251,8 @@ TEST_CASE("cli: a crashing scene does not stop the others") {
   spit(tmp.file("slow.ini"), kSlowScene);
   spit(tmp.file("after.ini"), quick_scene("builtin:sphere-octant"));
   const std::string out = tmp.file("out");
-  Background b({"batch", tmp.file("slow.ini"), tmp.file("quick.ini"), tmp.file("after.ini"), "-j", "2",
-                "-o", out},
+  Background b({"batch", tmp.file("slow.ini"), tmp.file("quick.ini"), tmp.file("after.ini"), "-j",
+                "2", "-o", out},
                tmp);
   // Once both quick scenes are done, the slow one is still running: crash it.
   REQUIRE(wait_until([&] { return fs::exists(out + "/quick") && fs::exists(out + "/after"); }));
@@ -252,11 +263,12 @@ TEST_CASE("cli: a crashing scene does not stop the others") {
   const json s = json::parse(slurp(out + "/summary.json"));
   CHECK(scene_entry(s, "slow")["status"] == "crashed");
   CHECK(scene_entry(s, "slow")["signal"] == SIGSEGV);
-  CHECK(scene_entry(s, "slow")["error"].get<std::string>().find("killed by signal 11") != std::string::npos);
+  CHECK(scene_entry(s, "slow")["error"].get<std::string>().find("killed by signal 11") !=
+        std::string::npos);
   CHECK(scene_entry(s, "quick")["status"] == "ok");
   CHECK(scene_entry(s, "after")["status"] == "ok");
-  CHECK(tree(out) == std::set<std::string>{"quick", "quick/report.json", "after", "after/report.json",
-                                           "summary.json", "summary.csv"});
+  CHECK(tree(out) == std::set<std::string>{"quick", "quick/report.json", "after",
+                                           "after/report.json", "summary.json", "summary.csv"});
 }
 
 TEST_CASE("cli: Ctrl-C stops a batch cleanly") {
@@ -275,7 +287,8 @@ TEST_CASE("cli: Ctrl-C stops a batch cleanly") {
   CHECK(b.wait() == 130);
   // The finished scene keeps its outputs; the running ones left nothing (no final files, no
   // temporary files, no staging folder); the summary says what happened.
-  CHECK(tree(out) == std::set<std::string>{"quick", "quick/report.json", "summary.json", "summary.csv"});
+  CHECK(tree(out) ==
+        std::set<std::string>{"quick", "quick/report.json", "summary.json", "summary.csv"});
   const json s = json::parse(slurp(out + "/summary.json"));
   CHECK(s["interrupted"] == true);
   CHECK(scene_entry(s, "quick")["status"] == "ok");
@@ -298,13 +311,15 @@ TEST_CASE("cli: batch shows a progress line on a terminal only") {
     WARN("script(1) not installed: terminal progress not tested");
     return;
   }
-  const std::string cmd = "script -qec \"'" + std::string(PLYFIT_BIN) + "' batch '" + tmp.file("a.ini") +
-                          "' -o '" + tmp.file("out") + "'\" /dev/null > '" + tmp.file("tty.txt") + "' < /dev/null";
+  const std::string cmd = "script -qec \"'" + std::string(PLYFIT_BIN) + "' batch '" +
+                          tmp.file("a.ini") + "' -o '" + tmp.file("out") + "'\" /dev/null > '" +
+                          tmp.file("tty.txt") + "' < /dev/null";
   REQUIRE(std::system(cmd.c_str()) == 0);
   const std::string text = slurp(tmp.file("tty.txt"));
   CHECK(text.find("plyfit batch: 0/1 done, 0 failed") != std::string::npos);
   // Without a terminal: nothing on stderr.
-  const CliRun r = plyfit_run("batch '" + tmp.file("a.ini") + "' -o '" + tmp.file("out2") + "'", tmp);
+  const CliRun r =
+      plyfit_run("batch '" + tmp.file("a.ini") + "' -o '" + tmp.file("out2") + "'", tmp);
   CHECK(r.code == 0);
   CHECK(r.err.empty());
 }

@@ -28,9 +28,12 @@ std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
     std::string cell;
     bool quoted = false;
     for (char c : line) {
-      if (c == '"') quoted = !quoted;
-      else if (c == ',' && !quoted) row.push_back(cell), cell.clear();
-      else cell += c;
+      if (c == '"')
+        quoted = !quoted;
+      else if (c == ',' && !quoted)
+        row.push_back(cell), cell.clear();
+      else
+        cell += c;
     }
     row.push_back(cell);
     rows.push_back(row);
@@ -50,9 +53,9 @@ TEST_CASE("cli: compare marks the best sphere-octant scene per criterion, as the
   REQUIRE(r.code == 0);
   const auto rows = parse_csv(r.out);
   REQUIRE(rows.size() == 4);
-  const std::vector<std::string> header = {"scene", "status", "area", "flat_area", "gamma_min_deg",
-                                           "gamma_max_deg", "energy", "coverage_pct", "shear_limit",
-                                           "best", "error"};
+  const std::vector<std::string> header = {
+      "scene",  "status",       "area",        "flat_area", "gamma_min_deg", "gamma_max_deg",
+      "energy", "coverage_pct", "shear_limit", "best",      "error"};
   CHECK(rows[0] == header);
   // Each criterion: the golden figure, and whether larger is better.
   struct Crit {
@@ -69,7 +72,8 @@ TEST_CASE("cli: compare marks the best sphere-octant scene per criterion, as the
                                    {"coverage_pct", "/coverage", 100, true},
                                    {"shear_limit", "/nodes/shear_limit", 1, false}};
   std::vector<json> goldens;
-  for (const auto& n : names) goldens.push_back(json::parse(slurp(sample("golden/" + n + ".json"))));
+  for (const auto& n : names)
+    goldens.push_back(json::parse(slurp(sample("golden/" + n + ".json"))));
   for (std::size_t c = 0; c < crits.size(); ++c) {
     INFO(crits[c].column);
     double best = crits[c].larger ? -1e300 : 1e300;
@@ -83,7 +87,8 @@ TEST_CASE("cli: compare marks the best sphere-octant scene per criterion, as the
       CHECK(row[1] == "ok");
       const double v = goldens[k][crits[c].pointer].get<double>() * crits[c].scale;
       CHECK(std::abs(std::stod(row[2 + c]) - v) <= 1e-9 * std::abs(v));
-      const bool marked = (";" + row[9] + ";").find(";" + crits[c].column + ";") != std::string::npos;
+      const bool marked =
+          (";" + row[9] + ";").find(";" + crits[c].column + ";") != std::string::npos;
       CHECK(marked == (std::abs(v - best) <= 1e-9 * std::abs(best)));
     }
   }
@@ -114,7 +119,8 @@ TEST_CASE("cli: compare marks every tied scene") {
   REQUIRE(rows.size() == 3);
   CHECK(rows[1][0] == "sphere-octant-a");
   CHECK(rows[2][0] == "sphere-octant-a-2");
-  const std::string all = "area;flat_area;gamma_min_deg;gamma_max_deg;energy;coverage_pct;shear_limit";
+  const std::string all =
+      "area;flat_area;gamma_min_deg;gamma_max_deg;energy;coverage_pct;shear_limit";
   CHECK(rows[1][9] == all);
   CHECK(rows[2][9] == all);
 }

@@ -24,12 +24,20 @@ const std::string kScene =
     "start2d = 0,0\nbase2d = 1,0\nsweep2d = 0,1\nstart3d = 0,0,20\nbase-normal = 0,1,0\n"
     "sweep3d = 0,1,0\n";
 
-json report(const std::string& dir) { return json::parse(slurp(dir + "/report.json")); }
+json report(const std::string& dir) {
+  return json::parse(slurp(dir + "/report.json"));
+}
 
 /// The figures of a report that depend on the job only (not on timings or paths).
 json figures(const json& r) {
-  return {r["status"], r["nodes"], r["flat_area"], r["surface_area"], r["thread_angle"],
-          r["shear_energy"], r["inputs"]["spacing_weft"], r["inputs"]["sweep3d"]};
+  return {r["status"],
+          r["nodes"],
+          r["flat_area"],
+          r["surface_area"],
+          r["thread_angle"],
+          r["shear_energy"],
+          r["inputs"]["spacing_weft"],
+          r["inputs"]["sweep3d"]};
 }
 
 }  // namespace
@@ -50,7 +58,8 @@ TEST_CASE("cli: scene paths are relative to the scene file, flags to the working
   Scratch tmp("scene_paths");
   std::filesystem::create_directories(tmp.path / "scenes" / "molds");
   std::filesystem::create_directories(tmp.path / "elsewhere");
-  CliRun r = plyfit_run("sample sphere-octant -o '" + tmp.file("scenes/molds/octant.step") + "'", tmp);
+  CliRun r =
+      plyfit_run("sample sphere-octant -o '" + tmp.file("scenes/molds/octant.step") + "'", tmp);
   REQUIRE(r.code == 0);
   std::string scene = kScene;
   scene.replace(scene.find("builtin:sphere-octant"), 21, "molds/octant.step");
@@ -70,7 +79,8 @@ TEST_CASE("cli: scene paths are relative to the scene file, flags to the working
 TEST_CASE("cli: flags override scene keys") {
   Scratch tmp("scene_override");
   spit(tmp.file("a.ini"), kScene);
-  CliRun r = plyfit_run("drape '" + tmp.file("a.ini") + "' --spacing 2 -o '" + tmp.file("o") + "' --quiet", tmp);
+  CliRun r = plyfit_run(
+      "drape '" + tmp.file("a.ini") + "' --spacing 2 -o '" + tmp.file("o") + "' --quiet", tmp);
   REQUIRE(r.code == 0);
   CHECK(report(tmp.file("o"))["inputs"]["spacing_weft"] == 2.0);
   // A repeatable key given as a flag replaces the scene's whole list.
@@ -90,7 +100,8 @@ TEST_CASE("cli: scene errors name the file, the key and the problem on one line"
   const std::vector<Case> cases = {
       {kScene + "colour = red\n", f + ": unknown key 'colour'", 1},
       {kScene + "[material]\nlock = 40\n", f + ": unknown key 'lock' in section [material]", 1},
-      {"[mold]\nmold = builtin:sphere-octant\nspacing = 1\n", f + ": missing required key 'start2d'", 1},
+      {"[mold]\nmold = builtin:sphere-octant\nspacing = 1\n",
+       f + ": missing required key 'start2d'", 1},
       {[] {
          std::string s = kScene;
          return s.replace(s.find("spacing = 1"), 11, "spacing = one");
@@ -130,9 +141,12 @@ TEST_CASE("cli: scene errors name the file, the key and the problem on one line"
 TEST_CASE("cli: a dumped scene loads back to the same job") {
   Scratch tmp("scene_dump");
   // Every kind of key: switches, repeatable keys, defaults, non-default numerics.
-  const std::string flags = kFlags + " --ply 30,25 --lock-angle 60 --warn-angle 50 --material 'carbon twill' "
-                            "--ply-name P1 --tolerance 1e-13 --max-iterations 30 --guess parallelogram "
-                            "--flip-normal --view 0,0,1 -o '" + tmp.file("out") + "'";
+  const std::string flags =
+      kFlags +
+      " --ply 30,25 --lock-angle 60 --warn-angle 50 --material 'carbon twill' "
+      "--ply-name P1 --tolerance 1e-13 --max-iterations 30 --guess parallelogram "
+      "--flip-normal --view 0,0,1 -o '" +
+      tmp.file("out") + "'";
   const CliRun d1 = plyfit_run("drape " + flags + " --dump-scene", tmp);
   INFO(d1.err);
   REQUIRE(d1.code == 0);
@@ -147,7 +161,8 @@ TEST_CASE("cli: a dumped scene loads back to the same job") {
   // And the same drape.
   CliRun r = plyfit_run("drape " + flags + " --quiet", tmp);
   REQUIRE(r.code == 0);
-  r = plyfit_run("drape '" + tmp.file("dumped.ini") + "' -o '" + tmp.file("out2") + "' --quiet", tmp);
+  r = plyfit_run("drape '" + tmp.file("dumped.ini") + "' -o '" + tmp.file("out2") + "' --quiet",
+                 tmp);
   REQUIRE(r.code == 0);
   CHECK(figures(report(tmp.file("out"))) == figures(report(tmp.file("out2"))));
   // A scene file needs no output folder to be dumped.

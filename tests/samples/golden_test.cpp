@@ -30,15 +30,17 @@ constexpr double kGoldenRel = 1e-9;
 constexpr double kLinkResidualRel = 1e-9;
 constexpr double kSurfaceResidualRel = 1e-9;
 
-const std::vector<std::string> kExact = {
-    "/status",         "/nodes/mapped",      "/nodes/auxiliary", "/nodes/outside",
-    "/nodes/off_ply",  "/nodes/shear_limit", "/nodes/failed",    "/area_mesh_points"};
+const std::vector<std::string> kExact = {"/status",        "/nodes/mapped",    "/nodes/auxiliary",
+                                         "/nodes/outside", "/nodes/off_ply",   "/nodes/shear_limit",
+                                         "/nodes/failed",  "/area_mesh_points"};
 const std::vector<std::string> kRelative = {
-    "/flat_area",        "/surface_area",      "/coverage",          "/thread_angle/min",
-    "/thread_angle/max", "/shear_energy",      "/flat_outline/area", "/flat_outline/perimeter",
+    "/flat_area",        "/surface_area", "/coverage",          "/thread_angle/min",
+    "/thread_angle/max", "/shear_energy", "/flat_outline/area", "/flat_outline/perimeter",
     "/mold/face/area",   "/start/moved"};
 
-std::string samples_dir() { return std::string(PLYFIT_SOURCE_DIR) + "/samples"; }
+std::string samples_dir() {
+  return std::string(PLYFIT_SOURCE_DIR) + "/samples";
+}
 
 std::vector<fs::path> sample_scenes() {
   std::vector<fs::path> v;
@@ -58,7 +60,8 @@ json golden_of(const json& report) {
 
 json drape_report(const fs::path& scene, const Scratch& tmp) {
   const std::string out = tmp.file(scene.stem().string());
-  const CliRun r = plyfit_run("drape '" + scene.string() + "' -o '" + out + "' --outputs json --quiet", tmp);
+  const CliRun r =
+      plyfit_run("drape '" + scene.string() + "' -o '" + out + "' --outputs json --quiet", tmp);
   INFO(r.err);
   REQUIRE(r.code == 0);
   return json::parse(slurp(out + "/report.json"));
@@ -96,10 +99,16 @@ TEST_CASE("samples: every sample scene matches its golden report figures") {
       const double g = golden.at(p).get<double>();
       CHECK(std::abs(a - g) <= kGoldenRel * std::abs(g));
     }
-    const double size = std::sqrt(
-        std::pow(report["mold"]["face"]["bbox"]["max"][0].get<double>() - report["mold"]["face"]["bbox"]["min"][0].get<double>(), 2) +
-        std::pow(report["mold"]["face"]["bbox"]["max"][1].get<double>() - report["mold"]["face"]["bbox"]["min"][1].get<double>(), 2) +
-        std::pow(report["mold"]["face"]["bbox"]["max"][2].get<double>() - report["mold"]["face"]["bbox"]["min"][2].get<double>(), 2));
+    const double size =
+        std::sqrt(std::pow(report["mold"]["face"]["bbox"]["max"][0].get<double>() -
+                               report["mold"]["face"]["bbox"]["min"][0].get<double>(),
+                           2) +
+                  std::pow(report["mold"]["face"]["bbox"]["max"][1].get<double>() -
+                               report["mold"]["face"]["bbox"]["min"][1].get<double>(),
+                           2) +
+                  std::pow(report["mold"]["face"]["bbox"]["max"][2].get<double>() -
+                               report["mold"]["face"]["bbox"]["min"][2].get<double>(),
+                           2));
     CHECK(report["residual"]["edge_length_max_rel"].get<double>() <= kLinkResidualRel);
     CHECK(report["residual"]["base_plane_max_rel"].get<double>() <= kLinkResidualRel);
     CHECK(report["residual"]["surface_distance_max"].get<double>() <= kSurfaceResidualRel * size);
@@ -133,7 +142,8 @@ TEST_CASE("samples: the goldens are plausible") {
   };
   // Table 1 (b) is symmetric about the plane x = z: gamma min + gamma max = pi.
   const json b = golden("sphere-octant-b");
-  CHECK(std::abs(b["/thread_angle/min"].get<double>() + b["/thread_angle/max"].get<double>() - pi) < 1e-9);
+  CHECK(std::abs(b["/thread_angle/min"].get<double>() + b["/thread_angle/max"].get<double>() - pi) <
+        1e-9);
   // Table 1 (a) and (c) start at the pole: the start does not move. (b)'s start (10, 0, 10)
   // moves to the sphere: by R - |(10, 0, 10)| = 20 - 10 sqrt 2.
   CHECK(golden("sphere-octant-a")["/start/moved"].get<double>() == 0.0);

@@ -30,8 +30,8 @@ std::vector<std::string> mold_formats();
 /// `path`, atomically (temporary file + rename). The face keeps plyfit's orientation: the
 /// file's face normal is Su x Sv, or its opposite when face.reversed. Reals are written with
 /// 17 significant digits, so that they read back bit for bit (the writers' defaults keep only
-/// 10 to 13); magnitudes below 1e-99 are written as 0, 1e99 and above are refused. Errors name the file and
-/// the problem (unknown format, trimmed face, invalid surface, write failure).
+/// 10 to 13); magnitudes below 1e-99 are written as 0, 1e99 and above are refused. Errors name the
+/// file and the problem (unknown format, trimmed face, invalid surface, write failure).
 Status write_mold(const FaceData& face, const std::string& path,
                   const MoldWriteOptions& options = {});
 
