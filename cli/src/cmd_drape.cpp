@@ -42,11 +42,25 @@ void drape_help(std::ostream& os) {
   os << "  --dump-scene                    print the effective scene as INI and exit\n"
         "  --quiet                         no progress line\n"
         "  --outcome FILE                  also write the outcome as JSON (used by plyfit batch)\n"
+        "  --scene-keys                    print the scene keys as a Markdown table and exit\n"
         "\nbuilt-in molds (--mold builtin:NAME[:key=value,...]):\n";
   for (const auto& b : builtin_molds()) {
     os << "  " << b.name << ":";
     for (const auto& p : b.params) os << " " << p.key << "=" << p.value;
     os << "\n      " << b.placement << "\n";
+  }
+}
+
+// The scene keys as a Markdown table (for the README), straight from drape_options().
+void scene_keys_markdown(std::ostream& os) {
+  os << "| key (flag `--key`) | section | value | default | meaning |\n|---|---|---|---|---|\n";
+  for (const auto& s : drape_options()) {
+    std::string value = s.value.empty() ? "true/false" : s.value;
+    for (std::size_t p = 0; (p = value.find('|', p)) != std::string::npos; p += 2)
+      value.replace(p, 1, "\\|");
+    os << "| `" << s.key << "`" << (s.key == "output" ? " (`-o`)" : "") << " | " << s.section
+       << " | `" << value << "` | " << (s.def.empty() ? "" : "`" + s.def + "`") << " | " << s.help
+       << (s.repeatable ? " (repeatable)" : "") << " |\n";
   }
 }
 
@@ -63,6 +77,10 @@ int run_drape(const std::vector<std::string>& args_in) {
   if (std::find(args.begin(), args.end(), "--help") != args.end() ||
       std::find(args.begin(), args.end(), "-h") != args.end()) {
     drape_help(std::cout);
+    return kExitOk;
+  }
+  if (std::find(args.begin(), args.end(), "--scene-keys") != args.end()) {
+    scene_keys_markdown(std::cout);
     return kExitOk;
   }
   bool dump = false, quiet = false;

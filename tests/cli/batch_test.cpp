@@ -137,7 +137,8 @@ TEST_CASE("cli: batch runs the good scenes, reports the broken ones and exits 1"
       std::string(PLYFIT_SOURCE_DIR) + "/samples/molds/sphere-octant.step";
   spit(tmp.file("a/good.ini"), quick_scene(sample_step));
   spit(tmp.file("b/good.ini"), quick_scene("builtin:sphere-octant"));  // same name: good-2
-  spit(tmp.file("builtin.ini"), quick_scene("builtin:sphere-octant"));
+  // A scene's own output key is overridden by the batch's folder.
+  spit(tmp.file("builtin.ini"), quick_scene("builtin:sphere-octant") + "output = own-output\n");
   spit(tmp.file("malformed.ini"), quick_scene("builtin:sphere-octant") + "lock-angle = steep\n");
   // A corrupt STEP file: the first half of a real one.
   const std::string step = slurp(sample_step);
@@ -163,6 +164,7 @@ TEST_CASE("cli: batch runs the good scenes, reports the broken ones and exits 1"
                                            "good-2/report.json", "builtin", "builtin/report.json",
                                            "summary.json", "summary.csv"});
   CHECK(json::parse(slurp(out + "/good/report.json"))["nodes"]["mapped"] == 716);
+  CHECK_FALSE(fs::exists(tmp.file("own-output")));
   const json s = json::parse(slurp(out + "/summary.json"));
   CHECK(s["counts"]["total"] == 7);
   CHECK(s["counts"]["ok"] == 3);
