@@ -60,6 +60,7 @@ const std::vector<OptionSpec>& drape_options() {
       {"outputs", "LIST", "", "outputs to write, comma-separated (default: all)", false, "output"},
       {"curve-degree", "1|3", "1", "degree of the thread curves in net.step", false, "output"},
       {"view", "X,Y,Z", "1,1,1", "view direction of drape.svg (towards the viewer)", false, "output"},
+      {"dxf-threads", "true|false", "true", "THREADS layer (thread grid) in flat.dxf", false, "output"},
   };
   return list;
 }
@@ -330,6 +331,7 @@ Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
     if (!(v->norm() > 0)) return Error{name("view") + ": the direction must be non-zero"};
     job.view = *v;
   } else return v.error();
+  if (auto b = parse_bool(*one("dxf-threads"), name("dxf-threads")); b) job.dxf_threads = *b; else return b.error();
   job.scene = raw.origin == "command line" ? "" : raw.origin;
   return job;
 }
@@ -379,6 +381,7 @@ std::string dump_scene(const DrapeJob& job) {
   v["outputs"] = {outs};
   v["curve-degree"] = {std::to_string(job.curve_degree)};
   v["view"] = {fmt(job.view)};
+  v["dxf-threads"] = {job.dxf_threads ? "true" : "false"};
   std::ostringstream os;
   os << "# plyfit scene (plyfit drape --dump-scene)\n";
   std::string section;
@@ -459,6 +462,7 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   eo.warn_shear = job.warn_angle_deg * kDegToRad;
   eo.curve_degree = job.curve_degree;
   eo.view = job.view;
+  eo.dxf_threads = job.dxf_threads;
   run.total_ms = ms_since(t0);
   const exporters::ExportContext ctx{job.problem, *res, *face, &flat, run, eo};
   if (!job.outdir.empty()) {

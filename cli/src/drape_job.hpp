@@ -54,6 +54,7 @@ struct DrapeJob {
   std::vector<std::string> outputs;
   int curve_degree = 1;
   Vec3 view = Vec3(1, 1, 1);
+  bool dxf_threads = true;   ///< THREADS layer in flat.dxf
   double warn_angle_deg = 85.0;
   std::string ply_name = "ply";
   std::string material = "woven";

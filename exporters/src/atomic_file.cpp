@@ -1,10 +1,10 @@
 #include <plyfit/exporters/atomic_file.hpp>
 
+#include <unistd.h>
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
 #include <system_error>
-#include <unistd.h>
 
 namespace plyfit::exporters {
 

@@ -19,8 +19,12 @@ namespace {
 
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
-nlohmann::json vec(const Vec2& v) { return nlohmann::json::array({v.x(), v.y()}); }
-nlohmann::json vec(const Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); }
+nlohmann::json vec(const Vec2& v) {
+  return nlohmann::json::array({v.x(), v.y()});
+}
+nlohmann::json vec(const Vec3& v) {
+  return nlohmann::json::array({v.x(), v.y(), v.z()});
+}
 
 }  // namespace
 
@@ -60,15 +64,21 @@ std::string report_json(const ExportContext& ctx) {
   j["mold"] = {{"unit", ctx.run.mold_unit}, {"face", face}, {"warnings", ctx.run.warnings}};
   j["start"] = {{"point", vec(r.start_point)}, {"uv", vec(r.start_uv)}, {"moved", r.start_moved}};
   j["base_tangent"] = vec(r.base_tangent);
-  j["nodes"] = {{"mapped", m.nodes.mapped},   {"auxiliary", m.nodes.auxiliary},
-                {"outside", m.nodes.outside}, {"off_ply", m.nodes.off_ply},
-                {"shear_limit", m.nodes.shear_limit}, {"failed", m.nodes.failed}};
+  j["nodes"] = {{"mapped", m.nodes.mapped},
+                {"auxiliary", m.nodes.auxiliary},
+                {"outside", m.nodes.outside},
+                {"off_ply", m.nodes.off_ply},
+                {"shear_limit", m.nodes.shear_limit},
+                {"failed", m.nodes.failed},
+                {"with_angle", m.angles}};
   j["area_mesh_points"] = m.area_mesh_points;
   j["flat_area"] = m.flat_area;
   j["surface_area"] = m.surface_area;
   j["coverage"] = ctx.face.area() > 0 ? m.surface_area / ctx.face.area() : 0.0;
-  j["thread_angle"] = {{"min", m.gamma_min}, {"max", m.gamma_max},
-                       {"min_deg", m.gamma_min * kRadToDeg}, {"max_deg", m.gamma_max * kRadToDeg}};
+  j["thread_angle"] = {{"min", m.gamma_min},
+                       {"max", m.gamma_max},
+                       {"min_deg", m.gamma_min * kRadToDeg},
+                       {"max_deg", m.gamma_max * kRadToDeg}};
   const double shear_max = m.angles ? std::max(std::abs(90.0 - m.gamma_min * kRadToDeg),
                                                std::abs(m.gamma_max * kRadToDeg - 90.0))
                                     : 0.0;
@@ -85,17 +95,22 @@ std::string report_json(const ExportContext& ctx) {
     for (const auto& l : ctx.flat->outline) {
       json pts = json::array();
       for (const auto& q : l.points) pts.push_back(vec(q));
-      loops.push_back({{"hole", l.hole}, {"area", l.area}, {"perimeter", l.perimeter}, {"points", pts}});
+      loops.push_back(
+          {{"hole", l.hole}, {"area", l.area}, {"perimeter", l.perimeter}, {"points", pts}});
     }
-    j["flat_outline"] = {{"area", ctx.flat->area}, {"perimeter", ctx.flat->perimeter}, {"loops", loops}};
+    j["flat_outline"] = {
+        {"area", ctx.flat->area}, {"perimeter", ctx.flat->perimeter}, {"loops", loops}};
   }
   j["memory_bytes_per_node"] = r.bytes_per_node();
-  j["timing_ms"] = {{"import", ctx.run.import_ms}, {"drape", ctx.run.drape_ms}, {"total", ctx.run.total_ms}};
+  j["timing_ms"] = {
+      {"import", ctx.run.import_ms}, {"drape", ctx.run.drape_ms}, {"total", ctx.run.total_ms}};
   return j.dump(2) + "\n";
 }
 
 Exporter make_json_exporter() {
-  return {"json", {"report.json"}, "report.json: status, counts, areas, angles, residuals, timings",
+  return {"json",
+          {"report.json"},
+          "report.json: status, counts, areas, angles, residuals, timings",
           [](const ExportContext& ctx, const std::string& outdir) {
             return write_file_atomic((std::filesystem::path(outdir) / "report.json").string(),
                                      report_json(ctx));

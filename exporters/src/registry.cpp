@@ -11,7 +11,8 @@ namespace plyfit::exporters {
 const std::vector<Exporter>& registry() {
   // One registration line per format.
   static const std::vector<Exporter> list = {
-      make_json_exporter(),
+      make_dxf_exporter(), make_step_exporter(), make_json_exporter(),
+      make_svg_exporter(), make_vtk_exporter(),
   };
   return list;
 }

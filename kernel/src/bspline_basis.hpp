@@ -16,16 +16,17 @@ constexpr int kMaxBasis = kMaxDegree + 1;
 inline int find_span(const double* U, int first_span, int last_span, double u) {
   if (u >= U[last_span]) return last_span;
   if (u < U[first_span + 1]) return first_span;
-  int lo = first_span, hi = last_span;  // invariant: U[lo] <= u < U[hi]
-  while (hi - lo > 1) {
-    const int mid = (lo + hi) / 2;
-    if (u < U[mid]) {
-      hi = mid;
-    } else {
-      lo = mid;
-    }
+  // Now U[first_span] <= u < U[last_span]: the span is the largest s in [first_span,
+  // last_span] with U[s] <= u. Branch-free bisection (the comparison becomes a conditional
+  // move): random parameters would mispredict about half of the branches of a plain one.
+  const double* base = U + first_span;
+  int len = last_span - first_span + 1;
+  while (len > 1) {
+    const int half = len / 2;
+    base = (base[half] <= u) ? base + half : base;
+    len -= half;
   }
-  return lo;
+  return static_cast<int>(base - U);
 }
 
 // GCC 12 cannot see that the column index of `a` below stays <= k - 1 < ND + 1 and warns
@@ -35,11 +36,16 @@ inline int find_span(const double* U, int first_span, int last_span, double u) {
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
 /// ders[k][j], k = 0..nd, j = 0..p: the k-th derivative of the non-zero basis functions
-/// N_{span-p+j, p} at u (A2.3). nd <= 2.
-template <int ND>
-inline void ders_basis(const double* U, int span, int p, double u, double ders[ND + 1][kMaxBasis]) {
-  double left[kMaxBasis], right[kMaxBasis];
-  double ndu[kMaxBasis][kMaxBasis];
+/// N_{span-p+j, p} at u (A2.3). nd <= 2. With P > 0 the degree is the compile-time P (`p` is
+/// then ignored) and every loop has a fixed trip count; the arithmetic is the same, operation
+/// for operation, so the results are bit-for-bit those of the run-time degree.
+template <int ND, int P = 0>
+inline void ders_basis(const double* U, int span, int p_runtime, double u,
+                       double ders[ND + 1][kMaxBasis]) {
+  const int p = (P > 0) ? P : p_runtime;
+  constexpr int M = (P > 0) ? P + 1 : kMaxBasis;
+  double left[M], right[M];
+  double ndu[M][M];
   ndu[0][0] = 1.0;
   for (int j = 1; j <= p; ++j) {
     left[j] = u - U[span + 1 - j];
@@ -54,7 +60,19 @@ inline void ders_basis(const double* U, int span, int p, double u, double ders[N
     ndu[j][j] = saved;
   }
   for (int j = 0; j <= p; ++j) ders[0][j] = ndu[j][p];
-  if constexpr (ND > 0) {
+  if constexpr (ND == 1) {
+    // A2.3 for the first derivative only: ders[1][r] = p (N_{r-1,p-1} / d_{r-1} -
+    // N_{r,p-1} / d_r) with d_r = ndu[p][r], each reciprocal 1 / d_r computed once instead of
+    // twice (A2.3 forms it as a[.][0] for r + 1 and as -a[.][1] for r: the same bits).
+    double inv[M];
+    for (int r = 0; r < p; ++r) inv[r] = 1.0 / ndu[p][r];
+    const double f = p;
+    for (int r = 0; r <= p; ++r) {
+      double d = (r >= 1) ? inv[r - 1] * ndu[r - 1][p - 1] : 0.0;
+      if (r <= p - 1) d -= inv[r] * ndu[r][p - 1];
+      ders[1][r] = d * f;
+    }
+  } else if constexpr (ND > 1) {
     const int nd = std::min(ND, p);
     for (int k = nd + 1; k <= ND; ++k)
       for (int j = 0; j <= p; ++j) ders[k][j] = 0.0;

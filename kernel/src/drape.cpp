@@ -1,12 +1,14 @@
 #include <plyfit/kernel/drape.hpp>
 
-#include "cells.hpp"
+#include <plyfit/kernel/cells.hpp>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <queue>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace plyfit {
 
@@ -53,75 +55,111 @@ const char* to_string(NodeStatus s) {
 // ---------------------------------------------------------------------------------------
 // NodeIndex
 
-std::int64_t NodeIndex::find(const NodeId& id) const {
-  if (slots_.empty()) return -1;
-  const std::uint64_t key = id.key();
-  const std::size_t mask = slots_.size() - 1;
+std::int64_t NodeIndex::probe(const std::vector<Slot>& slots, std::uint64_t key) {
+  if (slots.empty()) return -1;
+  const std::size_t mask = slots.size() - 1;
   for (std::size_t h = mix(key) & mask;; h = (h + 1) & mask) {
-    if (slots_[h].key == key) return slots_[h].value;
-    if (slots_[h].key == kEmpty) return -1;
+    if (slots[h].key == key) return slots[h].value;
+    if (slots[h].key == kEmpty) return -1;
   }
 }
 
-void NodeIndex::insert(const NodeId& id, std::uint32_t index) {
-  if ((size_ + 1) * 2 > slots_.size()) grow();
-  const std::uint64_t key = id.key();
-  const std::size_t mask = slots_.size() - 1;
+void NodeIndex::put(std::vector<Slot>& slots, std::size_t& count, std::uint64_t key,
+                    std::uint32_t value) {
+  if ((count + 1) * 2 > slots.size()) {
+    std::vector<Slot> old = std::move(slots);
+    slots.assign(old.empty() ? 16 : old.size() * 2, Slot{kEmpty, 0});
+    count = 0;
+    for (const Slot& s : old)
+      if (s.key != kEmpty) put(slots, count, s.key, s.value);
+  }
+  const std::size_t mask = slots.size() - 1;
   for (std::size_t h = mix(key) & mask;; h = (h + 1) & mask) {
-    if (slots_[h].key == kEmpty) {
-      slots_[h] = {key, index};
-      ++size_;
+    if (slots[h].key == kEmpty) {
+      slots[h] = {key, value};
+      ++count;
       return;
     }
   }
 }
 
-void NodeIndex::grow() {
-  std::vector<Slot> old = std::move(slots_);
-  slots_.assign(old.empty() ? 64 : old.size() * 2, Slot{});
-  size_ = 0;
-  const std::size_t mask = slots_.size() - 1;
-  for (const Slot& s : old) {
-    if (s.key == kEmpty) continue;
-    for (std::size_t h = mix(s.key) & mask;; h = (h + 1) & mask) {
-      if (slots_[h].key == kEmpty) {
-        slots_[h] = s;
-        ++size_;
-        break;
-      }
-    }
+namespace {
+inline std::uint64_t block_key(std::int32_t i, std::int32_t j, int bits) {
+  return NodeId::regular(i >> bits, j >> bits).key();  // arithmetic shift: floor division
+}
+inline std::size_t block_offset(std::int32_t i, std::int32_t j, int bits) {
+  const std::int32_t m = (1 << bits) - 1;
+  return static_cast<std::size_t>(i & m) << bits | static_cast<std::size_t>(j & m);
+}
+}  // namespace
+
+std::int64_t NodeIndex::find(const NodeId& id) const {
+  if (id.is_path_only()) return probe(path_, id.key());
+  const std::uint64_t bk = block_key(id.i, id.j, kBlockBits);
+  if (bk != last_key_) {
+    last_key_ = bk;
+    last_block_ = probe(blocks_, bk);
   }
+  if (last_block_ < 0) return -1;
+  const std::int32_t v = cells_[static_cast<std::size_t>(last_block_) * kBlock * kBlock +
+                                block_offset(id.i, id.j, kBlockBits)];
+  return v;
+}
+
+void NodeIndex::insert(const NodeId& id, std::uint32_t index) {
+  ++size_;
+  if (id.is_path_only()) {
+    put(path_, path_count_, id.key(), index);
+    return;
+  }
+  const std::uint64_t bk = block_key(id.i, id.j, kBlockBits);
+  std::int64_t b = probe(blocks_, bk);
+  if (b < 0) {
+    b = static_cast<std::int64_t>(block_count_);
+    put(blocks_, block_count_, bk, static_cast<std::uint32_t>(b));
+    cells_.resize(cells_.size() + kBlock * kBlock, -1);
+  }
+  last_key_ = bk;
+  last_block_ = b;
+  cells_[static_cast<std::size_t>(b) * kBlock * kBlock + block_offset(id.i, id.j, kBlockBits)] =
+      static_cast<std::int32_t>(index);
+}
+
+std::size_t NodeIndex::memory_bytes() const {
+  return blocks_.capacity() * sizeof(Slot) + cells_.capacity() * sizeof(std::int32_t) +
+         path_.capacity() * sizeof(Slot);
 }
 
 // ---------------------------------------------------------------------------------------
 // DrapeResult queries
 
 const DrapeNode* DrapeResult::neighbour(const NodeId& id, ThreadDir dir) const {
-  if (!id.is_path_only()) {
-    const auto n = ply->neighbour(id.i, id.j, dir);
-    return n ? find(n->id) : nullptr;
-  }
-  for (const auto& tn : ply->thread_neighbours(id))
-    if (tn.dir == dir) return find(tn.n.id);
-  return nullptr;
+  const DrapeNode* n = find(id);
+  return n ? neighbour(*n, dir) : nullptr;
+}
+
+double DrapeResult::rest_length(const DrapeNode& n, ThreadDir dir) const {
+  const double spacing = is_weft(dir) ? ply->spec().d_weft : ply->spec().d_warp;
+  const DrapeNode* m = neighbour(n, dir);
+  if (!m || (!n.id.is_path_only() && !m->id.is_path_only())) return spacing;
+  return (m->ply - n.ply).norm();  // a link split by the path: the 2D distance
 }
 
 std::vector<DrapeLink> DrapeResult::links() const {
   std::vector<DrapeLink> out;
-  auto idx = [&](const DrapeNode& n) { return static_cast<std::uint32_t>(&n - nodes.data()); };
-  for (const DrapeNode& n : nodes) {
+  for (std::uint32_t k = 0; k < nodes.size(); ++k) {
+    const DrapeNode& n = nodes[k];
     if (!n.mapped() || n.id.is_path_only()) continue;
     for (int d = 0; d < 4; ++d) {
       const auto dir = static_cast<ThreadDir>(d);
-      const auto nb = ply->neighbour(n.id.i, n.id.j, dir);
-      if (!nb) continue;
-      // Regular-regular links once (from their -x / -y end); links to path-only nodes from
-      // the regular end, both sides.
-      const bool plus = dir == ThreadDir::kPlusX || dir == ThreadDir::kPlusY;
-      if (!nb->id.is_path_only() && !plus) continue;
-      const DrapeNode* m = find(nb->id);
+      const DrapeNode* m = neighbour(n, dir);
       if (!m || !m->mapped()) continue;
-      out.push_back({idx(n), idx(*m), nb->rest, is_weft(dir) ? LinkKind::kWeft : LinkKind::kWarp});
+      // Regular-regular links once (from their -x / -y end); links to path nodes from the
+      // regular end, both sides.
+      const bool plus = dir == ThreadDir::kPlusX || dir == ThreadDir::kPlusY;
+      if (!m->id.is_path_only() && !plus) continue;
+      out.push_back({k, static_cast<std::uint32_t>(m - nodes.data()), rest_length(n, dir),
+                     is_weft(dir) ? LinkKind::kWeft : LinkKind::kWarp});
     }
   }
   for (std::size_t k = 1; k < base_path.size(); ++k) {
@@ -137,49 +175,34 @@ std::vector<DrapeLink> DrapeResult::links() const {
 }
 
 std::vector<std::vector<std::uint32_t>> DrapeResult::threads(bool weft) const {
-  // Bucket mapped nodes by thread line: weft thread j (y = j d_warp) or warp thread i.
-  struct Entry {
-    double along;
-    std::uint32_t node;
+  // A run starts at a mapped node whose backward neighbour is not mapped and follows the
+  // forward links while they lead to mapped nodes.
+  const ThreadDir fwd = weft ? ThreadDir::kPlusX : ThreadDir::kPlusY;
+  const ThreadDir back = opposite(fwd);
+  auto on_thread = [&](const DrapeNode& n) {
+    if (!n.id.is_path_only()) return true;
+    const PathNode* pn = ply->path_node_if(n.id.j);
+    return pn && pn->link_from && (pn->link_dir == ThreadDir::kPlusX) == weft;
   };
-  std::unordered_map<std::int32_t, std::vector<Entry>> lines;
+  std::vector<std::vector<std::uint32_t>> out;
   for (std::uint32_t k = 0; k < nodes.size(); ++k) {
     const DrapeNode& n = nodes[k];
-    if (!n.mapped()) continue;
-    std::int32_t line;
-    if (!n.id.is_path_only()) {
-      line = weft ? n.id.j : n.id.i;
-    } else {
-      const PathNode* pn = ply->path_node_if(n.id.j);
-      if (!pn || !pn->link_from) continue;
-      const bool on_weft = pn->link_dir == ThreadDir::kPlusX;
-      if (on_weft != weft) continue;
-      line = weft ? pn->link_from->j : pn->link_from->i;
-    }
-    lines[line].push_back({weft ? n.ply.x() : n.ply.y(), k});
+    if (!n.mapped() || !on_thread(n)) continue;
+    const DrapeNode* b = neighbour(n, back);
+    if (b && b->mapped()) continue;  // not the start of a run
+    std::vector<std::uint32_t> run{k};
+    for (const DrapeNode* m = neighbour(n, fwd); m && m->mapped(); m = neighbour(*m, fwd))
+      run.push_back(static_cast<std::uint32_t>(m - nodes.data()));
+    if (run.size() >= 2) out.push_back(std::move(run));
   }
-  std::vector<std::int32_t> keys;
-  for (const auto& kv : lines) keys.push_back(kv.first);
-  std::sort(keys.begin(), keys.end());
-  std::vector<std::vector<std::uint32_t>> out;
-  const ThreadDir fwd = weft ? ThreadDir::kPlusX : ThreadDir::kPlusY;
-  for (std::int32_t key : keys) {
-    auto& v = lines[key];
-    std::sort(v.begin(), v.end(), [](const Entry& a, const Entry& b) { return a.along < b.along; });
-    std::vector<std::uint32_t> run;
-    for (std::size_t k = 0; k < v.size(); ++k) {
-      if (!run.empty()) {
-        // Consecutive only if linked: the previous node's forward neighbour is this one.
-        const DrapeNode* nb = neighbour(nodes[run.back()].id, fwd);
-        if (nb != &nodes[v[k].node]) {
-          if (run.size() >= 2) out.push_back(run);
-          run.clear();
-        }
-      }
-      run.push_back(v[k].node);
-    }
-    if (run.size() >= 2) out.push_back(run);
-  }
+  // Deterministic order: by thread line, then position along it.
+  auto line = [&](const DrapeNode& n) { return weft ? n.ply.y() : n.ply.x(); };
+  auto along = [&](const DrapeNode& n) { return weft ? n.ply.x() : n.ply.y(); };
+  std::sort(out.begin(), out.end(), [&](const auto& a, const auto& b) {
+    const DrapeNode &x = nodes[a[0]], &y = nodes[b[0]];
+    if (line(x) != line(y)) return line(x) < line(y);
+    return along(x) < along(y);
+  });
   return out;
 }
 
@@ -198,6 +221,7 @@ struct FrontierEntry {
   double sweep;  // distance from the base path along the sweep direction
   double dist;   // distance to the start (tie-break)
   std::int32_t i, j;
+  std::uint32_t node;
 };
 struct FrontierLater {
   bool operator()(const FrontierEntry& a, const FrontierEntry& b) const {
@@ -224,23 +248,53 @@ class Scanner {
   }
   bool truncated() const { return truncated_; }
   bool cancelled() const { return cancelled_; }
+  std::uint64_t path_off_ply() const { return path_off_ply_; }
 
  private:
-  // Node for id, created (pending) at ply position `pos` if absent.
+  DrapeNode& node(std::uint32_t k) { return res_.nodes[k]; }
+
+  // The id across the thread link from `id` in direction d, if that node can exist.
+  std::optional<NodeId> neighbour_id(const NodeId& id, ThreadDir d) const {
+    if (!id.is_path_only()) {
+      const auto n = ply_.neighbour(id.i, id.j, d);
+      return n ? std::optional<NodeId>(n->id) : std::nullopt;
+    }
+    const PathNode* pn = ply_.path_node_if(id.j);
+    if (!pn || !pn->link_from) return std::nullopt;
+    if (d == opposite(pn->link_dir)) return *pn->link_from;
+    if (d == pn->link_dir) {
+      const NodeId a = *pn->link_from;
+      return pn->link_dir == ThreadDir::kPlusX ? NodeId::regular(a.i + 1, a.j)
+                                               : NodeId::regular(a.i, a.j + 1);
+    }
+    return std::nullopt;
+  }
+
+  // Node for id, created (pending) at ply position `pos` if absent, linked both ways to the
+  // existing nodes across its thread links.
   std::uint32_t node_for(const NodeId& id, const Vec2& pos) {
     const auto k = res_.index.find(id);
     if (k >= 0) return static_cast<std::uint32_t>(k);
     DrapeNode n;
     n.id = id;
     n.ply = pos;
+    const auto idx = static_cast<std::uint32_t>(res_.nodes.size());
+    for (int d = 0; d < 4; ++d) {
+      const auto nid = neighbour_id(id, static_cast<ThreadDir>(d));
+      if (!nid) continue;
+      const auto m = res_.index.find(*nid);
+      if (m < 0) continue;
+      n.nb[d] = static_cast<std::int32_t>(m);
+      res_.nodes[static_cast<std::size_t>(m)].nb[static_cast<int>(opposite(static_cast<ThreadDir>(d)))] =
+          static_cast<std::int32_t>(idx);
+    }
     res_.nodes.push_back(n);
-    const auto idx = static_cast<std::uint32_t>(res_.nodes.size() - 1);
     res_.index.insert(id, idx);
     return idx;
   }
 
   void resolve(std::uint32_t idx, const SolveResult& r) {
-    DrapeNode& n = res_.nodes[idx];
+    DrapeNode& n = node(idx);
     n.order = order_++;
     ++res_.metrics.solves;
     res_.metrics.iterations += static_cast<std::uint64_t>(r.iterations);
@@ -268,13 +322,19 @@ class Scanner {
     }
   }
 
-  Vec3 normal_at(const DrapeNode& n) const { return s_.normal(n.uv).n; }
+  // The mapped node across the thread link from node k in direction d, or nullptr.
+  const DrapeNode* mapped_nb(const DrapeNode& n, ThreadDir d) const {
+    const std::int32_t k = n.nb[static_cast<int>(d)];
+    if (k < 0) return nullptr;
+    const DrapeNode& m = res_.nodes[static_cast<std::size_t>(k)];
+    return m.mapped() ? &m : nullptr;
+  }
 
   // §5.1: the base path both ways from the start.
   void map_path(const Vec3& t3) {
     const PathNode* p0 = ply_.path_node(0);
     const std::uint32_t i0 = node_for(p0->id, p0->pos);
-    DrapeNode& n0 = res_.nodes[i0];
+    DrapeNode& n0 = node(i0);
     n0.status = NodeStatus::kMapped;
     n0.point = res_.start_point;
     n0.uv = res_.start_uv;
@@ -289,21 +349,20 @@ class Scanner {
       for (std::int32_t k = fwd ? 1 : -1;; k += fwd ? 1 : -1) {
         const PathNode* pk = ply_.path_node(k);
         if (!pk) {
-          // Off the ply rectangle (or the path cap): the cloth ends here.
-          if (ply_.spec().rect) ++path_off_ply_;
+          if (ply_.spec().rect) ++path_off_ply_;  // the cloth ends here
           break;
         }
-        const PathNode* pp = ply_.path_node_if(fwd ? k - 1 : k + 1);
-        const std::uint32_t idx = node_for(pk->id, pk->pos);
-        DrapeNode& n = res_.nodes[idx];
-        n.flags |= DrapeNode::kOnPath;
-        const DrapeNode& from = res_.nodes[prev];
-        const SolveResult r = solve_base_path(
-            s_, {from.point, from.uv, res_.base_normal, travel, std::abs(pk->tau - pp->tau)}, st_);
+        const double rest = std::abs(pk->tau - ply_.path_node_if(fwd ? k - 1 : k + 1)->tau);
+        const PathNode pcopy = *pk;  // path_node() may reallocate; keep a copy
+        const std::uint32_t idx = node_for(pcopy.id, pcopy.pos);
+        node(idx).flags |= DrapeNode::kOnPath;
+        const DrapeNode& from = node(prev);
+        const SolveResult r =
+            solve_base_path(s_, {from.point, from.uv, res_.base_normal, travel, rest}, st_);
         resolve(idx, r);
-        if (!res_.nodes[idx].mapped()) break;
+        if (!node(idx).mapped()) break;
         chain.push_back(idx);
-        travel = res_.nodes[idx].point - from.point;
+        travel = node(idx).point - node(prev).point;
         prev = idx;
         if (cancelled_now()) break;
       }
@@ -311,6 +370,7 @@ class Scanner {
     std::reverse(behind.begin(), behind.end());
     res_.base_path = behind;
     res_.base_path.insert(res_.base_path.end(), ahead.begin(), ahead.end());
+    for (std::uint32_t k = 0; k < res_.base_path.size(); ++k) path_pos_[res_.base_path[k]] = k;
     for (std::uint32_t k : res_.base_path) push_neighbours(k);
   }
 
@@ -321,42 +381,26 @@ class Scanner {
 
   // Adds the unknown regular neighbours of a mapped node to the frontier.
   void push_neighbours(std::uint32_t idx) {
-    const NodeId id = res_.nodes[idx].id;
-    for (const auto& tn : ply_.thread_neighbours(id)) {
-      const NodeId q = tn.n.id;
-      if (q.is_path_only()) continue;  // path nodes are mapped by the base path
-      const Vec2 qp = ply_.pos(q.i, q.j);
+    for (int d = 0; d < 4; ++d) {
+      if (node(idx).nb[d] >= 0) continue;  // already reached (pending or resolved)
+      const auto q = neighbour_id(node(idx).id, static_cast<ThreadDir>(d));
+      if (!q || q->is_path_only()) continue;  // path nodes are mapped by the base path
+      const Vec2 qp = ply_.pos(q->i, q->j);
       const int side = ply_.side(qp);
       if (side == 0) continue;  // on the path: mapped (or not) by the base path
       if (ply_.sweep_for_side(side) < 0) continue;  // that half-plane is not swept
-      if (res_.index.find(q) >= 0) continue;  // pending or resolved
       if (res_.nodes.size() >= opt_.max_nodes) {
         truncated_ = true;
         continue;
       }
-      const std::uint32_t qi = node_for(q, qp);
+      const std::uint32_t qi = node_for(*q, qp);
       if (!ply_.on_ply(qp)) {
-        res_.nodes[qi].status = NodeStatus::kOffPly;
-        res_.nodes[qi].order = order_++;
+        node(qi).status = NodeStatus::kOffPly;
+        node(qi).order = order_++;
         continue;
       }
-      heap_.push({ply_.sweep_distance(qp), (qp - ply_.spec().start).norm(), q.i, q.j});
+      heap_.push({ply_.sweep_distance(qp), (qp - ply_.spec().start).norm(), q->i, q->j, qi});
     }
-  }
-
-  const DrapeNode* mapped_neighbour(const NodeId& id, ThreadDir dir, double* rest = nullptr) const {
-    std::optional<PlyNeighbour> nb;
-    if (!id.is_path_only()) {
-      nb = ply_.neighbour(id.i, id.j, dir);
-    } else {
-      for (const auto& tn : ply_.thread_neighbours(id))
-        if (tn.dir == dir) nb = tn.n;
-    }
-    if (!nb) return nullptr;
-    const DrapeNode* n = res_.find(nb->id);
-    if (!n || !n->mapped()) return nullptr;
-    if (rest) *rest = nb->rest;
-    return n;
   }
 
   // Solver 2 for q from neighbours a (direction da from q) and b (db).
@@ -371,12 +415,12 @@ class Scanner {
     }
     TwoSphereStep step{a.point, a.uv, ra, b.point, b.uv, rb, c2 > 0 ? 1.0 : -1.0, std::nullopt};
     // Initial guess.
-    const DrapeNode* ap = mapped_neighbour(a.id, da);  // a's predecessor on q's thread
-    const DrapeNode* bp = mapped_neighbour(b.id, db);
+    const DrapeNode* ap = mapped_nb(a, da);  // a's predecessor on q's thread
+    const DrapeNode* bp = mapped_nb(b, db);
     const DrapeNode* c = nullptr;  // the cell's fourth corner
     if (!a.id.is_path_only() && !b.id.is_path_only()) {
-      c = res_.find(NodeId::regular(a.id.i + b.id.i - q.id.i, a.id.j + b.id.j - q.id.j));
-      if (c && !c->mapped()) c = nullptr;
+      c = mapped_nb(a, db);
+      if (c && c->id != NodeId::regular(a.id.i + b.id.i - q.id.i, a.id.j + b.id.j - q.id.j)) c = nullptr;
     }
     auto paper = [&] {
       step.guess = two_sphere_guess(s_, a.uv, ap->uv, a.point, ap->point, ra, b.uv, bp->uv,
@@ -397,17 +441,16 @@ class Scanner {
 
   // Solver 3 for q from its one known neighbour a (direction da from q, rest ra).
   SolveResult solve_one(const DrapeNode& q, const DrapeNode& a, ThreadDir da, double ra) {
-    const Vec3 na = normal_at(a);
+    const Vec3 na = s_.normal(a.uv).n;
     const Vec2 q2 = q.ply - a.ply;
     Vec3 ref3;
     Vec2 ref2;
-    const DrapeNode* ap = mapped_neighbour(a.id, da);  // a's predecessor on q's thread
+    const DrapeNode* ap = mapped_nb(a, da);  // a's predecessor on q's thread
     if (a.has(DrapeNode::kOnPath)) {
       // Next to the base path: the 2D angle between the path and the thread is kept on the
       // tangent plane (§6.1, Fig. 9); the path tangent is that of the plane section.
       ref3 = na.cross(res_.base_normal);
-      const Vec3 chord = path_chord(a);
-      if (ref3.dot(chord) < 0) ref3 = -ref3;
+      if (ref3.dot(path_chord(a)) < 0) ref3 = -ref3;
       ref2 = ply_.base_dir();
     } else if (ap) {
       // Elsewhere: continue the thread along its previous segment.
@@ -416,7 +459,7 @@ class Scanner {
     } else {
       // Fall back on any mapped neighbour of a, keeping the 2D angle to it.
       const DrapeNode* r = nullptr;
-      for (int d = 0; d < 4 && !r; ++d) r = mapped_neighbour(a.id, static_cast<ThreadDir>(d));
+      for (int d = 0; d < 4 && !r; ++d) r = mapped_nb(a, static_cast<ThreadDir>(d));
       if (!r) {
         SolveResult f;
         f.reason = "no reference direction at the known neighbour";
@@ -438,11 +481,12 @@ class Scanner {
 
   // Direction of the base path at path node a, along +tau (a chord to a path neighbour).
   Vec3 path_chord(const DrapeNode& a) const {
+    const auto it = path_pos_.find(static_cast<std::uint32_t>(&a - res_.nodes.data()));
+    if (it == path_pos_.end()) return res_.base_tangent;
     const auto& bp = res_.base_path;
-    const auto it = std::find(bp.begin(), bp.end(), static_cast<std::uint32_t>(&a - res_.nodes.data()));
-    if (it == bp.end()) return res_.base_tangent;
-    if (it + 1 != bp.end()) return res_.nodes[*(it + 1)].point - a.point;
-    if (it != bp.begin()) return a.point - res_.nodes[*(it - 1)].point;
+    const std::uint32_t k = it->second;
+    if (k + 1 < bp.size()) return res_.nodes[bp[k + 1]].point - a.point;
+    if (k > 0) return a.point - res_.nodes[bp[k - 1]].point;
     return res_.base_tangent;
   }
 
@@ -453,26 +497,22 @@ class Scanner {
       heap_.pop();
       if (++popped % kCancelEvery == 0 && cancelled_now()) break;
       if (opt_.progress && popped % kProgressEvery == 0) opt_.progress(res_.metrics.solves);
-      const NodeId qid = NodeId::regular(e.i, e.j);
-      const std::uint32_t qi = static_cast<std::uint32_t>(res_.index.find(qid));
+      const std::uint32_t qi = e.node;
+      const DrapeNode& qn = node(qi);
       // Known neighbours, weft and warp.
       struct Known {
         ThreadDir dir;
         const DrapeNode* n;
-        double rest;
       };
       Known known[4];
       int nk = 0;
-      for (int d = 0; d < 4; ++d) {
-        double rest = 0.0;
-        const auto dir = static_cast<ThreadDir>(d);
-        if (const DrapeNode* m = mapped_neighbour(qid, dir, &rest)) known[nk++] = {dir, m, rest};
-      }
-      const DrapeNode q = res_.nodes[qi];
+      for (int d = 0; d < 4; ++d)
+        if (const DrapeNode* m = mapped_nb(qn, static_cast<ThreadDir>(d)))
+          known[nk++] = {static_cast<ThreadDir>(d), m};
       SolveResult r;
       if (nk >= 2) {
         // Prefer a weft-warp pair whose cell's fourth corner is mapped, then any weft-warp
-        // pair, then two neighbours on one thread; ties by earlier mapping.
+        // pair, then two neighbours on one thread.
         int best_a = 0, best_b = 1, best_score = -1;
         for (int x = 0; x < nk; ++x) {
           for (int y = x + 1; y < nk; ++y) {
@@ -482,8 +522,9 @@ class Scanner {
               const DrapeNode* a = known[x].n;
               const DrapeNode* b = known[y].n;
               if (!a->id.is_path_only() && !b->id.is_path_only()) {
-                const DrapeNode* c = res_.find(NodeId::regular(a->id.i + b->id.i - qid.i, a->id.j + b->id.j - qid.j));
-                if (c && c->mapped()) score = 2;
+                const DrapeNode* c = mapped_nb(*a, known[y].dir);
+                if (c && c->id == NodeId::regular(a->id.i + b->id.i - qn.id.i, a->id.j + b->id.j - qn.id.j))
+                  score = 2;
               }
             }
             if (score > best_score) {
@@ -493,35 +534,31 @@ class Scanner {
             }
           }
         }
-        // Order the pair (weft first) so that guesses and branches are reproducible.
+        // Weft neighbour first, so that guesses and branches are reproducible.
         Known ka = known[best_a], kb = known[best_b];
         if (!is_weft(ka.dir) && is_weft(kb.dir)) std::swap(ka, kb);
-        r = solve_two(q, *ka.n, ka.dir, ka.rest, *kb.n, kb.dir, kb.rest);
+        r = solve_two(qn, *ka.n, ka.dir, res_.rest_length(qn, ka.dir), *kb.n, kb.dir,
+                      res_.rest_length(qn, kb.dir));
       } else if (nk == 1) {
-        r = solve_one(q, *known[0].n, known[0].dir, known[0].rest);
+        r = solve_one(qn, *known[0].n, known[0].dir, res_.rest_length(qn, known[0].dir));
       } else {
         r.reason = "no known neighbour";
       }
       resolve(qi, r);
-      if (res_.nodes[qi].mapped()) push_neighbours(qi);
+      if (node(qi).mapped()) push_neighbours(qi);
     }
-    if (!heap_.empty()) {
-      // Cancelled: whatever is still pending stays unresolved and is dropped.
-      while (!heap_.empty()) heap_.pop();
-    }
+    while (!heap_.empty()) heap_.pop();  // cancelled: pending nodes stay unresolved
   }
 
- public:
-  std::uint64_t path_off_ply_ = 0;
-
- private:
   const DrapeSurface& s_;
   Ply& ply_;
   const DrapeOptions& opt_;
   DrapeResult& res_;
   SolverSettings st_;
   std::priority_queue<FrontierEntry, std::vector<FrontierEntry>, FrontierLater> heap_;
+  std::unordered_map<std::uint32_t, std::uint32_t> path_pos_;  // node -> position on the path
   std::uint32_t order_ = 0;
+  std::uint64_t path_off_ply_ = 0;
   bool truncated_ = false, cancelled_ = false;
 };
 
@@ -534,8 +571,8 @@ void thread_angles(DrapeResult& res) {
   for (DrapeNode& n : res.nodes) {
     if (!n.mapped() || n.id.is_path_only()) continue;
     auto direction = [&](ThreadDir plus, Vec3& out) {
-      const DrapeNode* p = res.neighbour(n.id, plus);
-      const DrapeNode* m = res.neighbour(n.id, opposite(plus));
+      const DrapeNode* p = res.neighbour(n, plus);
+      const DrapeNode* m = res.neighbour(n, opposite(plus));
       const bool hp = p && p->mapped(), hm = m && m->mapped();
       if (hp && hm) out = p->point - m->point;
       else if (hp) out = p->point - n.point;
@@ -550,22 +587,16 @@ void thread_angles(DrapeResult& res) {
   }
 }
 
-// 2D and 3D area of the mapped cells. A cell the base path crosses is split by the path
-// into two convex parts, each counted if all its corners are mapped.
+// 2D and 3D area of the mapped cells (each part as a fan of triangles).
 void cell_areas(DrapeResult& res) {
   double a2 = 0.0, a3 = 0.0;
-  detail::for_each_touched_cell(res, [&](std::int32_t i, std::int32_t j) {
-    for (const auto& part : detail::cell_parts(*res.ply, i, j)) {
-      std::vector<const DrapeNode*> poly;
-      for (const NodeId& id : part) {
-        const DrapeNode* v = res.find(id);
-        if (!v || !v->mapped()) return;
-        poly.push_back(v);
-      }
-      for (std::size_t k = 1; k + 1 < poly.size(); ++k) {
-        a2 += tri_area2(poly[0]->ply, poly[k]->ply, poly[k + 1]->ply);
-        a3 += tri_area(poly[0]->point, poly[k]->point, poly[k + 1]->point);
-      }
+  for_each_mapped_cell(res, [&](std::int32_t, std::int32_t, const std::uint32_t* v, int n) {
+    const DrapeNode& o = res.nodes[v[0]];
+    for (int k = 1; k + 1 < n; ++k) {
+      const DrapeNode& b = res.nodes[v[k]];
+      const DrapeNode& c = res.nodes[v[k + 1]];
+      a2 += tri_area2(o.ply, b.ply, c.ply);
+      a3 += tri_area(o.point, b.point, c.point);
     }
   });
   res.metrics.flat_area = a2;
@@ -685,7 +716,7 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
   Scanner scanner(s, *mply, opt, res);
   scanner.run(t3);
   compute_metrics(s, res);
-  res.metrics.nodes.off_ply += scanner.path_off_ply_;
+  res.metrics.nodes.off_ply += scanner.path_off_ply();
   if (scanner.cancelled()) {
     res.partial = true;
     res.warnings.push_back("cancelled");

@@ -1,7 +1,7 @@
 #include <plyfit/kernel/flat_pattern.hpp>
 #include <plyfit/kernel/solvers.hpp>
 
-#include "cells.hpp"
+#include <plyfit/kernel/cells.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +14,9 @@ namespace plyfit {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+// A boundary segment shorter than this in 3D, relative to the face size, is a collapsed
+// edge (a pole).
+constexpr double kCollapsedRel = 1e-9;
 // Bisection steps for a boundary crossing along a cell edge (2^-60 of the edge), used where
 // the segment intersections disagree with contains() (a node on the boundary itself).
 constexpr int kCrossingBisections = 60;
@@ -26,6 +29,29 @@ constexpr double kVirtualExtensionSteps = 4.0;
 constexpr int kVirtualLayers = 2;
 // Cells of the grid index over boundary segments, per direction (at most).
 constexpr int kGridMax = 256;
+
+// Per boundary-loop vertex: does it lie on a collapsed edge (a segment of no 3D length, as
+// a pole's domain edge)? Such edges are no boundary of the face: crossings with them are
+// artefacts of the parametrisation and their vertices are no corners.
+std::vector<std::vector<bool>> collapsed_vertices(const DrapeSurface& s,
+                                                  const std::vector<std::vector<Vec2>>& loops,
+                                                  std::vector<std::vector<bool>>& segments) {
+  std::vector<std::vector<bool>> out;
+  segments.clear();
+  for (const auto& L : loops) {
+    const std::size_t n = L.size();
+    std::vector<bool> v(n, false), g(n, false);
+    for (std::size_t k = 0; k < n; ++k) {
+      const Vec2 a = L[k], b = L[(k + 1) % n];
+      const SurfaceEval1 ea = s.eval1(a), em = s.eval1(0.5 * (a + b)), eb = s.eval1(b);
+      const double len = (em.p - ea.p).norm() + (eb.p - em.p).norm();
+      if (ea.ok && em.ok && eb.ok && len <= kCollapsedRel * s.size()) g[k] = v[k] = v[(k + 1) % n] = true;
+    }
+    out.push_back(std::move(v));
+    segments.push_back(std::move(g));
+  }
+  return out;
+}
 
 // A vertex of the outline polygons: a node, an edge crossing or a boundary vertex.
 struct Vertex {
@@ -45,7 +71,8 @@ class BoundaryIndex {
     int loop, index;  // position in the boundary loops
   };
 
-  BoundaryIndex(const DrapeSurface& s, const std::vector<std::vector<Vec2>>& loops) {
+  BoundaryIndex(const DrapeSurface& s, const std::vector<std::vector<Vec2>>& loops,
+                const std::vector<std::vector<bool>>& collapsed) {
     const auto& d = s.domain();
     const bool cu = s.wrap(Vec2(d.u1 + 0.5 * d.width_u(), d.v0)).x() <= d.u1;
     const bool cv = s.wrap(Vec2(d.u0, d.v1 + 0.5 * d.width_v())).y() <= d.v1;
@@ -53,6 +80,7 @@ class BoundaryIndex {
     for (int l = 0; l < static_cast<int>(loops.size()); ++l) {
       const auto& L = loops[l];
       for (int k = 0; k < static_cast<int>(L.size()); ++k) {
+        if (collapsed[l][k]) continue;
         const Vec2 a = L[k], b = L[(k + 1) % L.size()];
         auto on = [](double x, double y, double e) { return std::abs(x - y) <= e; };
         if (cu && ((on(a.x(), d.u0, eu) && on(b.x(), d.u0, eu)) || (on(a.x(), d.u1, eu) && on(b.x(), d.u1, eu)))) continue;
@@ -129,7 +157,12 @@ class BoundaryIndex {
 class Builder {
  public:
   Builder(const DrapeSurface& s, const DrapeResult& r)
-      : s_(s), r_(r), ply_(*r.ply), loops_(s.boundary_loops()), index_(s, loops_) {
+      : s_(s),
+        r_(r),
+        ply_(*r.ply),
+        loops_(s.boundary_loops()),
+        collapsed_(collapsed_vertices(s, loops_, collapsed_segments_)),
+        index_(s, loops_, collapsed_segments_) {
     st_.spacing = ply_.d();
     st_.gamma_min = 0.0;
     st_.tol.extension_steps = kVirtualExtensionSteps;
@@ -139,7 +172,7 @@ class Builder {
     // Positions of the corners the drape did not reach, layer by layer.
     for (int layer = 0; layer < kVirtualLayers; ++layer) {
       std::vector<NodeId> todo;
-      detail::for_each_touched_cell(
+      for_each_touched_cell(
           r_,
           [&](std::int32_t i, std::int32_t j) {
             for (const NodeId& c : {NodeId::regular(i, j), NodeId::regular(i + 1, j),
@@ -149,10 +182,10 @@ class Builder {
           1);
       for (const NodeId& c : todo) solve_virtual(c);
     }
-    detail::for_each_touched_cell(
+    for_each_touched_cell(
         r_,
         [&](std::int32_t i, std::int32_t j) {
-          for (const auto& part : detail::cell_parts(ply_, i, j)) add_part(part);
+          for (const auto& part : cell_parts(ply_, i, j)) add_part(part);
         },
         1);
     FlatPattern fp;
@@ -426,6 +459,7 @@ class Builder {
       int k = dir > 0 ? (sx.second + 1) % n : sx.second;
       const int stop = dir > 0 ? (sy.second + 1) % n : sy.second;
       for (int guard = 0; guard <= n && k != stop; ++guard, k = (k + dir + n) % n) {
+        if (collapsed_[sx.first][k]) continue;
         const Vec2 p = uvw[0] + s_.delta(uvw[0], L[k]);
         if (!in_polygon(uvw, p)) {
           ok = false;
@@ -532,6 +566,8 @@ class Builder {
   const DrapeResult& r_;
   const Ply& ply_;
   std::vector<std::vector<Vec2>> loops_;
+  std::vector<std::vector<bool>> collapsed_segments_;  // per loop segment: collapsed
+  std::vector<std::vector<bool>> collapsed_;  // per loop vertex: on a collapsed edge
   BoundaryIndex index_;
   SolverSettings st_;
   std::vector<Vertex> verts_;

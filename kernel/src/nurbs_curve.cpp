@@ -24,7 +24,7 @@ Result<NurbsCurve<Dim>> NurbsCurve<Dim>::create(NurbsCurveData<Dim> data) {
     const double w = data.weights.empty() ? 1.0 : data.weights[k];
     if (!(w > 0.0 && std::isfinite(w)))
       return Error{"curve weight " + std::to_string(k) + " is not a positive finite number"};
-    for (int d = 0; d < Dim; ++d) c.hpoles_[k * (Dim + 1) + d] = w * data.poles[k][d];
+    for (int d = 0; d < Dim; ++d) c.hpoles_[k * (Dim + 1) + d] = data.poles[k][d];
     c.hpoles_[k * (Dim + 1) + Dim] = w;
   }
   c.t0_ = data.knots[data.degree];
@@ -41,11 +41,17 @@ CurveEval<Dim> NurbsCurve<Dim>::eval2(double t) const {
   const int s = detail::find_span(U, first_span_, last_span_, t);
   double N[3][detail::kMaxBasis];
   detail::ders_basis<2>(U, s, p, t, N);
+  // Homogeneous sums of (w (P - O), w) relative to the first pole O of the span, so that
+  // rounding stays proportional to the curve's size, not to its distance from the origin.
+  const double* O = &hpoles_[static_cast<size_t>(s - p) * (Dim + 1)];
   double h[3][Dim + 1] = {};
   for (int j = 0; j <= p; ++j) {
     const double* P = &hpoles_[static_cast<size_t>(s - p + j) * (Dim + 1)];
+    double H[Dim + 1];
+    for (int d = 0; d < Dim; ++d) H[d] = P[Dim] * (P[d] - O[d]);
+    H[Dim] = P[Dim];
     for (int k = 0; k < 3; ++k)
-      for (int d = 0; d <= Dim; ++d) h[k][d] += N[k][j] * P[d];
+      for (int d = 0; d <= Dim; ++d) h[k][d] += N[k][j] * H[d];
   }
   CurveEval<Dim> r;
   Point A0, A1, A2;
@@ -60,9 +66,10 @@ CurveEval<Dim> NurbsCurve<Dim>::eval2(double t) const {
     r.ok = false;
     return r;
   }
-  r.p = A0 / w;
-  r.d1 = (A1 - h[1][Dim] * r.p) / w;
-  r.d2 = (A2 - 2.0 * h[1][Dim] * r.d1 - h[2][Dim] * r.p) / w;
+  const Point rel = A0 / w;
+  r.d1 = (A1 - h[1][Dim] * rel) / w;
+  r.d2 = (A2 - 2.0 * h[1][Dim] * r.d1 - h[2][Dim] * rel) / w;
+  for (int d = 0; d < Dim; ++d) r.p[d] = rel[d] + O[d];
   return r;
 }
 

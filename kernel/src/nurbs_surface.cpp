@@ -35,18 +35,16 @@ Result<NurbsSurface> NurbsSurface::create(NurbsSurfaceData data, const Tolerance
   for (size_t k = 0; k < n; ++k) {
     const double w = d.weights.empty() ? 1.0 : d.weights[k];
     s.min_weight_ = (k == 0) ? w : std::min(s.min_weight_, w);
-    s.hpoles_[4 * k + 0] = w * d.poles[k].x();
-    s.hpoles_[4 * k + 1] = w * d.poles[k].y();
-    s.hpoles_[4 * k + 2] = w * d.poles[k].z();
+    s.hpoles_[4 * k + 0] = d.poles[k].x();
+    s.hpoles_[4 * k + 1] = d.poles[k].y();
+    s.hpoles_[4 * k + 2] = d.poles[k].z();
     s.hpoles_[4 * k + 3] = w;
     s.bbox_.add(d.poles[k]);
   }
   s.domain_ = {d.knots_u[d.degree_u], d.knots_u[d.count_u], d.knots_v[d.degree_v],
                d.knots_v[d.count_v]};
-  detail::span_range(d.knots_u.data(), d.count_u - 1, d.degree_u, s.first_span_u_,
-                     s.last_span_u_);
-  detail::span_range(d.knots_v.data(), d.count_v - 1, d.degree_v, s.first_span_v_,
-                     s.last_span_v_);
+  detail::span_range(d.knots_u.data(), d.count_u - 1, d.degree_u, s.first_span_u_, s.last_span_u_);
+  detail::span_range(d.knots_v.data(), d.count_v - 1, d.degree_v, s.first_span_v_, s.last_span_v_);
   const double size = std::max(s.bbox_.diagonal(), 1e-300);
   s.speed_u_ = size / s.domain_.width_u();
   s.speed_v_ = size / s.domain_.width_v();
@@ -55,17 +53,33 @@ Result<NurbsSurface> NurbsSurface::create(NurbsSurfaceData data, const Tolerance
   return s;
 }
 
-// out[c] = homogeneous derivative combination c: 0 S, 1 Su, 2 Sv, (ND=2) 3 Suu, 4 Suv, 5 Svv.
-template <int ND, bool Rational>
-void NurbsSurface::eval_homogeneous(double u, double v, double out[][4]) const {
-  const int p = data_.degree_u, q = data_.degree_v;
-  const double* U = data_.knots_u.data();
-  const double* V = data_.knots_v.data();
-  const int su = detail::find_span(U, first_span_u_, last_span_u_, u);
-  const int sv = detail::find_span(V, first_span_v_, last_span_v_, v);
+namespace {
+
+// What evaluation needs of a surface, so that the fixed-degree kernels below can be free
+// function templates.
+struct EvalView {
+  const double* U;
+  const double* V;
+  const double* poles;  // (x, y, z, w), stride 4
+  int p, q, count_v;
+  int first_u, last_u, first_v, last_v;
+};
+
+// out[c] = homogeneous derivative combination c: 0 S, 1 Su, 2 Sv, (ND=2) 3 Suu, 4 Suv, 5 Svv,
+// of the surface translated by -origin, where origin is the first pole of the span's
+// (p + 1) x (q + 1) window. Evaluating relative to a nearby pole keeps the rounding errors
+// proportional to the size of the patch rather than to its distance from the model origin
+// (derivatives are translation invariant, the point is origin + the relative point).
+// P, Q > 0 fix the degrees at compile time (fully unrolled loops, the same arithmetic in the
+// same order as the run-time degrees, hence the same bits); 0 means "run-time degree".
+template <int ND, bool Rational, int P, int Q>
+void eval_fixed(const EvalView& s, double u, double v, double out[][4], double origin[3]) {
+  const int p = (P > 0) ? P : s.p, q = (Q > 0) ? Q : s.q;
+  const int su = detail::find_span(s.U, s.first_u, s.last_u, u);
+  const int sv = detail::find_span(s.V, s.first_v, s.last_v, v);
   double Nu[ND + 1][detail::kMaxBasis], Nv[ND + 1][detail::kMaxBasis];
-  detail::ders_basis<ND>(U, su, p, u, Nu);
-  detail::ders_basis<ND>(V, sv, q, v, Nv);
+  detail::ders_basis<ND, P>(s.U, su, p, u, Nu);
+  detail::ders_basis<ND, Q>(s.V, sv, q, v, Nv);
   constexpr int W = Rational ? 4 : 3;
   constexpr int NC = (ND + 1) * (ND + 2) / 2;
   for (int c = 0; c < NC; ++c)
@@ -73,16 +87,29 @@ void NurbsSurface::eval_homogeneous(double u, double v, double out[][4]) const {
   if constexpr (!Rational) {
     for (int c = 0; c < NC; ++c) out[c][3] = (c == 0) ? 1.0 : 0.0;
   }
-  const int cv = data_.count_v;
+  const int cv = s.count_v;
+  const double* o = s.poles + 4 * (static_cast<size_t>(su - p) * cv + (sv - q));
+  const double ox = o[0], oy = o[1], oz = o[2];
+  origin[0] = ox;
+  origin[1] = oy;
+  origin[2] = oz;
   for (int i = 0; i <= p; ++i) {
-    // T[l] = sum_j Nv[l][j] * P(su - p + i, sv - q + j)
+    // T[l] = sum_j Nv[l][j] * H(su - p + i, sv - q + j), H = (w (P - origin), w)
     double T[ND + 1][4] = {};
-    const double* row = &hpoles_[4 * (static_cast<size_t>(su - p + i) * cv + (sv - q))];
+    const double* row = s.poles + 4 * (static_cast<size_t>(su - p + i) * cv + (sv - q));
     for (int j = 0; j <= q; ++j) {
-      const double* P = row + 4 * j;
+      const double* Pij = row + 4 * j;
+      double H[4] = {Pij[0] - ox, Pij[1] - oy, Pij[2] - oz, 1.0};
+      if constexpr (Rational) {
+        const double w = Pij[3];
+        H[0] *= w;
+        H[1] *= w;
+        H[2] *= w;
+        H[3] = w;
+      }
       for (int l = 0; l <= ND; ++l) {
         const double b = Nv[l][j];
-        for (int k = 0; k < W; ++k) T[l][k] += b * P[k];
+        for (int k = 0; k < W; ++k) T[l][k] += b * H[k];
       }
     }
     const double a0 = Nu[0][i];
@@ -101,32 +128,72 @@ void NurbsSurface::eval_homogeneous(double u, double v, double out[][4]) const {
   }
 }
 
+}  // namespace
+
+template <int ND, bool Rational>
+void NurbsSurface::eval_homogeneous(double u, double v, double out[][4], double origin[3]) const {
+  const EvalView s{data_.knots_u.data(), data_.knots_v.data(), hpoles_.data(), data_.degree_u,
+                   data_.degree_v,       data_.count_v,        first_span_u_,  last_span_u_,
+                   first_span_v_,        last_span_v_};
+  // Fixed-degree kernels for the degrees CAD surfaces mostly have (planes, ruled and
+  // extruded surfaces, quadrics and tori, bicubic and biquintic free forms).
+  constexpr auto key = [](int p, int q) { return p * 32 + q; };
+  switch (key(s.p, s.q)) {
+    case key(1, 1):
+      return eval_fixed<ND, Rational, 1, 1>(s, u, v, out, origin);
+    case key(1, 2):
+      return eval_fixed<ND, Rational, 1, 2>(s, u, v, out, origin);
+    case key(1, 3):
+      return eval_fixed<ND, Rational, 1, 3>(s, u, v, out, origin);
+    case key(2, 1):
+      return eval_fixed<ND, Rational, 2, 1>(s, u, v, out, origin);
+    case key(2, 2):
+      return eval_fixed<ND, Rational, 2, 2>(s, u, v, out, origin);
+    case key(2, 3):
+      return eval_fixed<ND, Rational, 2, 3>(s, u, v, out, origin);
+    case key(3, 1):
+      return eval_fixed<ND, Rational, 3, 1>(s, u, v, out, origin);
+    case key(3, 2):
+      return eval_fixed<ND, Rational, 3, 2>(s, u, v, out, origin);
+    case key(3, 3):
+      return eval_fixed<ND, Rational, 3, 3>(s, u, v, out, origin);
+    case key(4, 4):
+      return eval_fixed<ND, Rational, 4, 4>(s, u, v, out, origin);
+    case key(5, 5):
+      return eval_fixed<ND, Rational, 5, 5>(s, u, v, out, origin);
+    default:
+      return eval_fixed<ND, Rational, 0, 0>(s, u, v, out, origin);
+  }
+}
+
 namespace {
-inline Vec3 xyz(const double* h) { return Vec3(h[0], h[1], h[2]); }
+inline Vec3 xyz(const double* h) {
+  return Vec3(h[0], h[1], h[2]);
+}
 }  // namespace
 
 Vec3 NurbsSurface::point(double u, double v) const {
-  double h[1][4];
+  double h[1][4], o[3];
   if (rational()) {
-    eval_homogeneous<0, true>(u, v, h);
+    eval_homogeneous<0, true>(u, v, h, o);
     if (!(h[0][3] > min_weight_)) return Vec3::Zero();
-    return xyz(h[0]) / h[0][3];
+    return xyz(h[0]) / h[0][3] + xyz(o);
   }
-  eval_homogeneous<0, false>(u, v, h);
-  return xyz(h[0]);
+  eval_homogeneous<0, false>(u, v, h, o);
+  return xyz(h[0]) + xyz(o);
 }
 
 SurfaceEval1 NurbsSurface::eval1(double u, double v) const {
-  double h[3][4];
+  double h[3][4], o[3];
   SurfaceEval1 r;
   if (!rational()) {
-    eval_homogeneous<1, false>(u, v, h);
-    r.p = xyz(h[0]);
+    eval_homogeneous<1, false>(u, v, h, o);
+    r.p = xyz(h[0]) + xyz(o);
     r.du = xyz(h[1]);
     r.dv = xyz(h[2]);
     return r;
   }
-  eval_homogeneous<1, true>(u, v, h);
+  eval_homogeneous<1, true>(u, v, h, o);
   const double w = h[0][3];
   if (!(w > min_weight_)) {
     r.p = r.du = r.dv = Vec3::Zero();
@@ -134,18 +201,19 @@ SurfaceEval1 NurbsSurface::eval1(double u, double v) const {
     return r;
   }
   const double iw = 1.0 / w;
-  r.p = xyz(h[0]) * iw;
-  r.du = (xyz(h[1]) - h[1][3] * r.p) * iw;
-  r.dv = (xyz(h[2]) - h[2][3] * r.p) * iw;
+  const Vec3 p = xyz(h[0]) * iw;  // relative to the origin pole
+  r.du = (xyz(h[1]) - h[1][3] * p) * iw;
+  r.dv = (xyz(h[2]) - h[2][3] * p) * iw;
+  r.p = p + xyz(o);
   return r;
 }
 
 SurfaceEval2 NurbsSurface::eval2(double u, double v) const {
-  double h[6][4];
+  double h[6][4], o[3];
   SurfaceEval2 r;
   if (!rational()) {
-    eval_homogeneous<2, false>(u, v, h);
-    r.p = xyz(h[0]);
+    eval_homogeneous<2, false>(u, v, h, o);
+    r.p = xyz(h[0]) + xyz(o);
     r.du = xyz(h[1]);
     r.dv = xyz(h[2]);
     r.duu = xyz(h[3]);
@@ -153,22 +221,24 @@ SurfaceEval2 NurbsSurface::eval2(double u, double v) const {
     r.dvv = xyz(h[5]);
     return r;
   }
-  eval_homogeneous<2, true>(u, v, h);
+  eval_homogeneous<2, true>(u, v, h, o);
   const double w = h[0][3];
   if (!(w > min_weight_)) {
     r.p = r.du = r.dv = r.duu = r.duv = r.dvv = Vec3::Zero();
     r.ok = false;
     return r;
   }
-  // Quotient rule on homogeneous derivatives (The NURBS Book, A4.4).
+  // Quotient rule on homogeneous derivatives (The NURBS Book, A4.4), relative to the origin
+  // pole.
   const double iw = 1.0 / w;
   const double wu = h[1][3], wv = h[2][3], wuu = h[3][3], wuv = h[4][3], wvv = h[5][3];
-  r.p = xyz(h[0]) * iw;
-  r.du = (xyz(h[1]) - wu * r.p) * iw;
-  r.dv = (xyz(h[2]) - wv * r.p) * iw;
-  r.duu = (xyz(h[3]) - 2.0 * wu * r.du - wuu * r.p) * iw;
-  r.duv = (xyz(h[4]) - wu * r.dv - wv * r.du - wuv * r.p) * iw;
-  r.dvv = (xyz(h[5]) - 2.0 * wv * r.dv - wvv * r.p) * iw;
+  const Vec3 p = xyz(h[0]) * iw;
+  r.du = (xyz(h[1]) - wu * p) * iw;
+  r.dv = (xyz(h[2]) - wv * p) * iw;
+  r.duu = (xyz(h[3]) - 2.0 * wu * r.du - wuu * p) * iw;
+  r.duv = (xyz(h[4]) - wu * r.dv - wv * r.du - wuv * p) * iw;
+  r.dvv = (xyz(h[5]) - 2.0 * wv * r.dv - wvv * p) * iw;
+  r.p = p + xyz(o);
   return r;
 }
 

@@ -161,6 +161,13 @@ TEST_CASE("flat pattern: the paper's sphere cases give one simple outline") {
                                     {Vec3(0, 1, 0)});
   REQUIRE(fp.outline.size() == 1);
   check_loops(fp);
+  // The pole (the start) is a right-angled corner of the pattern: the base path along x and
+  // warp thread 0 along y bound it; nothing pokes past them (the pole's collapsed domain
+  // edge is no boundary).
+  for (const Vec2& p : fp.outline[0].points) {
+    CHECK(p.x() >= -1e-9);
+    CHECK(p.y() >= -1e-9);
+  }
   // The cloth that covers the octant is larger than the octant's area (shear shrinks cells
   // on the surface) but not larger than the staircase plus one ring of cells.
   CHECK(fp.area > f.area());

@@ -39,6 +39,10 @@ struct DrapeNode {
   Vec3 point = Vec3::Zero();  ///< 3D position (mapped, or extended, else zero)
   Vec2 uv = Vec2::Zero();     ///< surface parameters
   Vec2 ply = Vec2::Zero();    ///< ply coordinates
+  /// Index in DrapeResult::nodes of the node across the thread link in each ThreadDir
+  /// (+x, -x, +y, -y), or -1 if that node was never reached. A link split by the base path
+  /// leads to the path node on it.
+  std::int32_t nb[4] = {-1, -1, -1, -1};
   NodeId id;
   NodeStatus status = NodeStatus::kPending;
   std::uint8_t flags = 0;
@@ -48,7 +52,9 @@ struct DrapeNode {
   bool has(std::uint8_t f) const { return (flags & f) != 0; }
 };
 
-/// Map from NodeId to node index: open addressing, memory linear in the nodes reached.
+/// Map from NodeId to node index. Regular nodes live in a sparse grid of dense 32 x 32
+/// blocks (neighbours share a block; a few bytes per node), path-only nodes in a small hash;
+/// memory grows with the nodes reached, never with the size of the ply.
 class NodeIndex {
  public:
   /// Index of `id`, or -1.
@@ -56,19 +62,28 @@ class NodeIndex {
   /// Inserts id -> index (id must be absent).
   void insert(const NodeId& id, std::uint32_t index);
   std::size_t size() const { return size_; }
-  std::size_t memory_bytes() const { return slots_.size() * sizeof(Slot); }
+  std::size_t memory_bytes() const;
 
  private:
+  static constexpr int kBlockBits = 5;
+  static constexpr int kBlock = 1 << kBlockBits;  // 32 x 32 nodes per block
   struct Slot {
-    std::uint64_t key = kEmpty;
-    std::uint32_t value = 0;
+    std::uint64_t key;
+    std::uint32_t value;
   };
   // The key of NodeId::path(INT32_MIN): no node has it (path indices stay within
   // +-Ply::kMaxPathNodes). (All ones would be the key of regular node (-1, -1).)
   static constexpr std::uint64_t kEmpty = (std::uint64_t{0x7fffffff} << 32) | 0x80000000u;
-  void grow();
-  std::vector<Slot> slots_;
+  static std::int64_t probe(const std::vector<Slot>& slots, std::uint64_t key);
+  static void put(std::vector<Slot>& slots, std::size_t& count, std::uint64_t key, std::uint32_t value);
+  std::vector<Slot> blocks_;            // block key -> block number
+  std::size_t block_count_ = 0;
+  std::vector<std::int32_t> cells_;     // kBlock^2 entries per block, -1 = absent
+  std::vector<Slot> path_;              // path-only node key -> index
+  std::size_t path_count_ = 0;
   std::size_t size_ = 0;
+  mutable std::uint64_t last_key_ = kEmpty;  // one-entry cache of the last block looked up
+  mutable std::int64_t last_block_ = -1;
 };
 
 /// A link between two nodes.
@@ -162,6 +177,14 @@ struct DrapeResult {
   }
   /// The node across the thread link from `id` in direction dir, if reached.
   const DrapeNode* neighbour(const NodeId& id, ThreadDir dir) const;
+  /// The node across the thread link from node n in direction dir, if reached.
+  const DrapeNode* neighbour(const DrapeNode& n, ThreadDir dir) const {
+    const std::int32_t k = n.nb[static_cast<int>(dir)];
+    return k < 0 ? nullptr : &nodes[static_cast<std::size_t>(k)];
+  }
+  /// Rest length of the thread link from node n in direction dir (the split length if the
+  /// base path cuts that link).
+  double rest_length(const DrapeNode& n, ThreadDir dir) const;
   /// Every link between two mapped nodes (thread links, split at the base path, and the
   /// base path's own links), each once.
   std::vector<DrapeLink> links() const;

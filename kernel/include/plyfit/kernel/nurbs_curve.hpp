@@ -50,7 +50,7 @@ class NurbsCurve {
  private:
   NurbsCurve() = default;
   NurbsCurveData<Dim> data_;
-  std::vector<double> hpoles_;  // stride Dim + 1
+  std::vector<double> hpoles_;  // poles and weights (x, y[, z], w), stride Dim + 1
   double t0_ = 0.0, t1_ = 1.0;
   int first_span_ = 0, last_span_ = 0;
 };

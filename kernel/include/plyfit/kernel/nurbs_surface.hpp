@@ -89,10 +89,10 @@ class NurbsSurface {
  private:
   NurbsSurface() = default;
   template <int ND, bool Rational>
-  void eval_homogeneous(double u, double v, double out[][4]) const;
+  void eval_homogeneous(double u, double v, double out[][4], double origin[3]) const;
 
   NurbsSurfaceData data_;
-  std::vector<double> hpoles_;  // homogeneous poles (w x, w y, w z, w), stride 4
+  std::vector<double> hpoles_;  // poles and weights (x, y, z, w), stride 4
   ParamDomain domain_;
   BBox3 bbox_;
   int first_span_u_ = 0, last_span_u_ = 0, first_span_v_ = 0, last_span_v_ = 0;

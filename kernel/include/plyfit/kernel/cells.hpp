@@ -1,0 +1,59 @@
+#pragma once
+/// \file Cells of the ply and their parts: the base path splits the cells it crosses into two
+/// convex parts. One enumeration serves the drape's areas, the flat pattern and the writers.
+
+#include <plyfit/kernel/drape.hpp>
+#include <plyfit/kernel/ply.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <unordered_set>
+#include <vector>
+
+namespace plyfit {
+
+/// The parts of cell (i, j) (lower-left corner (i, j)): convex polygons of node ids,
+/// counter-clockwise in ply coordinates; one part for a cell the path does not cross, two
+/// for one it crosses. Empty if a path node splitting an edge was never generated.
+std::vector<std::vector<NodeId>> cell_parts(const Ply& ply, std::int32_t i, std::int32_t j);
+
+/// Calls f(i, j, nodes, n) for every mapped cell part (all its nodes mapped): the quadrangles
+/// of four mapped regular nodes (nodes counter-clockwise from (i, j)) and the mapped parts of
+/// the cells the path crosses. No allocation per cell.
+void for_each_mapped_cell(
+    const DrapeResult& r,
+    const std::function<void(std::int32_t i, std::int32_t j, const std::uint32_t* nodes, int n)>& f);
+
+/// A mapped cell part: its cell (lower-left regular node (i, j)) and its nodes (indices into
+/// DrapeResult::nodes, counter-clockwise).
+struct MappedCell {
+  std::int32_t i = 0, j = 0;
+  std::vector<std::uint32_t> nodes;
+};
+/// Every mapped cell part, row by row (j, then i), parts of one cell in cell_parts order.
+std::vector<MappedCell> mapped_cells(const DrapeResult& r);
+
+/// Calls f(i, j) once for every cell within `ring` cells of a mapped node: ring 0 gives the
+/// cells having a mapped regular node as a corner (and those a mapped path-only node lies
+/// on), ring 1 one more layer around them. Cells are visited in the order of the nodes.
+template <class F>
+void for_each_touched_cell(const DrapeResult& res, F&& f, int ring = 0) {
+  std::unordered_set<std::uint64_t> seen;
+  auto visit = [&](std::int32_t i, std::int32_t j) {
+    if (seen.insert(NodeId::regular(i, j).key()).second) f(i, j);
+  };
+  const double dx = res.ply->spec().d_weft, dy = res.ply->spec().d_warp;
+  for (const DrapeNode& n : res.nodes) {
+    if (!n.mapped()) continue;
+    std::int32_t i = n.id.i, j = n.id.j;
+    if (n.id.is_path_only()) {
+      i = static_cast<std::int32_t>(std::floor(n.ply.x() / dx));
+      j = static_cast<std::int32_t>(std::floor(n.ply.y() / dy));
+    }
+    for (int a = -1 - ring; a <= ring; ++a)
+      for (int b = -1 - ring; b <= ring; ++b) visit(i + a, j + b);
+  }
+}
+
+}  // namespace plyfit
