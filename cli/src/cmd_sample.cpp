@@ -37,7 +37,7 @@ int run_sample(const std::vector<std::string>& args) {
   }
   if (vm.count("help")) {
     std::cout << "Writes a built-in mold as a one-face STEP or IGES file (exact NURBS, the face\n"
-                 "normal as plyfit's, 16 significant digits, a fixed header time stamp so that\n"
+                 "normal as plyfit's, 17 significant digits, a fixed header time stamp so that\n"
                  "the bytes depend only on the inputs).\n\n"
               << opts << "\nbuilt-in molds (see plyfit drape --help for their parameters):";
     for (const auto& b : builtin_molds()) std::cout << " " << b.name;

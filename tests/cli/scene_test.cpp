@@ -171,3 +171,36 @@ TEST_CASE("cli: a dumped scene loads back to the same job") {
   CHECK(r.code == 0);
   CHECK(r.out.find("output =") == std::string::npos);
 }
+
+TEST_CASE("cli: plyfit sample writes a named mold file, with exit codes for bad input") {
+  Scratch tmp("sample_cli");
+  CliRun r =
+      plyfit_run("sample saddle:size=30 --name 'my saddle' -o '" + tmp.file("s.igs") + "'", tmp);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.out.empty());
+  r = plyfit_run("info --json '" + tmp.file("s.igs") + "'", tmp);
+  REQUIRE(r.code == 0);
+  const json info = json::parse(r.out);
+  REQUIRE(info["faces"].size() == 1);
+  CHECK(info["faces"][0]["name"] == "my saddle");
+  CHECK(info["faces"][0]["reversed"] == false);
+  // --format overrides the extension.
+  r = plyfit_run("sample cone --format step -o '" + tmp.file("c.dat") + "'", tmp);
+  REQUIRE(r.code == 0);
+  CHECK(slurp(tmp.file("c.dat")).rfind("ISO-10303-21;", 0) == 0);
+  // Bad command lines exit 2, a failed write 1; each with one line and no file left behind.
+  for (const auto& [args, code] : std::vector<std::pair<std::string, int>>{
+           {"sample wave -o '" + tmp.file("w.obj") + "'", 2},
+           {"sample nope -o '" + tmp.file("n.step") + "'", 2},
+           {"sample wave:n=2 -o '" + tmp.file("n.step") + "'", 2},
+           {"sample wave", 2},
+           {"sample wave -o '" + tmp.file("no/such/folder/w.step") + "'", 1}}) {
+    INFO(args);
+    r = plyfit_run(args, tmp);
+    CHECK(r.code == code);
+    CHECK(lines(r.err) == 1);
+  }
+  CHECK_FALSE(std::filesystem::exists(tmp.file("w.obj")));
+  CHECK_FALSE(std::filesystem::exists(tmp.file("n.step")));
+}
