@@ -156,7 +156,7 @@ int run_drape(const std::vector<std::string>& args_in) {
   std::cout << "plyfit: " << out->status << ": " << m.nodes.mapped << " nodes mapped ("
             << m.nodes.auxiliary << " auxiliary base-path points), " << m.nodes.outside << " outside, "
             << m.nodes.off_ply << " off the ply, " << m.nodes.shear_limit << " at the shear limit, "
-            << m.nodes.failed << " failed; max shear " << out->shear_max_deg << " deg; "
+            << m.nodes.failed << " failed, " << m.nodes.overlap << " overlapping; max shear " << out->shear_max_deg << " deg; "
             << static_cast<long>(out->total_ms) << " ms -> " << job->outdir << "\n";
   return finish(kExitOk, *out);
 }

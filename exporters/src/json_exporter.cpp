@@ -68,7 +68,7 @@ std::string report_json(const ExportContext& ctx) {
                 {"auxiliary", m.nodes.auxiliary},
                 {"outside", m.nodes.outside},
                 {"off_ply", m.nodes.off_ply},
-                {"shear_limit", m.nodes.shear_limit},
+                {"shear_limit", m.nodes.shear_limit}, {"overlap", m.nodes.overlap},
                 {"failed", m.nodes.failed},
                 {"with_angle", m.angles}};
   j["area_mesh_points"] = m.area_mesh_points;

@@ -382,3 +382,49 @@ TEST_CASE("drape: bad initial conditions are errors that say why") {
   bad.sweeps = {Vec3(0, 1, 0), Vec3(0, 1, 0)};
   CHECK_THAT(drape(f, bad).error().message, Catch::Contains("two sides"));
 }
+
+TEST_CASE("drape: a closed plane section or a closed face never wraps the cloth onto itself") {
+  // No two mapped nodes lie on the same spot of the mold unless they are neighbours on the
+  // ply: checked over all pairs, independently of the drape's own grid.
+  auto check_single_cover = [](const DrapeResult& r) {
+    std::vector<const DrapeNode*> m;
+    for (const auto& n : r.nodes)
+      if (n.mapped()) m.push_back(&n);
+    const double d = r.ply->d();
+    int doubled = 0;
+    for (std::size_t a = 0; a < m.size(); ++a)
+      for (std::size_t b = a + 1; b < m.size(); ++b)
+        if ((m[a]->ply - m[b]->ply).norm() >= 2 * d && (m[a]->point - m[b]->point).norm() < 0.5 * d)
+          ++doubled;
+    CHECK(doubled == 0);
+  };
+  SECTION("the base plane cuts a hemisphere in a circle; the ply is unbounded") {
+    const Face f = builtin("hemisphere", {{"R", 10}});
+    const DrapeResult r = run(f, problem(1.0, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)},
+                                         Vec3(8, 0, 6), Vec3(0, 0, 1), {Vec3(0, 0, 1), Vec3(0, 0, -1)}));
+    CHECK(r.metrics.nodes.overlap > 0);
+    CHECK(r.metrics.nodes.mapped < 2000);  // one hemisphere's worth, not a runaway
+    // The base path goes round once: about 2 pi * 8 / d links.
+    CHECK(r.base_path.size() <= static_cast<std::size_t>(2 * kPi * 8) + 2);
+    check_single_cover(r);
+  }
+  SECTION("a full cylinder, base path along the axis, swept both ways round") {
+    const Face f = builtin("cylinder", {{"R", 10}, {"H", 30}, {"angle", 360}});
+    const DrapeResult r = run(f, problem(1.0, Vec2(0, 0), Vec2(0, 1), {Vec2(1, 0), Vec2(-1, 0)},
+                                         Vec3(10, 0, 15), Vec3(0, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)}));
+    CHECK(r.metrics.nodes.overlap > 0);
+    CHECK(r.metrics.nodes.failed == 0);
+    CHECK(r.metrics.surface_area > 0.95 * f.area());
+    CHECK(r.metrics.surface_area <= f.area() * (1 + 1e-9));
+    check_single_cover(r);
+  }
+  SECTION("the node cap bounds the base path too") {
+    const Face f = builtin("hemisphere", {{"R", 10}});
+    DrapeOptions opt;
+    opt.max_nodes = 20;
+    const DrapeResult r = run(f, problem(0.1, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)}, Vec3(8, 0, 6),
+                                         Vec3(0, 0, 1), {Vec3(0, 0, 1)}), opt);
+    CHECK(r.partial);
+    CHECK(r.nodes.size() <= 20);
+  }
+}
