@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <random>
 
 using namespace plyfit;
 
@@ -426,5 +427,24 @@ TEST_CASE("drape: a closed plane section or a closed face never wraps the cloth 
                                          Vec3(0, 0, 1), {Vec3(0, 0, 1)}), opt);
     CHECK(r.partial);
     CHECK(r.nodes.size() <= 20);
+  }
+}
+
+TEST_CASE("drape: a pole start is robust to the last digit of the poles") {
+  // Found with the STEP samples: poles written with 16 digits made the first backward step
+  // from the pole (straight off the octant) fail or not depending on rounding. A step that no
+  // direction of the pole's fan can take leaves the face at once.
+  std::mt19937_64 gen(1);
+  for (int trial = 0; trial < 20; ++trial) {
+    FaceData fd = builtin_mold("sphere-octant", {}).value();
+    for (auto& p : fd.surface.poles)
+      for (int k = 0; k < 3; ++k) p[k] *= 1.0 + (static_cast<double>(gen() % 3) - 1.0) * 1e-16;
+    const Face f = Face::create(fd).value();
+    const DrapeResult r = run(f, problem(1.0, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)}, Vec3(0, 0, 20),
+                                         Vec3(0, 1, 0), {Vec3(0, 1, 0)}));
+    INFO("trial " << trial);
+    CHECK(r.metrics.nodes.failed == 0);
+    CHECK(r.metrics.nodes.mapped == 716);
+    CHECK(r.metrics.nodes.outside == 73);
   }
 }
