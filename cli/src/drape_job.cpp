@@ -430,13 +430,12 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
     io.tolerances = job.drape.tol;
     auto file = importers::open_mold(job.mold, io);
     if (!file) return file.error();
-    const Mold& mold = (*file)->mold();
-    if (job.face < 0 || job.face >= static_cast<int>(mold.faces.size()))
-      return Error{job.mold + ": face " + std::to_string(job.face) + " out of range (the file has " +
-                   std::to_string(mold.faces.size()) + " faces, 0.." + std::to_string(mold.faces.size() - 1) + ")"};
-    run.face_info = mold.faces[job.face];
-    run.mold_unit = mold.unit;
-    run.warnings = mold.warnings;
+    // Only this face is described and converted: the others are never listed.
+    auto info = (*file)->describe(job.face);
+    if (!info) return info.error();
+    run.face_info = *info;
+    run.mold_unit = (*file)->summary().unit;
+    run.warnings = (*file)->summary().warnings;
     auto fd = (*file)->convert_face(job.face);
     if (!fd) return fd.error();
     data = std::move(fd).value();

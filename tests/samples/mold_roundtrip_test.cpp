@@ -13,6 +13,7 @@
 #include "test_util.hpp"
 
 #include <unistd.h>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -142,4 +143,27 @@ TEST_CASE("samples: the mold writer refuses what it cannot write, naming the fil
   int entries = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(tmp.dir)) ++entries;
   CHECK(entries == 2);
+}
+
+TEST_CASE("samples: the listed face areas are the exact areas of the analytic samples") {
+  // plyfit info's area (OpenCASCADE's adaptive integration) against closed forms.
+  constexpr double kPi = 3.14159265358979323846;
+  constexpr double kAreaRel = 1e-9;  // the integration reaches ~2e-10 on these faces
+  const double L = std::hypot(20.0 - 10.0, 15.0);  // cone slant length (r0 20, r1 10, H 15)
+  const std::vector<std::pair<std::string, double>> exact = {
+      {"sphere-octant", 4 * kPi * 20 * 20 / 8},          // R = 20
+      {"hemisphere", 2 * kPi},                             // R = 1
+      {"cylinder-sector", 10 * (kPi / 2) * 20},            // R 10, 90 degrees, H 20
+      {"cone-sector", (kPi / 2) * (20 + 10) / 2 * L},      // lateral area of a frustum quarter
+  };
+  for (const auto& [stem, area] : exact) {
+    for (const char* ext : {".step", ".igs"}) {
+      const std::string path = std::string(PLYFIT_SOURCE_DIR) + "/samples/molds/" + stem + ext;
+      auto file = importers::open_mold(path);
+      REQUIRE(file.ok());
+      INFO(path);
+      REQUIRE((*file)->mold().faces.size() == 1);
+      CHECK((*file)->mold().faces[0].area == Approx(area).epsilon(kAreaRel));
+    }
+  }
 }
