@@ -409,6 +409,8 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   run.tolerance_rel = job.tolerance_rel;
   run.max_iterations = job.max_iterations;
   run.lock_angle_deg = job.lock_angle_deg;
+  run.guess = job.drape.guess == GuessRule::kPaper ? "paper" : "parallelogram";
+  run.max_nodes = job.drape.max_nodes;
   run.ply_name = job.ply_name;
   run.material = job.material;
   run.outputs = job.outputs;
