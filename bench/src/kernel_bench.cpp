@@ -5,6 +5,7 @@
 #include <plyfit/kernel/nurbs_surface.hpp>
 
 #include "bench.hpp"
+#include "occt_geometry.hpp"
 
 #include <GeomAdaptor_Surface.hxx>
 #include <Geom_BSplineSurface.hxx>
@@ -25,6 +26,8 @@
 
 namespace plyfit::bench {
 namespace {
+
+using plyfit::occt::to_occt;
 
 /// Evaluations per timed run, and timed runs per method (medians are reported).
 constexpr int kEvaluations = 200000;
@@ -68,43 +71,6 @@ NurbsSurfaceData make_surface(std::mt19937_64& g, int degree, bool rational) {
       if (rational) d.weights.push_back(0.5 + 0.75 * (1.0 + jitter(g)));
     }
   return d;
-}
-
-Handle(Geom_BSplineSurface) to_occt(const NurbsSurfaceData& d) {
-  auto compress = [](const std::vector<double>& flat, TColStd_Array1OfReal& knots,
-                     TColStd_Array1OfInteger& mults) {
-    std::vector<double> k;
-    std::vector<int> m;
-    for (double x : flat) {
-      if (!k.empty() && x == k.back()) {
-        ++m.back();
-      } else {
-        k.push_back(x);
-        m.push_back(1);
-      }
-    }
-    knots.Resize(1, static_cast<int>(k.size()), false);
-    mults.Resize(1, static_cast<int>(k.size()), false);
-    for (size_t i = 0; i < k.size(); ++i) {
-      knots(static_cast<int>(i) + 1) = k[i];
-      mults(static_cast<int>(i) + 1) = m[i];
-    }
-  };
-  TColStd_Array1OfReal uk(1, 1), vk(1, 1);
-  TColStd_Array1OfInteger um(1, 1), vm(1, 1);
-  compress(d.knots_u, uk, um);
-  compress(d.knots_v, vk, vm);
-  TColgp_Array2OfPnt poles(1, d.count_u, 1, d.count_v);
-  TColStd_Array2OfReal w(1, d.count_u, 1, d.count_v);
-  for (int i = 0; i < d.count_u; ++i)
-    for (int j = 0; j < d.count_v; ++j) {
-      const Vec3& p = d.pole(i, j);
-      poles(i + 1, j + 1) = gp_Pnt(p.x(), p.y(), p.z());
-      w(i + 1, j + 1) = d.weight(i, j);
-    }
-  if (d.weights.empty())
-    return new Geom_BSplineSurface(poles, uk, vk, um, vm, d.degree_u, d.degree_v);
-  return new Geom_BSplineSurface(poles, w, uk, vk, um, vm, d.degree_u, d.degree_v);
 }
 
 Vec3 v3(const gp_XYZ& p) {

@@ -4,6 +4,7 @@
 
 #include <plyfit/exporters/atomic_file.hpp>
 #include <plyfit/exporters/mold_writer.hpp>
+#include "occt_geometry.hpp"
 #include <plyfit/kernel/nurbs_surface.hpp>
 
 #include <APIHeaderSection_MakeHeader.hxx>
@@ -47,6 +48,7 @@
 namespace plyfit::exporters {
 
 namespace {
+using occt::to_occt;
 
 /// printf format of every real in the written files: 17 significant digits, so that every
 /// double reads back bit for bit. At most 23 characters while the exponent has two digits,
@@ -60,45 +62,6 @@ constexpr double kLargestWritten = 1e99;
 
 Handle(TCollection_HAsciiString) hstr(const std::string& s) {
   return new TCollection_HAsciiString(s.c_str());
-}
-
-// Flat knot vector -> distinct knots and multiplicities (1-based OCCT arrays).
-void split_knots(const std::vector<double>& flat, TColStd_Array1OfReal& knots,
-                 TColStd_Array1OfInteger& mults) {
-  std::vector<double> k;
-  std::vector<int> m;
-  for (double x : flat) {
-    if (!k.empty() && x == k.back()) {
-      ++m.back();
-    } else {
-      k.push_back(x);
-      m.push_back(1);
-    }
-  }
-  knots.Resize(1, static_cast<int>(k.size()), false);
-  mults.Resize(1, static_cast<int>(m.size()), false);
-  for (size_t i = 0; i < k.size(); ++i) {
-    knots(static_cast<int>(i) + 1) = k[i];
-    mults(static_cast<int>(i) + 1) = m[i];
-  }
-}
-
-Handle(Geom_BSplineSurface) to_occt(const NurbsSurfaceData& d) {
-  TColgp_Array2OfPnt poles(1, d.count_u, 1, d.count_v);
-  TColStd_Array2OfReal weights(1, d.count_u, 1, d.count_v);
-  for (int i = 0; i < d.count_u; ++i)
-    for (int j = 0; j < d.count_v; ++j) {
-      const Vec3& p = d.pole(i, j);
-      poles(i + 1, j + 1) = gp_Pnt(p.x(), p.y(), p.z());
-      weights(i + 1, j + 1) = d.weight(i, j);
-    }
-  TColStd_Array1OfReal ku(1, 1), kv(1, 1);
-  TColStd_Array1OfInteger mu(1, 1), mv(1, 1);
-  split_knots(d.knots_u, ku, mu);
-  split_knots(d.knots_v, kv, mv);
-  if (d.weights.empty())
-    return new Geom_BSplineSurface(poles, ku, kv, mu, mv, d.degree_u, d.degree_v);
-  return new Geom_BSplineSurface(poles, weights, ku, kv, mu, mv, d.degree_u, d.degree_v);
 }
 
 // "2000-01-01T00:00:00" -> IGES "20000101.000000" (digits kept in order).

@@ -4,6 +4,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "support/problems.hpp"
+
 #include "test_util.hpp"
 
 #include <cmath>
@@ -43,18 +45,7 @@ double max_shear(const DrapeResult& r) {
   return m;
 }
 
-DrapeProblem problem(double d, Vec2 s2, Vec2 b2, std::vector<Vec2> w2, Vec3 s3, Vec3 bn,
-                     std::vector<Vec3> w3) {
-  DrapeProblem pb;
-  pb.ply.d_weft = pb.ply.d_warp = d;
-  pb.ply.start = s2;
-  pb.ply.base_dir = b2;
-  pb.ply.sweeps = std::move(w2);
-  pb.start = s3;
-  pb.base_normal = bn;
-  pb.sweeps = std::move(w3);
-  return pb;
-}
+using support::problem;
 
 }  // namespace
 
