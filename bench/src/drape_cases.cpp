@@ -47,19 +47,6 @@ Result<FacePtr> data_face(NurbsSurfaceData surface, std::vector<TrimLoop> loops)
   return FacePtr(std::make_shared<const Face>(std::move(f).value()));
 }
 
-DrapeProblem make_problem(double d, const Vec2& s2, const Vec2& b2, std::vector<Vec2> w2,
-                          const Vec3& s3, const Vec3& bn, std::vector<Vec3> w3) {
-  DrapeProblem pb;
-  pb.ply.d_weft = pb.ply.d_warp = d;
-  pb.ply.start = s2;
-  pb.ply.base_dir = b2;
-  pb.ply.sweeps = std::move(w2);
-  pb.start = s3;
-  pb.base_normal = bn;
-  pb.sweeps = std::move(w3);
-  return pb;
-}
-
 Result<DrapeProblem> middle_problem(const Face& f, double d, bool both_sides) {
   const auto samples = sample_face(f, kMiddleSamples);
   if (samples.empty()) return Error{"no sample of the face lies inside its trims"};
@@ -83,8 +70,8 @@ Result<DrapeProblem> middle_problem(const Face& f, double d, bool both_sides) {
   const Vec3 bn = n.cross(t);
   if (!bn.allFinite() || !(bn.norm() > 0.5)) return Error{"no tangent direction at the middle"};
   if (both_sides)
-    return make_problem(d, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)}, e.p, bn, {bn, -bn});
-  return make_problem(d, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)}, e.p, bn, {bn});
+    return problem(d, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)}, e.p, bn, {bn, -bn});
+  return problem(d, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)}, e.p, bn, {bn});
 }
 
 double spacing_for_nodes(const Face& f, double nodes) {

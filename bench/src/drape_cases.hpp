@@ -7,6 +7,8 @@
 #include <plyfit/kernel/face.hpp>
 #include <plyfit/kernel/result.hpp>
 
+#include "support/problems.hpp"
+
 #include <cstddef>
 #include <functional>
 #include <map>
@@ -28,9 +30,8 @@ Result<FacePtr> cad_face(const std::string& file, int index);
 Result<FacePtr> data_face(NurbsSurfaceData surface, std::vector<TrimLoop> loops = {});
 
 /// A drape problem with square spacing d, 2D start s2, 2D base direction b2, 2D sweeps w2 and
-/// the 3D start s3, base-plane normal bn and 3D sweeps w3.
-DrapeProblem make_problem(double d, const Vec2& s2, const Vec2& b2, std::vector<Vec2> w2,
-                          const Vec3& s3, const Vec3& bn, std::vector<Vec3> w3);
+/// the 3D start s3, base-plane normal bn and 3D sweeps w3 (the tests' builder).
+using support::problem;
 /// A problem for any face: the start at the contained sample nearest to the middle of the
 /// face's samples, the base path along Su there (the base plane holds Su and the normal),
 /// swept both ways across it (or one way).

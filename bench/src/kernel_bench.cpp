@@ -5,7 +5,7 @@
 #include <plyfit/kernel/nurbs_surface.hpp>
 
 #include "bench.hpp"
-#include "occt_util.hpp"
+#include "occt_geometry.hpp"
 #include "tables.hpp"
 
 #include <GeomAdaptor_Surface.hxx>
@@ -23,6 +23,8 @@
 
 namespace plyfit::bench {
 namespace {
+
+using plyfit::occt::to_occt;
 
 /// Evaluations per timed run, and timed runs per method (medians are reported).
 constexpr int kEvaluations = 200000;

@@ -1,16 +1,12 @@
 #pragma once
-// OpenCASCADE counterparts of kernel surfaces for plyfit-bench: the same NURBS as a
-// Geom_BSplineSurface, and an independent point-to-surface distance computed with it.
+// An independent point-to-surface distance for plyfit-bench, computed with OpenCASCADE's
+// evaluator on the same NURBS (converted by exporters/src/occt_geometry).
 
 #include <plyfit/kernel/nurbs_surface.hpp>
 
 #include <Geom_BSplineSurface.hxx>
 
 namespace plyfit::bench {
-
-/// The surface as an OpenCASCADE B-spline (flat knot vector compressed to knots and
-/// multiplicities; weights if rational).
-Handle(Geom_BSplineSurface) to_occt(const NurbsSurfaceData& d);
 
 /// Distance from points to a surface, measured with OpenCASCADE's evaluator rather than
 /// plyfit's: Gauss-Newton on |S(u, v) - p|^2 with Geom_BSplineSurface::D1 from a seed (u, v),

@@ -146,6 +146,7 @@ Result<RawOptions> raw_from_args(const std::vector<std::string>& args) {
       if (!s) return Error{"unknown option --" + o.string_key};
       auto& vals = raw.values[o.string_key];
       raw.dirs[o.string_key] = cwd;
+      raw.origins[o.string_key] = raw.origin;
       if (!s->repeatable && !vals.empty())
         return Error{"--" + o.string_key + " given more than once"};
       if (s->value.empty()) {
@@ -182,6 +183,7 @@ Result<RawOptions> raw_from_scene(const std::string& path) {
                      (section.empty() ? "" : " in section [" + section + "]")};
       auto& vals = raw.values[key];
       raw.dirs[key] = dir;
+      raw.origins[key] = path;
       if (!s->repeatable && !vals.empty()) return Error{path + ": key '" + key + "' given more than once"};
       for (const auto& v : o.value) vals.push_back(v);
       if (o.value.empty()) return Error{path + ": key '" + key + "' has no value"};
@@ -198,6 +200,8 @@ RawOptions merge(const RawOptions& base, const RawOptions& over) {
     out.values[k] = v;
     const auto d = over.dirs.find(k);
     if (d != over.dirs.end()) out.dirs[k] = d->second;
+    const auto o = over.origins.find(k);
+    out.origins[k] = o != over.origins.end() ? o->second : over.origin;
   }
   return out;
 }
@@ -215,7 +219,13 @@ Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
     if (s && !s->def.empty()) return s->def;
     return std::nullopt;
   };
-  auto name = [&](const std::string& k) { return where + (where.empty() ? "--" : "key '") + k + (where.empty() ? "" : "'"); };
+  // A key is named where its value came from: "--key" for a flag, "FILE: key 'key'" for a
+  // scene file (a default is named like the job's origin).
+  auto name = [&](const std::string& k) {
+    const auto o = raw.origins.find(k);
+    const std::string from = o != raw.origins.end() ? o->second : raw.origin;
+    return from == "command line" || from.empty() ? "--" + k : from + ": key '" + k + "'";
+  };
   auto dir_for = [&](const std::string& k) {
     const auto d = raw.dirs.find(k);
     return d == raw.dirs.end() ? std::string() : d->second;
@@ -399,6 +409,8 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   run.tolerance_rel = job.tolerance_rel;
   run.max_iterations = job.max_iterations;
   run.lock_angle_deg = job.lock_angle_deg;
+  run.guess = job.drape.guess == GuessRule::kPaper ? "paper" : "parallelogram";
+  run.max_nodes = job.drape.max_nodes;
   run.ply_name = job.ply_name;
   run.material = job.material;
   run.outputs = job.outputs;
@@ -420,13 +432,12 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
     io.tolerances = job.drape.tol;
     auto file = importers::open_mold(job.mold, io);
     if (!file) return file.error();
-    const Mold& mold = (*file)->mold();
-    if (job.face < 0 || job.face >= static_cast<int>(mold.faces.size()))
-      return Error{job.mold + ": face " + std::to_string(job.face) + " out of range (the file has " +
-                   std::to_string(mold.faces.size()) + " faces, 0.." + std::to_string(mold.faces.size() - 1) + ")"};
-    run.face_info = mold.faces[job.face];
-    run.mold_unit = mold.unit;
-    run.warnings = mold.warnings;
+    // Only this face is described and converted: the others are never listed.
+    auto info = (*file)->describe(job.face);
+    if (!info) return info.error();
+    run.face_info = *info;
+    run.mold_unit = (*file)->summary().unit;
+    run.warnings = (*file)->summary().warnings;
     auto fd = (*file)->convert_face(job.face);
     if (!fd) return fd.error();
     data = std::move(fd).value();

@@ -33,6 +33,9 @@ struct RawOptions {
   /// Folder that relative paths in each key's value are relative to (the scene file's
   /// folder, or the working directory for flags).
   std::map<std::string, std::string> dirs;
+  /// Where each key's value came from ("command line" or a scene file), for messages: a flag
+  /// that overrides a scene key is named as the flag.
+  std::map<std::string, std::string> origins;
   std::string origin;  ///< where they came from, for messages ("command line", a file path)
 };
 

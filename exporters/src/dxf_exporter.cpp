@@ -35,6 +35,7 @@ namespace plyfit::exporters {
 
 namespace {
 
+using detail::Box2;
 using detail::exact_text;
 using detail::fixed_text;
 
@@ -212,16 +213,6 @@ std::vector<std::pair<double, double>> clip_line(const std::vector<OutlineLoop>&
     if (xs[k + 1] > xs[k]) segs.emplace_back(xs[k], xs[k + 1]);
   return segs;
 }
-
-struct Box2 {
-  Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity());
-  Vec2 hi = Vec2::Constant(-std::numeric_limits<double>::infinity());
-  void add(const Vec2& p) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  bool empty() const { return !(lo.x() <= hi.x()); }
-};
 
 std::string build_dxf(const ExportContext& ctx) {
   const DrapeResult& r = ctx.result;

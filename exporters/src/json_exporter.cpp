@@ -54,6 +54,14 @@ std::string report_json(const ExportContext& ctx) {
   in["lock_angle_deg"] = ctx.run.lock_angle_deg;
   in["tolerance"] = ctx.run.tolerance_rel;
   in["max_iterations"] = ctx.run.max_iterations;
+  in["guess"] = ctx.run.guess;
+  in["max_nodes"] = ctx.run.max_nodes;
+  in["warn_angle_deg"] = ctx.options.warn_shear * kRadToDeg;
+  in["ply_name"] = ctx.run.ply_name;
+  in["material"] = ctx.run.material;
+  in["curve_degree"] = ctx.options.curve_degree;
+  in["view"] = vec(ctx.options.view);
+  in["dxf_threads"] = ctx.options.dxf_threads;
   in["outputs"] = ctx.run.outputs;
   j["inputs"] = in;
   json face;
@@ -68,7 +76,7 @@ std::string report_json(const ExportContext& ctx) {
                 {"auxiliary", m.nodes.auxiliary},
                 {"outside", m.nodes.outside},
                 {"off_ply", m.nodes.off_ply},
-                {"shear_limit", m.nodes.shear_limit},
+                {"shear_limit", m.nodes.shear_limit}, {"overlap", m.nodes.overlap},
                 {"failed", m.nodes.failed},
                 {"with_angle", m.angles}};
   j["area_mesh_points"] = m.area_mesh_points;

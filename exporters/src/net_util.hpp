@@ -5,10 +5,23 @@
 #include <plyfit/kernel/drape.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
 namespace plyfit::exporters::detail {
+
+/// A 2D box grown point by point (empty until the first point).
+struct Box2 {
+  Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity());
+  Vec2 hi = Vec2::Constant(-std::numeric_limits<double>::infinity());
+  void add(const Vec2& p) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  bool empty() const { return !(lo.x() <= hi.x() && lo.y() <= hi.y()); }
+  Vec2 size() const { return hi - lo; }
+};
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kRadToDeg = 180.0 / kPi;

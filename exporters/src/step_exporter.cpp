@@ -19,6 +19,7 @@
 #include <plyfit/kernel/nurbs_curve.hpp>
 
 #include "plugins.hpp"
+#include "occt_geometry.hpp"
 
 #include <APIHeaderSection_MakeHeader.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
@@ -50,6 +51,7 @@
 namespace plyfit::exporters {
 
 namespace {
+using occt::to_occt;
 
 constexpr const char* kFixedTimeStamp = "2000-01-01T00:00:00";
 
@@ -57,36 +59,6 @@ constexpr const char* kFixedTimeStamp = "2000-01-01T00:00:00";
 void silence_occt() {
   static std::once_flag once;
   std::call_once(once, [] { Message::DefaultMessenger()->ChangePrinters().Clear(); });
-}
-
-// The kernel's curve as an OpenCASCADE B-spline (flat knot vector -> knots and
-// multiplicities).
-Handle(Geom_BSplineCurve) to_occt(const NurbsCurve3& c) {
-  const NurbsCurveData3& d = c.data();
-  std::vector<double> knots;
-  std::vector<int> mults;
-  for (const double k : d.knots) {
-    if (!knots.empty() && k == knots.back()) {
-      ++mults.back();
-    } else {
-      knots.push_back(k);
-      mults.push_back(1);
-    }
-  }
-  TColgp_Array1OfPnt poles(1, static_cast<int>(d.poles.size()));
-  for (std::size_t k = 0; k < d.poles.size(); ++k)
-    poles.SetValue(static_cast<int>(k) + 1, gp_Pnt(d.poles[k].x(), d.poles[k].y(), d.poles[k].z()));
-  TColStd_Array1OfReal kn(1, static_cast<int>(knots.size()));
-  TColStd_Array1OfInteger mu(1, static_cast<int>(mults.size()));
-  for (std::size_t k = 0; k < knots.size(); ++k) {
-    kn.SetValue(static_cast<int>(k) + 1, knots[k]);
-    mu.SetValue(static_cast<int>(k) + 1, mults[k]);
-  }
-  if (d.weights.empty()) return new Geom_BSplineCurve(poles, kn, mu, d.degree);
-  TColStd_Array1OfReal w(1, static_cast<int>(d.weights.size()));
-  for (std::size_t k = 0; k < d.weights.size(); ++k)
-    w.SetValue(static_cast<int>(k) + 1, d.weights[k]);
-  return new Geom_BSplineCurve(poles, w, kn, mu, d.degree);
 }
 
 struct Group {
@@ -126,7 +98,7 @@ Status write_step(const ExportContext& ctx, const std::string& path) {
         if (!curve) curve = polyline_curve(pts);
         if (!curve)
           return Error{path + ": cannot build a " + g.name + " curve: " + curve.error().message};
-        BRepBuilderAPI_MakeEdge edge(to_occt(*curve));
+        BRepBuilderAPI_MakeEdge edge(to_occt(curve->data()));
         if (!edge.IsDone()) return Error{path + ": cannot build a " + g.name + " edge"};
         builder.Add(compound, edge.Edge());
       }

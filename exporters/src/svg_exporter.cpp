@@ -35,6 +35,7 @@ namespace plyfit::exporters {
 
 namespace {
 
+using detail::Box2;
 using detail::fixed_text;
 using detail::kPi;
 using detail::kRadToDeg;
@@ -56,17 +57,6 @@ constexpr double kSeamParamRel = 1e-9;
 std::string px(double v) {
   return fixed_text(v, 2);
 }
-
-struct Box2 {
-  Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity());
-  Vec2 hi = Vec2::Constant(-std::numeric_limits<double>::infinity());
-  void add(const Vec2& p) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  bool empty() const { return !(lo.x() <= hi.x() && lo.y() <= hi.y()); }
-  Vec2 size() const { return hi - lo; }
-};
 
 // Maps drawing coordinates (y up) to pixels (y down) so the box fills the plot area.
 struct Frame {

@@ -22,6 +22,11 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kMinPlaneCutSin = 1e-3;
 // A 3D sweep direction must make at least this sine with the base path in the tangent plane.
 constexpr double kMinSweepSin = 1e-6;
+// The cloth overlaps itself where a new node lands within kOverlapRel * d (3D) of a mapped
+// node at least kOverlapSeparation * d away from it on the ply (2D): a closed plane
+// section, or a closed face wrapped all round.
+constexpr double kOverlapRel = 0.5;
+constexpr double kOverlapSeparation = 2.0;
 // How often (resolved nodes) the scan checks for cancellation and reports progress.
 constexpr std::uint32_t kCancelEvery = 4096;
 constexpr std::uint32_t kProgressEvery = 65536;
@@ -68,6 +73,8 @@ const char* to_string(NodeStatus s) {
       return "shear_limit";
     case NodeStatus::kFailed:
       return "failed";
+    case NodeStatus::kOverlap:
+      return "overlap";
     case NodeStatus::kPending:
       return "pending";
   }
@@ -278,6 +285,10 @@ class Scanner {
     st_.gamma_min = std::max(0.0, kPi / 2 - opt.lock_angle);
     res_.gamma_min_limit = st_.gamma_min;
     far_ = kFarFromPathCells * std::hypot(ply.spec().d_weft, ply.spec().d_warp);
+    const auto& d = s.domain();
+    closed_ = s.wrap(Vec2(d.u1 + 0.5 * d.width_u(), d.v0)).x() <= d.u1 ||
+              s.wrap(Vec2(d.u0, d.v1 + 0.5 * d.width_v())).y() <= d.v1;
+    cell_ = kOverlapRel * ply.d();
   }
 
   void run(const Vec3& t3) {
@@ -380,6 +391,32 @@ class Scanner {
     }
   }
 
+  // Spatial grid of mapped nodes (cells of kOverlapRel * d) for the overlap test.
+  static std::uint64_t cell_key(std::int64_t x, std::int64_t y, std::int64_t z) {
+    return mix(static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ULL ^
+               static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4FULL ^ static_cast<std::uint64_t>(z));
+  }
+  // True if node k (just mapped) lies on cloth already laid; otherwise records it.
+  bool overlaps(std::uint32_t k) {
+    const DrapeNode& n = node(k);
+    const std::int64_t cx = static_cast<std::int64_t>(std::floor(n.point.x() / cell_));
+    const std::int64_t cy = static_cast<std::int64_t>(std::floor(n.point.y() / cell_));
+    const std::int64_t cz = static_cast<std::int64_t>(std::floor(n.point.z() / cell_));
+    const double sep = kOverlapSeparation * ply_.d();
+    for (std::int64_t a = -1; a <= 1; ++a)
+      for (std::int64_t b = -1; b <= 1; ++b)
+        for (std::int64_t c = -1; c <= 1; ++c) {
+          const auto it = grid_.find(cell_key(cx + a, cy + b, cz + c));
+          if (it == grid_.end()) continue;
+          for (std::uint32_t q : it->second) {
+            const DrapeNode& m = node(q);
+            if ((m.point - n.point).norm() < cell_ && (m.ply - n.ply).norm() >= sep) return true;
+          }
+        }
+    grid_[cell_key(cx, cy, cz)].push_back(k);
+    return false;
+  }
+
   // The mapped node across the thread link from node k in direction d, or nullptr.
   const DrapeNode* mapped_nb(const DrapeNode& n, ThreadDir d) const {
     const std::int32_t k = n.nb[static_cast<int>(d)];
@@ -398,6 +435,7 @@ class Scanner {
     n0.uv = res_.start_uv;
     n0.flags |= DrapeNode::kOnPath | DrapeNode::kStart;
     n0.order = order_++;
+    overlaps(i0);  // records the start
     std::vector<std::uint32_t> ahead{i0}, behind;
     for (int dirn = 0; dirn < 2; ++dirn) {
       const bool fwd = dirn == 0;
@@ -412,6 +450,10 @@ class Scanner {
         }
         const double rest = std::abs(pk->tau - ply_.path_node_if(fwd ? k - 1 : k + 1)->tau);
         const PathNode pcopy = *pk;  // path_node() may reallocate; keep a copy
+        if (res_.nodes.size() >= opt_.max_nodes) {
+          truncated_ = true;
+          break;
+        }
         const std::uint32_t idx = node_for(pcopy.id, pcopy.pos);
         node(idx).flags |= DrapeNode::kOnPath;
         const DrapeNode& from = node(prev);
@@ -419,6 +461,10 @@ class Scanner {
             solve_base_path(s_, {from.point, from.uv, res_.base_normal, travel, rest}, st_);
         resolve(idx, r);
         if (!node(idx).mapped()) break;
+        if (overlaps(idx)) {  // a closed plane section: the path came round
+          node(idx).status = NodeStatus::kOverlap;
+          break;
+        }
         chain.push_back(idx);
         travel = node(idx).point - node(prev).point;
         prev = idx;
@@ -682,6 +728,8 @@ class Scanner {
         r.reason = "no known neighbour";
       }
       resolve(qi, r);
+      // On a closed face the cloth can come round onto itself.
+      if (node(qi).mapped() && closed_ && overlaps(qi)) node(qi).status = NodeStatus::kOverlap;
       if (node(qi).mapped()) push_neighbours(qi);
     }
     while (!heap_.empty()) heap_.pop();  // cancelled: pending nodes stay unresolved
@@ -698,6 +746,9 @@ class Scanner {
   std::uint32_t order_ = 0;
   std::uint64_t path_off_ply_ = 0;
   bool truncated_ = false, cancelled_ = false;
+  bool closed_ = false;  // the face closes on itself across a seam
+  double cell_ = 1.0;    // overlap grid cell
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> grid_;
 };
 
 double tri_area(const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -769,6 +820,9 @@ void compute_metrics(const DrapeSurface& s, DrapeResult& res) {
         break;
       case NodeStatus::kFailed:
         ++m.nodes.failed;
+        break;
+      case NodeStatus::kOverlap:
+        ++m.nodes.overlap;
         break;
       case NodeStatus::kPending:
         break;

@@ -58,7 +58,10 @@ struct Vertex {
   Vec2 p2 = Vec2::Zero();  // ply coordinates
   Vec2 uv = Vec2::Zero();  // surface parameters (if has_uv)
   bool has_uv = false;
-  bool in = false;  // on the face
+  bool in = false;    // on the face
+  bool pole = false;  // at a degenerate point (a collapsed edge): its free parameter means
+                      // nothing and is taken from its neighbours when interpolating
+  int free = 1;       // at a pole: 0 if u is the free parameter, 1 if v
 };
 
 // The face boundary as segments in (u, v), with copies shifted by a period across closed
@@ -277,6 +280,12 @@ class Builder {
       v.has_uv = true;
       v.uv = p->uv;
       v.in = p->in;
+      const SurfaceEval1 e = s_.eval1(v.uv);
+      v.pole = e.ok && s_.degenerate(e);
+      if (v.pole) {  // the collapsed direction is the one whose derivative vanishes
+        const Vec2 sp = s_.speeds();
+        v.free = e.dv.norm() * sp.x() <= e.du.norm() * sp.y() ? 1 : 0;
+      }
     }
     verts_.push_back(v);
     const int k = static_cast<int>(verts_.size()) - 1;
@@ -295,7 +304,12 @@ class Builder {
     if (it == crossings_.end()) {
       const Vertex P = verts_[key.first];
       const Vertex Q = verts_[key.second];
-      const Vec2 pu = P.uv, qu = P.uv + s_.delta(P.uv, Q.uv);
+      Vec2 pu = P.uv, qu = P.uv + s_.delta(P.uv, Q.uv);
+      // From a pole the edge runs along the other end's meridian: the pole takes its free
+      // parameter from the other end (an edge to a node beyond a boundary through the pole
+      // then crosses at the pole itself).
+      if (P.pole && !Q.pole) pu[P.free] = qu[P.free];
+      if (Q.pole && !P.pole) qu[Q.free] = pu[Q.free];
       std::vector<double> ts;
       for (const auto& c : index_.crossings(pu, qu)) ts.push_back(c.first);
       const bool odd = ts.size() % 2 == 1;
@@ -356,6 +370,14 @@ class Builder {
     std::vector<Vec2> uvw(m);  // unwrapped relative to the first corner
     for (std::size_t k = 0; k < m; ++k)
       uvw[k] = verts_[poly[0]].uv + s_.delta(verts_[poly[0]].uv, verts_[poly[k]].uv);
+    // A pole corner takes the mean free parameter of its two neighbours in the part.
+    for (std::size_t k = 0; k < m; ++k) {
+      const Vertex& v = verts_[poly[k]];
+      if (!v.pole) continue;
+      const Vec2& a = uvw[(k + m - 1) % m];
+      const Vec2& b = uvw[(k + 1) % m];
+      uvw[k][v.free] = 0.5 * (a[v.free] + b[v.free]);
+    }
     struct Item {
       int v;
       int kind;  // 0 vertex, 1 exit crossing, 2 entry crossing

@@ -14,6 +14,9 @@ constexpr double kPi = 3.14159265358979323846;
 // step is then a Levenberg-Marquardt step with damping kLmDampingRel * diag(J^T J).
 constexpr double kSingularRel = 1e-10;
 constexpr double kLmDampingRel = 1e-8;
+// At a pole, a step must make a cosine above this with some direction the face offers (the
+// fan of the collapsed edge's derivatives); otherwise it leaves the face at once.
+constexpr double kMinFanCos = 1e-6;
 // Samples and golden-section refinements when searching a collapsed edge for a direction.
 constexpr int kEdgeSamples = 64;
 constexpr int kEdgeRefinements = 30;
@@ -324,6 +327,10 @@ UvDirection uv_direction_at(const DrapeSurface& surface, const Vec2& uv, const S
     }
   }
   const double t = (f1 > best || f2 > best) ? (f1 > f2 ? x1 : x2) : best_t;
+  if (std::max({best, f1, f2}) <= kMinFanCos) {
+    out.leaves_face = true;
+    return out;
+  }
   out.from_uv = v_collapsed ? Vec2(uv.x(), t) : Vec2(t, uv.y());
   const SurfaceEval1 ef = surface.eval1(out.from_uv);
   const Vec3 gvec = v_collapsed ? ef.du : ef.dv;
@@ -353,6 +360,11 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Vec2&
                               const Vec3& t, double rho, const SolverSettings& st) {
   Ctx c(s, st);
   const UvDirection ud = uv_direction_at(s, uv0, e0, n0, t);
+  if (ud.leaves_face) {
+    c.res.status = SolveStatus::kLeftFace;
+    c.res.reason = "the step leaves the face at a collapsed edge (pole)";
+    return c.res;
+  }
   if (!ud.ok) {
     c.res.reason = "no tangent direction at the known point";
     return c.res;

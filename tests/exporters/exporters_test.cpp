@@ -11,6 +11,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "support/problems.hpp"
+
 #include "net_util.hpp"  // exporters/src: the writers' cell enumeration
 #include "test_util.hpp"
 
@@ -83,18 +85,7 @@ std::unique_ptr<Case> make_case(const std::string& mold, std::map<std::string, d
   return make_case("builtin:" + mold, Face::create(std::move(fd).value()), std::move(pb));
 }
 
-DrapeProblem problem(double d, Vec2 s2, Vec2 b2, std::vector<Vec2> w2, Vec3 s3, Vec3 bn,
-                     std::vector<Vec3> w3) {
-  DrapeProblem pb;
-  pb.ply.d_weft = pb.ply.d_warp = d;
-  pb.ply.start = s2;
-  pb.ply.base_dir = b2;
-  pb.ply.sweeps = std::move(w2);
-  pb.start = s3;
-  pb.base_normal = bn;
-  pb.sweeps = std::move(w3);
-  return pb;
-}
+using support::problem;
 
 // The paper's sphere-octant cases (a) and (c), a base path off the grid (auxiliary points),
 // a two-sided sweep on the surface of revolution and a torus.

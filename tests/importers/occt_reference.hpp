@@ -4,6 +4,7 @@
 // (TopExp::MapShapes), and the converted kernel faces are compared with OCCT's evaluation,
 // classification and projection of the original faces.
 
+#include "occt_geometry.hpp"
 #include <plyfit/importers/importers.hpp>
 #include <plyfit/kernel/face.hpp>
 
@@ -58,6 +59,8 @@
 #include <vector>
 
 namespace plyfit::test {
+
+using plyfit::occt::to_occt;
 
 /// Converted surfaces must reproduce OCCT's evaluation of the original face to this fraction
 /// of the face size (the brief's accuracy for exact conversions).
@@ -184,50 +187,6 @@ inline std::vector<Vec2> points_inside(const TopoDS_Face& f, int n, Rng& rng) {
     if (cls.State() == TopAbs_IN) out.push_back(uv);
   }
   return out;
-}
-
-/// An OCCT B-spline surface from kernel NURBS data (clamped knots given flat).
-inline Handle(Geom_BSplineSurface) to_occt(const NurbsSurfaceData& d) {
-  auto knots = [](const std::vector<double>& flat, TColStd_Array1OfReal*& k,
-                  TColStd_Array1OfInteger*& m) {
-    std::vector<double> kv;
-    std::vector<int> mv;
-    for (double x : flat) {
-      if (!kv.empty() && x == kv.back()) {
-        ++mv.back();
-      } else {
-        kv.push_back(x);
-        mv.push_back(1);
-      }
-    }
-    k = new TColStd_Array1OfReal(1, static_cast<int>(kv.size()));
-    m = new TColStd_Array1OfInteger(1, static_cast<int>(mv.size()));
-    for (size_t i = 0; i < kv.size(); ++i) {
-      (*k)(static_cast<int>(i) + 1) = kv[i];
-      (*m)(static_cast<int>(i) + 1) = mv[i];
-    }
-  };
-  TColStd_Array1OfReal *ku, *kv;
-  TColStd_Array1OfInteger *mu, *mv;
-  knots(d.knots_u, ku, mu);
-  knots(d.knots_v, kv, mv);
-  TColgp_Array2OfPnt poles(1, d.count_u, 1, d.count_v);
-  TColStd_Array2OfReal weights(1, d.count_u, 1, d.count_v);
-  for (int i = 0; i < d.count_u; ++i)
-    for (int j = 0; j < d.count_v; ++j) {
-      const Vec3& p = d.pole(i, j);
-      poles(i + 1, j + 1) = gp_Pnt(p.x(), p.y(), p.z());
-      weights(i + 1, j + 1) = d.weight(i, j);
-    }
-  Handle(Geom_BSplineSurface) s =
-      d.weights.empty()
-          ? new Geom_BSplineSurface(poles, *ku, *kv, *mu, *mv, d.degree_u, d.degree_v)
-          : new Geom_BSplineSurface(poles, weights, *ku, *kv, *mu, *mv, d.degree_u, d.degree_v);
-  delete ku;
-  delete kv;
-  delete mu;
-  delete mv;
-  return s;
 }
 
 /// Checks a converted face against the original OCCT face: position (same (u, v) when the

@@ -4,10 +4,13 @@
 
 #include <catch2/catch.hpp>
 
+#include "support/problems.hpp"
+
 #include "test_util.hpp"
 
 #include <cmath>
 #include <cstring>
+#include <random>
 
 using namespace plyfit;
 
@@ -42,18 +45,7 @@ double max_shear(const DrapeResult& r) {
   return m;
 }
 
-DrapeProblem problem(double d, Vec2 s2, Vec2 b2, std::vector<Vec2> w2, Vec3 s3, Vec3 bn,
-                     std::vector<Vec3> w3) {
-  DrapeProblem pb;
-  pb.ply.d_weft = pb.ply.d_warp = d;
-  pb.ply.start = s2;
-  pb.ply.base_dir = b2;
-  pb.ply.sweeps = std::move(w2);
-  pb.start = s3;
-  pb.base_normal = bn;
-  pb.sweeps = std::move(w3);
-  return pb;
-}
+using support::problem;
 
 }  // namespace
 
@@ -381,4 +373,69 @@ TEST_CASE("drape: bad initial conditions are errors that say why") {
   bad.ply.sweeps = {Vec2(0, 1), Vec2(0, -1)};
   bad.sweeps = {Vec3(0, 1, 0), Vec3(0, 1, 0)};
   CHECK_THAT(drape(f, bad).error().message, Catch::Contains("two sides"));
+}
+
+TEST_CASE("drape: a closed plane section or a closed face never wraps the cloth onto itself") {
+  // No two mapped nodes lie on the same spot of the mold unless they are neighbours on the
+  // ply: checked over all pairs, independently of the drape's own grid.
+  auto check_single_cover = [](const DrapeResult& r) {
+    std::vector<const DrapeNode*> m;
+    for (const auto& n : r.nodes)
+      if (n.mapped()) m.push_back(&n);
+    const double d = r.ply->d();
+    int doubled = 0;
+    for (std::size_t a = 0; a < m.size(); ++a)
+      for (std::size_t b = a + 1; b < m.size(); ++b)
+        if ((m[a]->ply - m[b]->ply).norm() >= 2 * d && (m[a]->point - m[b]->point).norm() < 0.5 * d)
+          ++doubled;
+    CHECK(doubled == 0);
+  };
+  SECTION("the base plane cuts a hemisphere in a circle; the ply is unbounded") {
+    const Face f = builtin("hemisphere", {{"R", 10}});
+    const DrapeResult r = run(f, problem(1.0, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)},
+                                         Vec3(8, 0, 6), Vec3(0, 0, 1), {Vec3(0, 0, 1), Vec3(0, 0, -1)}));
+    CHECK(r.metrics.nodes.overlap > 0);
+    CHECK(r.metrics.nodes.mapped < 2000);  // one hemisphere's worth, not a runaway
+    // The base path goes round once: about 2 pi * 8 / d links.
+    CHECK(r.base_path.size() <= static_cast<std::size_t>(2 * kPi * 8) + 2);
+    check_single_cover(r);
+  }
+  SECTION("a full cylinder, base path along the axis, swept both ways round") {
+    const Face f = builtin("cylinder", {{"R", 10}, {"H", 30}, {"angle", 360}});
+    const DrapeResult r = run(f, problem(1.0, Vec2(0, 0), Vec2(0, 1), {Vec2(1, 0), Vec2(-1, 0)},
+                                         Vec3(10, 0, 15), Vec3(0, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)}));
+    CHECK(r.metrics.nodes.overlap > 0);
+    CHECK(r.metrics.nodes.failed == 0);
+    CHECK(r.metrics.surface_area > 0.95 * f.area());
+    CHECK(r.metrics.surface_area <= f.area() * (1 + 1e-9));
+    check_single_cover(r);
+  }
+  SECTION("the node cap bounds the base path too") {
+    const Face f = builtin("hemisphere", {{"R", 10}});
+    DrapeOptions opt;
+    opt.max_nodes = 20;
+    const DrapeResult r = run(f, problem(0.1, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)}, Vec3(8, 0, 6),
+                                         Vec3(0, 0, 1), {Vec3(0, 0, 1)}), opt);
+    CHECK(r.partial);
+    CHECK(r.nodes.size() <= 20);
+  }
+}
+
+TEST_CASE("drape: a pole start is robust to the last digit of the poles") {
+  // Found with the STEP samples: poles written with 16 digits made the first backward step
+  // from the pole (straight off the octant) fail or not depending on rounding. A step that no
+  // direction of the pole's fan can take leaves the face at once.
+  std::mt19937_64 gen(1);
+  for (int trial = 0; trial < 20; ++trial) {
+    FaceData fd = builtin_mold("sphere-octant", {}).value();
+    for (auto& p : fd.surface.poles)
+      for (int k = 0; k < 3; ++k) p[k] *= 1.0 + (static_cast<double>(gen() % 3) - 1.0) * 1e-16;
+    const Face f = Face::create(fd).value();
+    const DrapeResult r = run(f, problem(1.0, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)}, Vec3(0, 0, 20),
+                                         Vec3(0, 1, 0), {Vec3(0, 1, 0)}));
+    INFO("trial " << trial);
+    CHECK(r.metrics.nodes.failed == 0);
+    CHECK(r.metrics.nodes.mapped == 716);
+    CHECK(r.metrics.nodes.outside == 73);
+  }
 }

@@ -173,3 +173,33 @@ TEST_CASE("flat pattern: the paper's sphere cases give one simple outline") {
   CHECK(fp.area > f.area());
   CHECK(fp.area > fp.staircase[0].area);
 }
+
+TEST_CASE("flat pattern: at a pole the outline has the face's corner angle") {
+  // Paper case (c): start at the pole, base path at 45 degrees. Near the pole the octant's
+  // 90-degree corner develops into the 2D sector between the base direction (1, 1) and
+  // (-1, 1): the outline's points within 2 spacings of the start lie on those two rays.
+  const Face f = builtin("sphere-octant");
+  DrapeProblem pb;
+  pb.ply.d_weft = pb.ply.d_warp = 1.0;
+  pb.ply.start = Vec2(15, 0);
+  pb.ply.base_dir = Vec2(1, 1);
+  pb.ply.sweeps = {Vec2(-1, 1)};
+  pb.start = Vec3(0, 0, 20);
+  pb.base_normal = Vec3(0, 1, 0);
+  pb.sweeps = {Vec3(0, 1, 0)};
+  const auto r = drape(f, pb);
+  REQUIRE(r.ok());
+  const FlatPattern fp = flat_pattern(f, *r);
+  REQUIRE(fp.outline.size() == 1);
+  check_loops(fp);
+  int near = 0;
+  for (const Vec2& p : fp.outline[0].points) {
+    const Vec2 q = p - Vec2(15, 0);
+    if (q.norm() > 1.5 || q.norm() == 0.0) continue;
+    ++near;
+    // On the ray (1, 1) or (-1, 1): |x| = y, to the crossing accuracy near the pole.
+    CHECK(std::abs(std::abs(q.x()) - q.y()) < 0.01);
+  }
+  CHECK(near >= 2);
+}
+

@@ -28,6 +28,8 @@ struct RunInfo {
   double tolerance_rel = 0;  ///< Newton tolerance relative to d
   int max_iterations = 0;
   double lock_angle_deg = 90;
+  std::string guess = "paper";     ///< initial-guess rule of the two-sphere solver
+  std::uint64_t max_nodes = 0;     ///< node cap
   std::string ply_name;      ///< for labels
   std::string material;      ///< for labels
   double import_ms = 0, drape_ms = 0, total_ms = 0;

@@ -37,6 +37,14 @@ class MoldFile {
   /// The file's faces and metadata, listed without converting surfaces (the per-face entries
   /// are computed on the first call; convert_face() alone does not compute the others).
   virtual const Mold& mold() const = 0;
+  /// Number of faces (no listing computed).
+  virtual int face_count() const = 0;
+  /// The listing entry of face `index` alone (computed once), or an error naming the file
+  /// and the face.
+  virtual Result<FaceInfo> describe(int index) const = 0;
+  /// The file's metadata (source, format, schema, unit, reader warnings) without computing
+  /// the face entries (those not described yet are placeholders of kind "unknown").
+  virtual const Mold& summary() const = 0;
   /// Converts face `index` (0-based, as listed) to kernel data: the surface as NURBS
   /// restricted to the face (periodic surfaces clamped, closed_u/v set when the face spans a
   /// whole period), its trim loops in (u, v) as polylines within

@@ -24,9 +24,11 @@ enum class NodeStatus : std::uint8_t {
   kOffPly,      ///< beyond the ply rectangle: no cloth there
   kShearLimit,  ///< the thread angle would pass the lock angle (eq. 12)
   kFailed,      ///< the solver found no solution (see the solver's reason)
+  kOverlap,     ///< the cloth would lie on cloth already laid: the base path or the surface
+                ///< closes on itself (a closed plane section, a seam crossed all round)
   kPending,     ///< internal: in the frontier
 };
-/// "mapped", "outside", "off_ply", "shear_limit", "failed", "pending".
+/// "mapped", "outside", "off_ply", "shear_limit", "failed", "overlap", "pending".
 const char* to_string(NodeStatus s);
 
 /// A node the drape reached.
@@ -139,6 +141,7 @@ struct NodeCounts {
   std::uint64_t off_ply = 0;
   std::uint64_t shear_limit = 0;
   std::uint64_t failed = 0;
+  std::uint64_t overlap = 0;      ///< stopped where the cloth would lie on itself
 };
 
 /// The metrics of §7.1 and independent residual checks.

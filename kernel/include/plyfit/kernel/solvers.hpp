@@ -115,6 +115,9 @@ struct UvDirection {
   Vec2 from_uv;
   Vec2 dir_uv;
   bool ok = false;
+  /// At a degenerate point: no direction the face offers (the fan of the collapsed edge's
+  /// derivatives) points along `dir`, so a step along it leaves the face at once.
+  bool leaves_face = false;
 };
 UvDirection uv_direction(const DrapeSurface& surface, const Vec2& uv, const Vec3& dir);
 

@@ -1,0 +1,38 @@
+#pragma once
+/// \file Mold files written by plyfit itself: one kernel face (NURBS surface, untrimmed) as a
+/// STEP or IGES file that plyfit's importers, and any CAD system, read back. Used by
+/// `plyfit sample` to make the sample molds under samples/.
+
+#include <plyfit/kernel/face.hpp>
+#include <plyfit/kernel/result.hpp>
+
+#include <string>
+#include <vector>
+
+namespace plyfit::exporters {
+
+/// Options of write_mold().
+struct MoldWriteOptions {
+  /// "step" or "iges"; empty: from the file extension (.step/.stp, .iges/.igs).
+  std::string format;
+  /// Name given to the face (STEP: the ADVANCED_FACE and its surface; IGES: a name property,
+  /// entity 406 form 15, on the surface). Empty: no name.
+  std::string name;
+  /// Time stamp written into the file header (STEP FILE_NAME, IGES global section dates)
+  /// instead of the current time, so that equal inputs give equal bytes.
+  std::string timestamp = "2000-01-01T00:00:00";
+};
+
+/// Mold formats write_mold() knows: "step", "iges".
+std::vector<std::string> mold_formats();
+
+/// Writes `face` (an untrimmed NURBS face; loops must be empty) as a one-face mold file at
+/// `path`, atomically (temporary file + rename). The face keeps plyfit's orientation: the
+/// file's face normal is Su x Sv, or its opposite when face.reversed. Reals are written with
+/// 17 significant digits, so that they read back bit for bit (the writers' defaults keep only
+/// 10 to 13); magnitudes below 1e-99 are written as 0, 1e99 and above are refused. Errors name the
+/// file and the problem (unknown format, trimmed face, invalid surface, write failure).
+Status write_mold(const FaceData& face, const std::string& path,
+                  const MoldWriteOptions& options = {});
+
+}  // namespace plyfit::exporters

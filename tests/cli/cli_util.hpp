@@ -1,0 +1,76 @@
+#pragma once
+// Helpers for tests that run the built plyfit binary (PLYFIT_BIN): scratch folders, runs
+// under a time limit, file reading and writing.
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace plyfit::test {
+
+/// A run of plyfit must end within this many seconds (every sample drape takes well under
+/// one; a hang must fail the test, not block CI).
+constexpr int kRunLimitSeconds = 120;
+
+/// A scratch folder removed at the end of the test.
+struct Scratch {
+  std::filesystem::path path;
+  explicit Scratch(const std::string& tag) {
+    path = std::filesystem::temp_directory_path() /
+           ("plyfit_test_" + tag + "_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(path);
+    std::filesystem::create_directories(path);
+  }
+  ~Scratch() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+  std::string file(const std::string& name) const { return (path / name).string(); }
+};
+
+inline std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+inline void spit(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+}
+
+/// Exit code and output of a plyfit run.
+struct CliRun {
+  int code = -1;
+  std::string out, err;
+};
+
+/// Runs `plyfit ARGS` (a shell-quoted argument string) in `cwd` under kRunLimitSeconds.
+inline CliRun plyfit_run(const std::string& args, const Scratch& scratch,
+                         const std::string& cwd = "") {
+  const std::string out = scratch.file("run.stdout"), err = scratch.file("run.stderr");
+  const std::string cmd = (cwd.empty() ? "" : "cd '" + cwd + "' && ") + "timeout -k 5 " +
+                          std::to_string(kRunLimitSeconds) + " '" + PLYFIT_BIN + "' " + args +
+                          " > '" + out + "' 2> '" + err + "' < /dev/null";
+  const int status = std::system(cmd.c_str());
+  CliRun r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+/// Number of lines in `s`.
+inline int lines(const std::string& s) {
+  int n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
+}  // namespace plyfit::test

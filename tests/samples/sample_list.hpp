@@ -1,0 +1,30 @@
+#pragma once
+// The sample molds under samples/molds: built-in mold spec and file stem. Kept in step with
+// scripts/make-sample-molds (the test checking the committed files uses this list).
+
+#include <string>
+#include <vector>
+
+namespace plyfit::test {
+
+/// One sample mold: `plyfit sample SPEC -o samples/molds/FILE.{step,igs}`.
+struct SampleMold {
+  std::string spec;  ///< built-in mold, NAME[:k=v,...]
+  std::string file;  ///< file stem (also the face name)
+};
+
+/// Every sample mold.
+inline const std::vector<SampleMold>& sample_molds() {
+  static const std::vector<SampleMold> list = {
+      {"sphere-octant:R=20", "sphere-octant"},
+      {"revolution-third", "revolution-third"},
+      {"cylinder", "cylinder-sector"},
+      {"cone", "cone-sector"},
+      {"saddle", "saddle"},
+      {"hemisphere:R=1", "hemisphere"},
+      {"wave", "wave"},
+  };
+  return list;
+}
+
+}  // namespace plyfit::test
