@@ -5,6 +5,7 @@
 #include "bench.hpp"
 #include "tables.hpp"
 
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -40,6 +41,14 @@ int run_quiet(const std::string& cmd) {
   return (rc != -1 && WIFEXITED(rc)) ? WEXITSTATUS(rc) : -1;
 }
 
+// User + system CPU seconds of all waited-for child processes so far.
+double children_cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_CHILDREN, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
 std::string scene_text(int k) {
   // Base paths at different angles, so that the scenes are different drapes.
   const double a = 0.15 * k;
@@ -60,10 +69,12 @@ Table batch_table(bool* available) {
   t.caption =
       fmt("`plyfit batch` on %d generated scenes (built-in wave, spacing %.1f mm, base paths at "
           "different angles; every output written), one child process per scene. Time: median of "
-          "%d runs of the whole batch; speed-up against -j1 measured in the same invocation.",
+          "%d runs of the whole batch; speed-up against -j1 measured in the same invocation; "
+          "cores used: CPU time of the batch's processes (median) over its wall time. Other "
+          "processes on the machine share its cores (see the load average above).",
           kScenes, kSceneSpacing, kMinRuns);
-  t.header = {"jobs", "batch time (s)", "scenes/s", "speed-up vs -j1"};
-  t.right = {false, true, true, true};
+  t.header = {"jobs", "batch time (s)", "scenes/s", "speed-up vs -j1", "cores used"};
+  t.right = {false, true, true, true, true};
   const std::string bin = plyfit_binary();
   if (run_quiet(bin + " batch --help") != 0) {
     if (available) *available = false;
@@ -83,18 +94,21 @@ Table batch_table(bool* available) {
   for (unsigned j = 1; j <= cores; ++j) {
     const fs::path out = dir / fmt("out-j%u", j);
     bool ok = true;
+    std::vector<double> cpu;  // CPU seconds of the batch's processes per run
     const double sec = median_time([&] {
       fs::remove_all(out);
+      const double c0 = children_cpu_seconds();
       ok = ok && run_quiet(fmt("'%s' batch%s -j %u -o '%s'", bin.c_str(), scenes.c_str(), j,
                                out.string().c_str())) == 0;
+      cpu.push_back(children_cpu_seconds() - c0);
     });
     if (!ok) {
-      t.add({fmt("-j%u", j), "failed", "-", "-"});
+      t.add({fmt("-j%u", j), "failed", "-", "-", "-"});
       continue;
     }
     if (j == 1) t1 = sec;
     t.add({fmt("-j%u", j), fmt("%.2f", sec), fmt("%.2f", kScenes / sec),
-           t1 > 0 ? fmt("%.2fx", t1 / sec) : std::string("-")});
+           t1 > 0 ? fmt("%.2fx", t1 / sec) : std::string("-"), fmt("%.2f", median(cpu) / sec)});
     std::fprintf(stderr, "batch: -j%u: %.2f s\n", j, sec);
   }
   fs::remove_all(dir);
