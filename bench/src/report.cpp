@@ -208,6 +208,7 @@ int run_report(const std::vector<std::string>& args) {
                       }()},
       {"targets", targets},
       {"default_tol", fmt("%.0e", default_tol)},
+      {"tolerance_summary", tolerance_summary(tol.points, default_tol)},
       {"table:throughput", th.table.markdown()},
       {"table:throughput_fit", th.fit.markdown()},
       {"table:tolerance", tol.table.markdown()},

@@ -35,6 +35,8 @@ ThroughputReport throughput_report(const ThroughputOptions& o);
 struct TolerancePoint {
   std::string face;
   double tol = 0.0, ms = 0.0, link_rel = 0.0, surface_rel = 0.0;
+  double iterations = 0.0;    ///< Newton iterations per solve
+  double displacement = 0.0;  ///< largest node displacement from the default's net / d
 };
 struct ToleranceReport {
   Table table;
@@ -42,6 +44,9 @@ struct ToleranceReport {
   bool ok = true;
 };
 ToleranceReport tolerance_report(int runs);
+/// Sentences summarising the tolerance table per face: time and error at the default against
+/// looser tolerances (figures from `points`).
+std::string tolerance_summary(const std::vector<TolerancePoint>& points, double default_tol);
 
 /// Table 3: discretisation error against spacing on cases with exact answers.
 struct ConvergenceReport {
