@@ -570,20 +570,20 @@ Result<std::vector<HardCase>> hard_cases() {
 
 Table hard_case_table(int runs, bool* ok) {
   Table t;
-  t.caption = fmt(
-      "Hard cases, one full drape each (unbounded ply, default options unless stated). "
-      "Status: complete, or partial with the drape's warnings. Nodes by status: mapped "
-      "(regular + auxiliary), outside the face, at the shear limit, failed (no solution, or the "
-      "cloth would overlap itself). Max residual: "
-      "the solvers' largest final residual (|F1| + |F2|) / d "
-      "(DrapeMetrics::solve_residual_max_rel); then, measured from the nodes, the largest "
-      "link-length error / d over all links between mapped nodes (including links that no "
-      "solve closed, where a node had more known neighbours than its solver uses) and the "
-      "base-plane distance / d. Time: median of %d runs.",
-      std::max(runs, kMinRuns));
-  t.header = {"case",         "status",          "mapped",           "outside",
-              "shear limit",  "failed",          "solve residual/d", "link err/d",
-              "base-plane/d", "max shear (deg)", "time (ms)"};
+  t.caption =
+      fmt("Hard cases, one full drape each (unbounded ply, default options unless stated). "
+          "Status: complete, or partial with the drape's warnings. Nodes by status: mapped "
+          "(regular + auxiliary), outside the face, at the shear limit, failed (no solution) / "
+          "overlap (the cloth would lie on itself). Max residual: "
+          "the solvers' largest final residual (|F1| + |F2|) / d "
+          "(DrapeMetrics::solve_residual_max_rel); then, measured from the nodes, the largest "
+          "link-length error / d over all links between mapped nodes (including links that no "
+          "solve closed, where a node had more known neighbours than its solver uses) and the "
+          "base-plane distance / d. Time: median of %d runs.",
+          std::max(runs, kMinRuns));
+  t.header = {"case",         "status",           "mapped",           "outside",
+              "shear limit",  "failed / overlap", "solve residual/d", "link err/d",
+              "base-plane/d", "max shear (deg)",  "time (ms)"};
   t.right = {false, false, true, true, true, true, true, true, true, true, true};
   auto cases = hard_cases();
   if (!cases) {
