@@ -63,7 +63,7 @@ std::string scene_text(int k) {
 
 }  // namespace
 
-Table batch_table(bool* available) {
+Table batch_table(bool* available, double* speedup) {
   Table t;
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   t.caption =
@@ -75,6 +75,7 @@ Table batch_table(bool* available) {
           kScenes, kSceneSpacing, kMinRuns);
   t.header = {"jobs", "batch time (s)", "scenes/s", "speed-up vs -j1", "cores used"};
   t.right = {false, true, true, true, true};
+  if (speedup) *speedup = 0.0;
   const std::string bin = plyfit_binary();
   if (run_quiet(bin + " batch --help") != 0) {
     if (available) *available = false;
@@ -107,6 +108,7 @@ Table batch_table(bool* available) {
       continue;
     }
     if (j == 1) t1 = sec;
+    if (speedup && t1 > 0) *speedup = t1 / sec;
     t.add({fmt("-j%u", j), fmt("%.2f", sec), fmt("%.2f", kScenes / sec),
            t1 > 0 ? fmt("%.2fx", t1 / sec) : std::string("-"), fmt("%.2f", median(cpu) / sec)});
     std::fprintf(stderr, "batch: -j%u: %.2f s\n", j, sec);

@@ -31,6 +31,9 @@ constexpr int kTrimmedIndex = 16;
 // Ply sizes (nodes per side) of the tolerance table.
 constexpr int kToleranceSizeBicubic = 500;
 constexpr int kToleranceSizeSphere = 300;
+// Timed rounds of the tolerance table at least (differences of a few percent between
+// tolerances need more than kMinRuns on a shared machine).
+constexpr int kToleranceRounds = 9;
 
 /// Least-squares slope of log(y) against log(x).
 double loglog_slope(const std::vector<double>& x, const std::vector<double>& y) {
@@ -183,6 +186,7 @@ ThroughputReport throughput_report(const ThroughputOptions& o) {
 
 ToleranceReport tolerance_report(int runs) {
   ToleranceReport rep;
+  runs = std::max(runs, kToleranceRounds);
   auto faces = report_faces();
   if (!faces) {
     print_error("tolerance", faces.error());
@@ -192,7 +196,9 @@ ToleranceReport tolerance_report(int runs) {
   const double default_tol = Tolerances{}.newton_residual_rel;
   Table& t = rep.table;
   t.caption =
-      fmt("Newton tolerance newton_residual_rel (x d) against drape time (median of %d runs) and "
+      fmt("Newton tolerance newton_residual_rel (x d) against drape time (median of %d runs, "
+          "round-robin over the tolerances; evaluations/solve is the noise-free measure of the "
+          "cost) and "
           "the constraint errors measured from the nodes: link length (max | |p_a - p_b| - rest | "
           "/ d), distance to the surface / d (bicubic: Gauss-Newton foot point on OpenCASCADE's "
           "Geom_BSplineSurface from each node's (u, v); sphere: | |p| - R |), base-plane distance "
@@ -234,17 +240,34 @@ ToleranceReport tolerance_report(int runs) {
     auto distance = [&](const Vec3& p, const Vec2& uv) {
       return sphere ? std::abs(p.norm() - kSphereRadius) : occt(p, uv);
     };
-    for (double tol : tols) {
+    // Timings round-robin over the tolerances (each round drapes at every tolerance once), so
+    // that a change of the machine's load hits all tolerances alike.
+    std::vector<std::vector<double>> times(tols.size());
+    for (int round = 0; round < std::max(runs, kMinRuns); ++round) {
+      for (std::size_t k = 0; k < tols.size(); ++k) {
+        DrapeOptions opt;
+        opt.tol.newton_residual_rel = tols[k];
+        auto r = run_drape(*rf.face, *pb, opt);
+        if (!r) {
+          print_error(rf.name, r.error());
+          rep.ok = false;
+          return rep;
+        }
+        times[k].push_back(r->seconds);
+      }
+    }
+    for (std::size_t k = 0; k < tols.size(); ++k) {
+      const double tol = tols[k];
       DrapeOptions opt;
       opt.tol.newton_residual_rel = tol;
-      DrapeRun first;
-      auto tm = median_drape_time(*rf.face, *pb, opt, runs, &first);
-      if (!tm) {
-        print_error(rf.name, tm.error());
+      auto res = drape(*rf.face, *pb, opt);
+      if (!res) {
+        print_error(rf.name, res.error());
         rep.ok = false;
         continue;
       }
-      const DrapeResult& r = first.result;
+      const double tm = median(times[k]);
+      const DrapeResult& r = *res;
       const NetErrors err = net_errors(r, distance);
       double disp = 0.0;
       for (const DrapeNode& n : r.nodes) {
@@ -255,16 +278,16 @@ ToleranceReport tolerance_report(int runs) {
       const double n = static_cast<double>(net_nodes(r));
       const auto& m = r.metrics;
       t.add({rf.name, fmt("%.0e%s", tol, tol == default_tol ? " *" : ""), fmt("%.1e", floor_rel),
-             fmt("%.1f", *tm * 1e3), fmt("%.0f", *tm * 1e9 / n),
+             fmt("%.1f", tm * 1e3), fmt("%.0f", tm * 1e9 / n),
              fmt("%.2f", static_cast<double>(m.iterations) / static_cast<double>(m.solves)),
              fmt("%.2f", static_cast<double>(m.evaluations) / static_cast<double>(m.solves)),
              fmt("%.1e", m.solve_residual_max_rel), fmt("%.1e", err.link_rel),
              fmt("%.1e", err.surface_rel), fmt("%.1e", err.base_plane_rel), fmt("%.1e", disp)});
       rep.points.push_back(
-          {sphere ? "sphere octant" : "bicubic", tol, *tm * 1e3, err.link_rel, err.surface_rel,
+          {sphere ? "sphere octant" : "bicubic", tol, tm * 1e3, err.link_rel, err.surface_rel,
            static_cast<double>(m.iterations) / static_cast<double>(m.solves), disp});
       std::fprintf(stderr, "tolerance: %s %.0e: %.1f ms, link %.1e\n", rf.name.c_str(), tol,
-                   *tm * 1e3, err.link_rel);
+                   tm * 1e3, err.link_rel);
     }
   }
   return rep;

@@ -59,8 +59,9 @@ ConvergenceReport convergence_report();
 /// Table 5: hard cases, one full drape each.
 Table hard_case_table(int runs, bool* ok);
 
-/// Batch throughput: `plyfit batch -j1` against `-j2` (and more, up to the cores).
-Table batch_table(bool* available);
+/// Batch throughput: `plyfit batch -j1` against `-j2` (and more, up to the cores); the
+/// speed-up of the most jobs against -j1 in `speedup` (0 if not measured).
+Table batch_table(bool* available, double* speedup = nullptr);
 
 /// Where the drape's time goes (perf record on the bicubic face, by part).
 Table profile_table(bool* available);
