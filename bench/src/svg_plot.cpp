@@ -91,14 +91,21 @@ std::string time_error_svg(const std::vector<TolerancePoint>& points, double def
     for (const auto* p : pts) poly += fmt("%.1f,%.1f ", X(p->link_rel), Y(rel_time(*p)));
     s += fmt("<polyline points=\"%s\" fill=\"none\" stroke=\"%s\" stroke-width=\"1.5\"/>\n",
              poly.c_str(), col);
-    for (const auto* p : pts) {
+    for (std::size_t q = 0; q < pts.size(); ++q) {
+      const TolerancePoint* p = pts[q];
       const double x = X(p->link_rel), y = Y(rel_time(*p));
       const bool def = p->tol == default_tol;
       s +=
           fmt("<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%s\" fill=\"%s\"%s/>\n", x, y, def ? "6" : "3.5",
               def ? "none" : col, def ? fmt(" stroke=\"%s\" stroke-width=\"2\"", col).c_str() : "");
-      s += fmt("<text x=\"%.1f\" y=\"%.1f\" font-size=\"10\" fill=\"%s\">%.0e</text>\n", x + 5,
-               y - 6 - 10.0 * k, col, p->tol);
+      // Tolerances below the rounding floor give the same net (same error): one label.
+      if (q > 0 && pts[q - 1]->link_rel == p->link_rel) continue;
+      std::size_t last = q;
+      while (last + 1 < pts.size() && pts[last + 1]->link_rel == p->link_rel) ++last;
+      const std::string label =
+          last > q ? fmt("%.0e .. %.0e", p->tol, pts[last]->tol) : fmt("%.0e", p->tol);
+      s += fmt("<text x=\"%.1f\" y=\"%.1f\" font-size=\"10\" fill=\"%s\">%s</text>\n", x + 5,
+               y - 6 - 10.0 * k, col, label.c_str());
     }
     const double ly = kTop + 20 + 20.0 * k;
     s +=
