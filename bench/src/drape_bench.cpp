@@ -307,8 +307,8 @@ std::string tolerance_summary(const std::vector<TolerancePoint>& points, double 
     const TolerancePoint *def = at(default_tol), *t10 = at(1e-10), *t6 = at(1e-6), *t3 = at(1e-3);
     if (!def || !t10 || !t6 || !t3) continue;
     out +=
-        fmt("- %s: at the default the drape takes %+.0f%% against a tolerance of 1e-6 d and "
-            "%+.0f%% against 1e-10 d (same run), for a link error of %.1e d instead of "
+        fmt("- %s: at the default the drape takes %+.1f%% against a tolerance of 1e-6 d and "
+            "%+.1f%% against 1e-10 d (same run), for a link error of %.1e d instead of "
             "%.1e d and %.1e d; Newton iterations per solve: %.2f at 1e-3, %.2f at 1e-10, "
             "%.2f at the default. At 1e-10 d nodes move %.1e d from the default's net "
             "(%.0f times the tolerance).\n",
