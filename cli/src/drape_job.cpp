@@ -54,7 +54,7 @@ const std::vector<OptionSpec>& drape_options() {
       {"ply-name", "TEXT", "ply", "ply name for labels", false, "material"},
       {"tolerance", "T", "1e-14", "Newton tolerance relative to the spacing (eq. 9)", false, "numerics"},
       {"max-iterations", "N", "40", "Newton iteration cap per node", false, "numerics"},
-      {"guess", "paper|parallelogram", "paper", "initial guess of the two-sphere solver", false, "numerics"},
+      {"guess", "extrapolated|paper|parallelogram", "extrapolated", "initial guess of the two-sphere solver (paper: eqs. 10-11)", false, "numerics"},
       {"max-nodes", "N", "50000000", "stop after reaching this many nodes", false, "numerics"},
       {"output", "DIR", "", "output folder (-o)", false, "output"},
       {"outputs", "LIST", "", "outputs to write, comma-separated (default: all)", false, "output"},
@@ -306,9 +306,13 @@ Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
   if (auto x = parse_int(*one("max-iterations"), name("max-iterations"), 1, 10000); x) job.max_iterations = *x; else return x.error();
   job.drape.tol.newton_max_iterations = job.max_iterations;
   const std::string g = *one("guess");
-  if (g == "paper") job.drape.guess = GuessRule::kPaper;
-  else if (g == "parallelogram") job.drape.guess = GuessRule::kParallelogram;
-  else return Error{name("guess") + ": '" + g + "' must be paper or parallelogram"};
+  bool known = false;
+  for (GuessRule r : {GuessRule::kExtrapolated, GuessRule::kPaper, GuessRule::kParallelogram})
+    if (g == to_string(r)) {
+      job.drape.guess = r;
+      known = true;
+    }
+  if (!known) return Error{name("guess") + ": '" + g + "' must be extrapolated, paper or parallelogram"};
   if (auto x = parse_number(*one("max-nodes"), name("max-nodes")); x) {
     if (!(*x >= 1 && *x == std::floor(*x))) return Error{name("max-nodes") + ": must be a positive integer"};
     job.drape.max_nodes = static_cast<std::uint64_t>(*x);
@@ -373,7 +377,7 @@ std::string dump_scene(const DrapeJob& job) {
   v["ply-name"] = {job.ply_name};
   v["tolerance"] = {fmt(job.tolerance_rel)};
   v["max-iterations"] = {std::to_string(job.max_iterations)};
-  v["guess"] = {job.drape.guess == GuessRule::kPaper ? "paper" : "parallelogram"};
+  v["guess"] = {to_string(job.drape.guess)};
   v["max-nodes"] = {std::to_string(job.drape.max_nodes)};
   if (!job.outdir.empty()) v["output"] = {job.outdir};
   std::string outs;
@@ -409,7 +413,7 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   run.tolerance_rel = job.tolerance_rel;
   run.max_iterations = job.max_iterations;
   run.lock_angle_deg = job.lock_angle_deg;
-  run.guess = job.drape.guess == GuessRule::kPaper ? "paper" : "parallelogram";
+  run.guess = to_string(job.drape.guess);
   run.max_nodes = job.drape.max_nodes;
   run.ply_name = job.ply_name;
   run.material = job.material;

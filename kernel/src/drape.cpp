@@ -61,6 +61,18 @@ std::uint64_t mix(std::uint64_t k) {  // splitmix64 finaliser
 
 }  // namespace
 
+const char* to_string(GuessRule g) {
+  switch (g) {
+    case GuessRule::kPaper:
+      return "paper";
+    case GuessRule::kParallelogram:
+      return "parallelogram";
+    case GuessRule::kExtrapolated:
+      return "extrapolated";
+  }
+  return "paper";
+}
+
 const char* to_string(NodeStatus s) {
   switch (s) {
     case NodeStatus::kMapped:

@@ -117,6 +117,8 @@ enum class GuessRule : std::uint8_t {
   /// Newton iterations; the solution is the same.
   kExtrapolated,
 };
+/// "paper", "parallelogram", "extrapolated".
+const char* to_string(GuessRule g);
 
 /// Options of the drape.
 struct DrapeOptions {
