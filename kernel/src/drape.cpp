@@ -759,6 +759,19 @@ class Scanner {
     return res_.base_tangent;
   }
 
+  // True if a neighbour of q stopped at the shear limit. Such a node, reached from one side
+  // only, is stopped as well: continuing its thread straight (solver 3) past the locked
+  // node would fold the cloth over the cells the lock left open (on the sphere octant,
+  // case (c) with a 30 degree lock: mapped nodes sheared to 88 degrees, links off by 0.7 d).
+  bool behind_lock(const DrapeNode& q) const {
+    for (int d = 0; d < 4; ++d) {
+      const std::int32_t k = q.nb[d];
+      if (k >= 0 && res_.nodes[static_cast<std::size_t>(k)].status == NodeStatus::kShearLimit)
+        return true;
+    }
+    return false;
+  }
+
   void scan() {
     std::uint32_t popped = 0;
     while (!heap_.empty()) {
@@ -809,6 +822,9 @@ class Scanner {
         if (!is_weft(ka.dir) && is_weft(kb.dir)) std::swap(ka, kb);
         r = solve_two(qn, *ka.n, ka.dir, res_.rest_length(qn, ka.dir), *kb.n, kb.dir,
                       res_.rest_length(qn, kb.dir));
+      } else if (nk == 1 && behind_lock(qn)) {
+        r.status = SolveStatus::kShearLimit;
+        r.reason = "behind the shear limit";
       } else if (nk == 1) {
         r = solve_one(qn, *known[0].n, known[0].dir, res_.rest_length(qn, known[0].dir));
       } else {

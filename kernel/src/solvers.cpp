@@ -507,6 +507,12 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
   }
   if (L > step.ra + step.rb) {
     c.res.reason = "no intersection (the spheres do not meet)";
+    // The thread angle would have to pass pi: beyond any gamma_max (eq. 12).
+    if (st.gamma_min > 0.0) {
+      c.res.status = SolveStatus::kShearLimit;
+      c.res.thread_angle = kPi;
+      c.res.reason = "thread angle beyond the shear limit (the spheres do not meet)";
+    }
     return c.res;
   }
   const Vec3 a = step.a, b = step.b;

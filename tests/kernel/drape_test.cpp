@@ -240,6 +240,33 @@ TEST_CASE("drape: the paper's Table 1 cases on the sphere octant (R = 20, d = 1)
   }
 }
 
+TEST_CASE("drape: a lock angle stops the cloth at the shear limit and behind it, never folds") {
+  // The octant's case (c) sheared up to 72 degrees without a lock (d = 1/2).
+  const Face f = builtin("sphere-octant", {{"R", 20}});
+  const DrapeProblem pb = problem(0.5, Vec2(15, 0), Vec2(1, 1), {Vec2(-1, 1)}, Vec3(0, 0, 20),
+                                  Vec3(0, 1, 0), {Vec3(0, 1, 0)});
+  const DrapeResult free = run(f, pb);
+  REQUIRE(free.metrics.nodes.shear_limit == 0);
+  REQUIRE(max_shear(free) > 70 * kPi / 180);
+  std::uint64_t prev = 0;
+  for (double deg : {20.0, 30.0, 45.0, 60.0, 90.0}) {
+    INFO("lock angle " << deg);
+    DrapeOptions opt;
+    opt.lock_angle = deg * kPi / 180;
+    const DrapeResult r = run(f, pb, opt);
+    CHECK(r.metrics.nodes.failed == 0);
+    CHECK(r.metrics.edge_length_max_rel < kLinkRel);
+    // Eq. (12) holds on every mapped node's thread angle, not only on the solved corner.
+    CHECK(max_shear(r) <= opt.lock_angle);
+    if (deg < 72) CHECK(r.metrics.nodes.shear_limit > 0);
+    // A tighter lock maps less of the cloth, never more.
+    CHECK(r.metrics.nodes.mapped > prev);
+    CHECK(r.metrics.nodes.mapped <= free.metrics.nodes.mapped);
+    prev = r.metrics.nodes.mapped;
+  }
+  CHECK(prev == free.metrics.nodes.mapped);  // 90 degrees: no lock
+}
+
 TEST_CASE("drape: the paper's Table 3 cases on the one-third surface of revolution") {
   const Face f = builtin("revolution-third");
   const double r3 = std::sqrt(3.0);

@@ -159,6 +159,8 @@ TEST_CASE("solvers: near the shear limit, converge or say so, never a wrong poin
     const SolveResult q = solve_two_spheres(f, s, st);
     if (gap <= 1e-3) CHECK(q.status != SolveStatus::kConverged);
     if (gap == 1e-3) CHECK(q.status == SolveStatus::kShearLimit);  // 174.9 degrees
+    // Spheres apart: the thread angle would pass 180 degrees, beyond any lock.
+    if (gap < 0) CHECK(q.status == SolveStatus::kShearLimit);
     if (gap == 1e-1) CHECK(q.status == SolveStatus::kConverged);  // angle ~ 2 asin(0.9) = 128 deg
   }
 }

@@ -22,7 +22,8 @@ enum class NodeStatus : std::uint8_t {
   kMapped,      ///< on the face, all constraints satisfied
   kOutside,     ///< its solution lies outside the face (domain or trims)
   kOffPly,      ///< beyond the ply rectangle: no cloth there
-  kShearLimit,  ///< the thread angle would pass the lock angle (eq. 12)
+  kShearLimit,  ///< the thread angle would pass the lock angle (eq. 12), or the node has
+                ///< one mapped neighbour and a locked one (its thread would fold past it)
   kFailed,      ///< the solver found no solution (see the solver's reason)
   kOverlap,     ///< the cloth would lie on cloth already laid: the base path or the surface
                 ///< closes on itself (a closed plane section, a seam crossed all round)
