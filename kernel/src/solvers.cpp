@@ -66,12 +66,12 @@ struct Ctx {
   const DrapeSurface& s;
   const SolverSettings& st;
   Vec2 speeds;
-  double eps = 0.0;       // residual tolerance (model units)
+  double eps = 0.0;            // residual tolerance (model units)
   Vec2 anchor = Vec2::Zero();  // (u, v) of the known point the step starts from
-  double margin = 0.0;    // allowed excursion past the domain, scaled units
-  double max_step = 0.0;  // Newton step cap, scaled units
+  double margin = 0.0;         // allowed excursion past the domain, scaled units
+  double max_step = 0.0;       // Newton step cap, scaled units
   SolveResult res;
-  SurfaceEval1 last;      // evaluation at the last Newton iterate (the solution if converged)
+  SurfaceEval1 last;  // evaluation at the last Newton iterate (the solution if converged)
   double scaled_norm(const Vec2& duv) const { return duv.cwiseProduct(speeds).norm(); }
   bool within_margin(const Vec2& uv) const {
     const Vec2 w = s.wrap(uv);  // closed directions come back inside; open ones unchanged
@@ -356,8 +356,8 @@ namespace {
 // solution going forward along the unit tangent `t` (which lies in the plane). Solvers 1
 // and 3 are this problem with different planes.
 SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Vec2& uv0,
-                              const SurfaceEval1& e0, const Vec3& n0, const Vec3& pn,
-                              const Vec3& t, double rho, const SolverSettings& st) {
+                              const SurfaceEval1& e0, const Vec3& n0, const Vec3& pn, const Vec3& t,
+                              double rho, const SolverSettings& st) {
   Ctx c(s, st);
   const UvDirection ud = uv_direction_at(s, uv0, e0, n0, t);
   if (ud.leaves_face) {
@@ -402,12 +402,11 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Vec2&
   // extrapolated from the previous two solutions.
   const SolveResult first = c.res;
   for (int K : kMarchSteps) {
-    Vec2 prev = ud.from_uv, prev2 = ud.from_uv;
+    Vec2 prev = ud.from_uv, prev2 = ud.from_uv, g = ud.from_uv;
     bool ok = true;
     for (int k = 1; k <= K && ok; ++k) {
       rad = rho * k / K;
-      const Vec2 g = k == 1 ? Vec2(ud.from_uv + rad * ud.dir_uv)
-                            : Vec2(prev + s.delta(prev2, prev));
+      g = k == 1 ? Vec2(ud.from_uv + rad * ud.dir_uv) : Vec2(prev + s.delta(prev2, prev));
       ok = solve_from(g);
       if (ok) {
         prev2 = prev;
@@ -418,10 +417,16 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Vec2&
       classify_converged(c);
       return c.res;
     }
-    // An iterate that left the margin ends the march as "left the face" only if the curve
-    // had already left the face at the previous sub-step; otherwise try finer sub-steps.
-    if (c.res.status == SolveStatus::kLeftFace && prev != ud.from_uv && !s.contains(prev))
+    // A sub-step that fails where the curve, at the last sub-step or continued from it, is
+    // already off the face ends the march: the node is outside. (Its iterate left the margin, or
+    // Newton stalled on the surface extended past a domain edge, which need not go on.)
+    // Otherwise try finer sub-steps.
+    if (!s.contains(g) || (prev != ud.from_uv && !s.contains(prev))) {
+      c.res.status = SolveStatus::kLeftFace;
+      c.res.extended = false;
+      c.res.reason = "outside";
       return c.res;
+    }
   }
   SolveResult out = first;
   out.iterations = c.res.iterations;
@@ -486,9 +491,9 @@ SolveResult solve_plane_sphere(const DrapeSurface& s, const PlaneSphereStep& ste
   return r;
 }
 
-Vec2 two_sphere_guess(const DrapeSurface& s, const Vec2& a_uv, const Vec2& a_prev_uv,
-                      const Vec3& a, const Vec3& a_prev, double ra, const Vec2& b_uv,
-                      const Vec2& b_prev_uv, const Vec3& b, const Vec3& b_prev, double rb) {
+Vec2 two_sphere_guess(const DrapeSurface& s, const Vec2& a_uv, const Vec2& a_prev_uv, const Vec3& a,
+                      const Vec3& a_prev, double ra, const Vec2& b_uv, const Vec2& b_prev_uv,
+                      const Vec3& b, const Vec3& b_prev, double rb) {
   // Eq. (10): each thread continued from its last node by its rest length, the (u, v)
   // gradient scaled by the (u, v) per 3D length ratio of the previous segment (eq. 8).
   const double la = (a - a_prev).norm(), lb = (b - b_prev).norm();

@@ -78,6 +78,40 @@ TEST_CASE("drape: on a plane the net is the ply itself, at any base-path angle")
   }
 }
 
+TEST_CASE("drape: a plane with extreme weights is still the ply, cut at the face's edge") {
+  // A flat 20 x 20 patch [-10, 10]^2, bicubic, with product weights from 0.01 to 100: the
+  // parametrisation is wild, and the surface extended past its edges turns back on itself.
+  NurbsSurfaceData d;
+  d.degree_u = d.degree_v = 3;
+  d.count_u = d.count_v = 7;
+  d.knots_u = d.knots_v = {0, 0, 0, 0, 0.25, 0.5, 0.75, 1, 1, 1, 1};
+  const double alpha[7] = {0.1, 10, 0.1, 3, 10, 0.2, 1};
+  const double beta[7] = {10, 0.1, 5, 0.1, 10, 0.1, 1};
+  for (int i = 0; i < 7; ++i)
+    for (int j = 0; j < 7; ++j) {
+      d.poles.emplace_back(-10 + 20.0 * i / 6, -10 + 20.0 * j / 6, 0.0);
+      d.weights.push_back(alpha[i] * beta[j]);
+    }
+  FaceData fd;
+  fd.surface = d;
+  auto f = Face::create(std::move(fd));
+  REQUIRE(f.ok());
+  const double sp = 0.2;
+  const Vec3 s3(0.3, 0.1, 0);
+  const DrapeResult r = run(*f, problem(sp, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)}, s3,
+                                        Vec3(0, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)}));
+  // Nodes past the edge are outside, not failures: the crossings 0.3 + 0.2 k and 0.1 + 0.2 k
+  // inside [-10, 10] are 100 x 100, each where the translated ply puts it.
+  CHECK(r.metrics.nodes.failed == 0);
+  CHECK(r.metrics.nodes.mapped == 10000);
+  CHECK_FALSE(r.partial);
+  double dev = 0.0;
+  for (const auto& n : r.nodes)
+    if (n.mapped())
+      dev = std::max(dev, (n.point - Vec3(n.ply.x() + s3.x(), n.ply.y() + s3.y(), 0)).norm());
+  CHECK(dev < kLinkRel * sp);
+}
+
 TEST_CASE("drape: a cylinder with threads along and around the axis has no shear") {
   const double R = 10, d = 1.0;
   const Face f = builtin("cylinder", {{"R", R}, {"H", 40}, {"angle", 120}});
