@@ -510,6 +510,7 @@ class Builder {
   // Boundary of the union of counter-clockwise polygons: edges shared by two polygons (in
   // opposite directions) cancel; the rest chain into loops, outer ones counter-clockwise.
   std::vector<OutlineLoop> assemble(const std::vector<Polygon>& polys) const {
+    const double merge = st_.tol.ply_merge_rel * ply_.d();
     std::map<std::pair<int, int>, int> edges;  // ordered: deterministic output
     for (const auto& p : polys) {
       for (std::size_t k = 0; k < p.size(); ++k) {
@@ -557,12 +558,15 @@ class Builder {
         cur = pick->second;
         out.erase(pick);
       }
+      // Vertices closer than the ply's merge distance are one (a crossing computed on a
+      // cell edge and the same boundary corner carried in by the cell's map, 1e-11 d apart).
       OutlineLoop l;
       for (int v : ids) {
         const Vec2& p = verts_[v].p2;
-        if (l.points.empty() || (p - l.points.back()).norm() > 0.0) l.points.push_back(p);
+        if (l.points.empty() || (p - l.points.back()).norm() > merge) l.points.push_back(p);
       }
-      while (l.points.size() > 1 && l.points.front() == l.points.back()) l.points.pop_back();
+      while (l.points.size() > 1 && (l.points.front() - l.points.back()).norm() <= merge)
+        l.points.pop_back();
       if (l.points.size() < 3) continue;
       double a = 0.0, per = 0.0;
       for (std::size_t k = 0; k < l.points.size(); ++k) {
