@@ -11,6 +11,7 @@
 #include "bench.hpp"
 #include "drape_cases.hpp"
 #include "occt_util.hpp"
+#include "support/surfaces.hpp"
 #include "tables.hpp"
 
 #include <algorithm>
@@ -481,28 +482,6 @@ NurbsSurfaceData roof() {
   return d;
 }
 
-// A flat 20 x 20 mm patch with a wild parametrisation: bicubic, knot spans 1000x apart, and
-// (if `weights`) product weights from 0.01 to 100.
-NurbsSurfaceData wild_plane(bool knots, bool weights) {
-  NurbsSurfaceData d;
-  d.degree_u = d.degree_v = 3;
-  d.count_u = d.count_v = 7;
-  if (knots) {
-    d.knots_u = {0, 0, 0, 0, 0.001, 0.002, 1.0, 2.0, 2.0, 2.0, 2.0};
-    d.knots_v = {0, 0, 0, 0, 1.0, 1000.0, 1001.0, 2000.0, 2000.0, 2000.0, 2000.0};
-  } else {
-    d.knots_u = d.knots_v = {0, 0, 0, 0, 0.25, 0.5, 0.75, 1, 1, 1, 1};
-  }
-  const double alpha[7] = {0.1, 10, 0.1, 3, 10, 0.2, 1};
-  const double beta[7] = {10, 0.1, 5, 0.1, 10, 0.1, 1};
-  for (int i = 0; i < 7; ++i)
-    for (int j = 0; j < 7; ++j) {
-      d.poles.emplace_back(-10 + 20.0 * i / 6, -10 + 20.0 * j / 6, 0.0);
-      if (weights) d.weights.push_back(alpha[i] * beta[j]);
-    }
-  return d;
-}
-
 Result<std::vector<HardCase>> hard_cases() {
   std::vector<HardCase> out;
   const Vec3 X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1);
@@ -531,11 +510,11 @@ Result<std::vector<HardCase>> hard_cases() {
     out.push_back({"C0 crease (roof, slopes +-1/2), d 0.5", *f, both(0.5, Vec3(-10, 0, 5), Y), {}});
   }
   {
-    auto f = data_face(wild_plane(false, true));
+    auto f = data_face(support::wild_plane(false, true));
     if (!f) return f.error();
     out.push_back(
         {"extreme weights (0.01..100, plane), d 0.2", *f, both(0.2, Vec3(0.3, 0.1, 0), Y), {}});
-    auto g = data_face(wild_plane(true, false));
+    auto g = data_face(support::wild_plane(true, false));
     if (!g) return g.error();
     out.push_back({"non-uniform knots (spans 1000x apart, plane), d 0.2",
                    *g,

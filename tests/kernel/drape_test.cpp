@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "support/problems.hpp"
+#include "support/surfaces.hpp"
 
 #include "test_util.hpp"
 
@@ -81,19 +82,8 @@ TEST_CASE("drape: on a plane the net is the ply itself, at any base-path angle")
 TEST_CASE("drape: a plane with extreme weights is still the ply, cut at the face's edge") {
   // A flat 20 x 20 patch [-10, 10]^2, bicubic, with product weights from 0.01 to 100: the
   // parametrisation is wild, and the surface extended past its edges turns back on itself.
-  NurbsSurfaceData d;
-  d.degree_u = d.degree_v = 3;
-  d.count_u = d.count_v = 7;
-  d.knots_u = d.knots_v = {0, 0, 0, 0, 0.25, 0.5, 0.75, 1, 1, 1, 1};
-  const double alpha[7] = {0.1, 10, 0.1, 3, 10, 0.2, 1};
-  const double beta[7] = {10, 0.1, 5, 0.1, 10, 0.1, 1};
-  for (int i = 0; i < 7; ++i)
-    for (int j = 0; j < 7; ++j) {
-      d.poles.emplace_back(-10 + 20.0 * i / 6, -10 + 20.0 * j / 6, 0.0);
-      d.weights.push_back(alpha[i] * beta[j]);
-    }
   FaceData fd;
-  fd.surface = d;
+  fd.surface = support::wild_plane(false, true);
   auto f = Face::create(std::move(fd));
   REQUIRE(f.ok());
   const double sp = 0.2;

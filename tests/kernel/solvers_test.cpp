@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include "support/solver_cases.hpp"
+#include "support/surfaces.hpp"
 #include "test_util.hpp"
 
 #include <cmath>
@@ -209,19 +210,7 @@ TEST_CASE("solvers: a step across a C0 crease") {
 TEST_CASE("solvers: strongly non-uniform parametrisation and extreme weights") {
   // A flat patch z = 0 whose parametrisation is wildly non-uniform: knot spans differing by
   // 1000x and product weights from 0.01 to 100. Geometry is a plane, so answers are exact.
-  NurbsSurfaceData d;
-  d.degree_u = d.degree_v = 3;
-  d.count_u = d.count_v = 7;
-  d.knots_u = {0, 0, 0, 0, 0.001, 0.002, 1.0, 2.0, 2.0, 2.0, 2.0};
-  d.knots_v = {0, 0, 0, 0, 1.0, 1000.0, 1001.0, 2000.0, 2000.0, 2000.0, 2000.0};
-  const double alpha[7] = {0.1, 10, 0.1, 3, 10, 0.2, 1};
-  const double beta[7] = {10, 0.1, 5, 0.1, 10, 0.1, 1};
-  for (int i = 0; i < 7; ++i)
-    for (int j = 0; j < 7; ++j) {
-      d.poles.emplace_back(-10 + 20.0 * i / 6, -10 + 20.0 * j / 6, 0.0);
-      d.weights.push_back(alpha[i] * beta[j]);
-    }
-  const Face f = make_face(d);
+  const Face f = make_face(support::wild_plane(true, true));
   SolverSettings st;
   st.spacing = 0.5;
   Rng rng(9);
