@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <set>
 #include <unordered_map>
 
 namespace plyfit {
@@ -25,8 +26,6 @@ constexpr double kBarycentricSlack = 1e-12;
 // Corners the drape never reached are solved on the surface extended this many steps past
 // the face.
 constexpr double kVirtualExtensionSteps = 4.0;
-// Virtual corners may be solved from virtual corners this many layers deep.
-constexpr int kVirtualLayers = 2;
 // Cells of the grid index over boundary segments, per direction (at most).
 constexpr int kGridMax = 256;
 
@@ -172,19 +171,7 @@ class Builder {
   }
 
   FlatPattern run() {
-    // Positions of the corners the drape did not reach, layer by layer.
-    for (int layer = 0; layer < kVirtualLayers; ++layer) {
-      std::vector<NodeId> todo;
-      for_each_touched_cell(
-          r_,
-          [&](std::int32_t i, std::int32_t j) {
-            for (const NodeId& c : {NodeId::regular(i, j), NodeId::regular(i + 1, j),
-                                    NodeId::regular(i + 1, j + 1), NodeId::regular(i, j + 1)})
-              if (!position(c)) todo.push_back(c);
-          },
-          1);
-      for (const NodeId& c : todo) solve_virtual(c);
-    }
+    solve_virtual_corners();
     for_each_touched_cell(
         r_,
         [&](std::int32_t i, std::int32_t j) {
@@ -220,42 +207,123 @@ class Builder {
     return std::nullopt;
   }
 
-  // A corner the drape never reached, beyond the face: solved from a weft and a warp
-  // neighbour with positions, or by continuing a thread through a neighbour. Kept only if
-  // it lands outside the face (inside, the drape stopped for another reason, or the node is
-  // in an unswept half-plane: the outline stays on the mapped side there).
-  void solve_virtual(const NodeId& id) {
-    if (id.is_path_only() || virtual_.count(id.key())) return;
-    if (const DrapeNode* n = r_.find(id); n && (n->mapped() || n->has(DrapeNode::kExtended))) return;
-    const Vec2 q2 = ply_.pos(id);
-    if (ply_.side(q2) != 0 && ply_.sweep_for_side(ply_.side(q2)) < 0) return;
-    struct Nb {
-      NodeId id;
-      double rest;
-      Position p;
-      ThreadDir dir;
+  // Positions of the corners of the touched cells that the drape did not reach, beyond the
+  // face. They are solved the way the drape would have: from a weft and a warp neighbour
+  // (two spheres) wherever two are known, which propagates no error; a thread is continued
+  // through a neighbour (solver 3) only where no two-sphere solve is left, first along
+  // segments of the drape's own nodes, and only as a last resort along segments with a
+  // virtual end. (Continuing a thread extrapolates its last segment: an error in either end
+  // comes out doubled, so chains of continuations through virtual nodes sheared the corner
+  // cells of a cone sector by 4.5 degrees at d = L/800 and moved the face corner carried in
+  // by them 0.017 d.)
+  void solve_virtual_corners() {
+    std::vector<NodeId> todo;
+    std::unordered_map<std::uint64_t, std::size_t> slot;  // todo index by key
+    for_each_touched_cell(
+        r_,
+        [&](std::int32_t i, std::int32_t j) {
+          for (const NodeId& c : {NodeId::regular(i, j), NodeId::regular(i + 1, j),
+                                  NodeId::regular(i + 1, j + 1), NodeId::regular(i, j + 1)})
+            if (!position(c) && slot.emplace(c.key(), todo.size()).second) todo.push_back(c);
+        },
+        1);
+    // Work lists, so that every node is tried again only when a neighbour gains a position:
+    // `queue` for two spheres; `retry` (ordered: deterministic) for a continuation along any
+    // segment. Whether a node continues along the drape's own segments depends on the drape
+    // alone, so one pass in order (`next`) tries each node once.
+    std::vector<std::size_t> queue;
+    std::set<std::size_t> retry;
+    for (std::size_t k = todo.size(); k-- > 0;) {
+      queue.push_back(k);
+      retry.insert(k);
+    }
+    auto solved = [&](const NodeId& id) {
+      for (int d = 0; d < 4; ++d)
+        if (const auto n = ply_.neighbour(id.i, id.j, static_cast<ThreadDir>(d)))
+          if (const auto it = slot.find(n->id.key()); it != slot.end() && !virtual_.count(n->id.key())) {
+            queue.push_back(it->second);
+            retry.insert(it->second);
+          }
     };
+    auto known = [&](std::size_t k) { return virtual_.count(todo[k].key()) > 0; };
+    std::size_t next = 0;
+    for (;;) {  // each round solves a node or ends: at most todo.size() rounds
+      while (!queue.empty()) {
+        const std::size_t k = queue.back();
+        queue.pop_back();
+        if (!known(k) && virtual_by_spheres(todo[k])) solved(todo[k]);
+      }
+      bool progress = false;
+      for (; next < todo.size() && !progress; ++next)
+        if (!known(next) && virtual_by_continuation(todo[next], true)) {
+          solved(todo[next]);
+          progress = true;
+        }
+      while (!progress && !retry.empty()) {
+        const std::size_t k = *retry.begin();
+        retry.erase(retry.begin());
+        if (!known(k) && virtual_by_continuation(todo[k], false)) {
+          solved(todo[k]);
+          progress = true;
+        }
+      }
+      if (!progress) break;
+    }
+  }
+
+  // A known neighbour of a node to be solved.
+  struct Nb {
+    NodeId id;
+    double rest;
+    Position p;
+    ThreadDir dir;
+  };
+
+  // The known neighbours of a node the drape never reached, beyond the face, or none if the
+  // node is a path node, known, or in an unswept half-plane (the outline stays on the mapped
+  // side there).
+  std::vector<Nb> virtual_neighbours(const NodeId& id) const {
     std::vector<Nb> nbs;
+    if (id.is_path_only() || virtual_.count(id.key())) return nbs;
+    if (const DrapeNode* n = r_.find(id); n && (n->mapped() || n->has(DrapeNode::kExtended))) return nbs;
+    const Vec2 q2 = ply_.pos(id);
+    if (ply_.side(q2) != 0 && ply_.sweep_for_side(ply_.side(q2)) < 0) return nbs;
     for (int d = 0; d < 4; ++d) {
       const auto dir = static_cast<ThreadDir>(d);
       const auto n = ply_.neighbour(id.i, id.j, dir);
       if (!n) continue;
       if (auto p = position(n->id)) nbs.push_back({n->id, n->rest, *p, dir});
     }
-    auto accept = [&](const SolveResult& res) {
-      if (!(res.status == SolveStatus::kLeftFace && res.extended)) return false;
-      virtual_[id.key()] = Position{res.uv, res.point, false};
-      return true;
-    };
+    return nbs;
+  }
+
+  // Keeps a virtual corner only if it lands outside the face (inside, the drape stopped for
+  // another reason).
+  bool accept_virtual(const NodeId& id, const SolveResult& res) {
+    if (!(res.status == SolveStatus::kLeftFace && res.extended)) return false;
+    virtual_[id.key()] = Position{res.uv, res.point, false};
+    return true;
+  }
+
+  // A virtual corner from a weft and a warp neighbour with positions.
+  bool virtual_by_spheres(const NodeId& id) {
+    const std::vector<Nb> nbs = virtual_neighbours(id);
+    const Vec2 q2 = ply_.pos(id);
     for (const Nb& a : nbs)
       for (const Nb& b : nbs) {
         if (!is_weft(a.dir) || is_weft(b.dir)) continue;
         const double side = cross2(ply_.pos(b.id) - ply_.pos(a.id), q2 - ply_.pos(a.id)) > 0 ? 1.0 : -1.0;
-        if (accept(solve_two_spheres(s_, {a.p.point, a.p.uv, a.rest, b.p.point, b.p.uv, b.rest, side, std::nullopt}, st_)))
-          return;
+        if (accept_virtual(id, solve_two_spheres(s_, {a.p.point, a.p.uv, a.rest, b.p.point, b.p.uv, b.rest, side, std::nullopt}, st_)))
+          return true;
       }
-    for (const Nb& a : nbs) {
-      // Continue the thread through a: its predecessor beyond a, away from the node.
+    return false;
+  }
+
+  // A virtual corner continuing a thread through a neighbour: the neighbour's predecessor
+  // beyond it, away from the node, gives the thread's last segment. With `drape_only`, both
+  // ends of that segment must be the drape's own nodes.
+  bool virtual_by_continuation(const NodeId& id, bool drape_only) {
+    for (const Nb& a : virtual_neighbours(id)) {
       std::optional<PlyNeighbour> before;
       if (!a.id.is_path_only()) {
         before = ply_.neighbour(a.id.i, a.id.j, a.dir);
@@ -264,10 +332,13 @@ class Builder {
           if (tn.dir == a.dir) before = tn.n;
       }
       if (!before) continue;
+      if (drape_only && (virtual_.count(a.id.key()) || virtual_.count(before->id.key()))) continue;
       const auto pb = position(before->id);
       if (!pb) continue;
-      if (accept(solve_plane_sphere(s_, {a.p.point, a.p.uv, a.rest, a.p.point - pb->point}, st_))) return;
+      if (accept_virtual(id, solve_plane_sphere(s_, {a.p.point, a.p.uv, a.rest, a.p.point - pb->point}, st_)))
+        return true;
     }
+    return false;
   }
 
   // Vertex index of a node (creating it).
