@@ -164,7 +164,8 @@ class Builder {
         ply_(*r.ply),
         loops_(s.boundary_loops()),
         collapsed_(collapsed_vertices(s, loops_, collapsed_segments_)),
-        index_(s, loops_, collapsed_segments_) {
+        index_(s, loops_, collapsed_segments_),
+        drape_vertices_(r.nodes.size(), -1) {
     st_.spacing = ply_.d();
     st_.gamma_min = 0.0;
     st_.tol.extension_steps = kVirtualExtensionSteps;
@@ -343,11 +344,20 @@ class Builder {
 
   // Vertex index of a node (creating it).
   int node_vertex(const NodeId& id) {
-    const auto it = node_vertices_.find(id.key());
-    if (it != node_vertices_.end()) return it->second;
+    // A node of the drape has its slot by index (most of them: no hashing); others by key.
+    const DrapeNode* n = r_.find(id);
+    int* slot = nullptr;
+    if (n) {
+      slot = &drape_vertices_[static_cast<std::size_t>(n - r_.nodes.data())];
+    } else {
+      slot = &node_vertices_.try_emplace(id.key(), -1).first->second;
+    }
+    if (*slot >= 0) return *slot;
     Vertex v;
     v.p2 = ply_.pos(id);
-    if (const auto p = position(id)) {
+    if (const auto p = n && (n->mapped() || n->has(DrapeNode::kExtended))
+                           ? std::optional<Position>(Position{n->uv, n->point, n->mapped()})
+                           : position(id)) {
       v.has_uv = true;
       v.uv = p->uv;
       v.in = p->in;
@@ -358,16 +368,16 @@ class Builder {
         v.free = e.dv.norm() * sp.x() <= e.du.norm() * sp.y() ? 1 : 0;
       }
     }
+    *slot = static_cast<int>(verts_.size());
     verts_.push_back(v);
-    const int k = static_cast<int>(verts_.size()) - 1;
-    node_vertices_[id.key()] = k;
-    return k;
+    return *slot;
   }
 
   // Boundary crossings on the edge between vertices a and b, in order from a to b: the
   // intersections of the edge's (u, v) segment with the face boundary, their count checked
   // against contains() at the ends (bisection when a node sits on the boundary itself).
-  // Computed once per edge so that both cells sharing it get the same points.
+  // Computed once per edge so that both cells sharing it get the same points (an edge with
+  // none, most of them, is not stored: recomputing it gives none again).
   std::vector<int> crossings(int a, int b) {
     const bool flip = b < a;
     const std::pair<int, int> key = flip ? std::pair{b, a} : std::pair{a, b};
@@ -404,6 +414,7 @@ class Builder {
         verts_.push_back(x);
         ids.push_back(static_cast<int>(verts_.size()) - 1);
       }
+      if (ids.empty()) return ids;
       it = crossings_.emplace(key, std::move(ids)).first;
     }
     std::vector<int> out = it->second;
@@ -668,7 +679,8 @@ class Builder {
   BoundaryIndex index_;
   SolverSettings st_;
   std::vector<Vertex> verts_;
-  std::unordered_map<std::uint64_t, int> node_vertices_;
+  std::vector<int> drape_vertices_;  // vertex of each drape node (by index), or -1
+  std::unordered_map<std::uint64_t, int> node_vertices_;  // vertex of other nodes (by key)
   std::unordered_map<std::uint64_t, Position> virtual_;
   std::map<std::pair<int, int>, std::vector<int>> crossings_;
   std::vector<Polygon> exact_, stair_;
