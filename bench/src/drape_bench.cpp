@@ -95,6 +95,9 @@ Result<std::vector<ReportFace>> report_faces() {
 // ---------------------------------------------------------------------------------------
 // Table 1
 
+// The flat pattern is timed up to this ply size (size^2 nodes).
+constexpr int kFlatPatternMaxSize = 1000;
+
 ThroughputReport throughput_report(const ThroughputOptions& o) {
   ThroughputReport rep;
   auto faces = report_faces();
@@ -111,8 +114,10 @@ ThroughputReport throughput_report(const ThroughputOptions& o) {
           "held at once during drape() (replacement operator new counting malloc_usable_size; "
           "everything: node vector growth, index, frontier, path, metrics), per mapped node. "
           "Peak RSS: growth of the resident set's high-water mark during the first run. Held: "
-          "DrapeResult::bytes_per_node() after the drape.",
-          std::max(o.runs, kMinRuns));
+          "DrapeResult::bytes_per_node() after the drape. Flat pattern: wall time of "
+          "flat_pattern() on the drape's result (exact outline and staircase), median of %d "
+          "runs, per mapped node; sizes up to %d^2 only, to keep the report short.",
+          std::max(o.runs, kMinRuns), std::max(o.runs, kMinRuns), kFlatPatternMaxSize);
   t.header = {"face",
               "size",
               "d (mm)",
@@ -124,8 +129,9 @@ ThroughputReport throughput_report(const ThroughputOptions& o) {
               "peak heap B/node",
               "peak RSS B/node",
               "held B/node",
-              "link err/d"};
-  t.right = {false, true, true, true, true, true, true, true, true, true, true, true};
+              "link err/d",
+              "flat pattern ns/node"};
+  t.right = {false, true, true, true, true, true, true, true, true, true, true, true, true};
   Table& fit = rep.fit;
   fit.caption =
       "Growth of the drape time with the number of nodes n: least-squares slope of log(time) "
@@ -160,11 +166,17 @@ ThroughputReport throughput_report(const ThroughputOptions& o) {
       ts.push_back(sec);
       tnl.push_back(sec * 1e9 / nlogn);
       const double peak = static_cast<double>(first.peak_heap) / n;
+      std::string flat = "-";
+      if (size <= kFlatPatternMaxSize) {
+        const double ft = median_time([&] { (void)flat_pattern(*rf.face, first.result); },
+                                      std::max(o.runs, kMinRuns));
+        flat = fmt("%.0f", ft * 1e9 / n);
+      }
       t.add({rf.name, fmt("%d^2", size), fmt("%.4g", d), fmt("%.0f", n), fmt("%.1f", sec * 1e3),
              fmt("%.2f", n / sec * 1e-6), fmt("%.0f", sec * 1e9 / n),
              fmt("%.1f", sec * 1e9 / nlogn), fmt("%.0f", peak),
              first.peak_rss_bytes >= 0 ? fmt("%.0f", first.peak_rss_bytes / n) : std::string("-"),
-             fmt("%.0f", first.result.bytes_per_node()), fmt("%.1e", err.link_rel)});
+             fmt("%.0f", first.result.bytes_per_node()), fmt("%.1e", err.link_rel), flat});
       if (fi == 0) {
         rep.bicubic_nodes_per_s.push_back(n / sec);
         rep.bicubic_link_rel = std::max(rep.bicubic_link_rel, err.link_rel);
