@@ -27,6 +27,8 @@ constexpr double kMinSweepSin = 1e-6;
 // section, or a closed face wrapped all round.
 constexpr double kOverlapRel = 0.5;
 constexpr double kOverlapSeparation = 2.0;
+// On an open face, nodes sheared past this (radians: 60 degrees) are tested for overlap.
+constexpr double kOverlapCheckShear = 1.0471975511965976;
 // How often (resolved nodes) the scan checks for cancellation and reports progress.
 constexpr std::uint32_t kCancelEvery = 4096;
 constexpr std::uint32_t kProgressEvery = 65536;
@@ -379,14 +381,14 @@ class Scanner {
       : s_(s), ply_(ply), opt_(opt), res_(res) {
     st_.spacing = ply.d();
     st_.tol = opt.tol;
-    st_.gamma_min = std::max(0.0, kPi / 2 - opt.lock_angle);
-    res_.gamma_min_limit = st_.gamma_min;
+    res_.gamma_min_limit = std::max(0.0, kPi / 2 - opt.lock_angle);
+    st_.gamma_min = std::max(res_.gamma_min_limit, opt.tol.fold_angle);
     far_ = kFarFromPathCells * std::hypot(ply.spec().d_weft, ply.spec().d_warp);
     const auto& d = s.domain();
     closed_ = s.wrap(Vec2(d.u1 + 0.5 * d.width_u(), d.v0)).x() <= d.u1 ||
               s.wrap(Vec2(d.u0, d.v1 + 0.5 * d.width_v())).y() <= d.v1;
     cell_ = kOverlapRel * ply.d();
-    // Open faces record only the base path; closed ones every mapped node.
+    // Open faces record only the base path and steep nodes; closed ones every mapped node.
     grid_.init(cell_, closed_ ? res_.nodes.capacity() : 64);
   }
 
@@ -636,7 +638,21 @@ class Scanner {
     }
     SolverSettings st = st_;
     if (is_weft(da) == is_weft(db)) st.gamma_min = 0.0;  // same thread: no thread angle
-    return solve_two_spheres(s_, step, st);
+    SolveResult r = solve_two_spheres(s_, step, st);
+    // The cell (a, c, b, q) must not fold: q lies across the line a-b from the fourth corner
+    // c, about the normal. The solver kept the ply's orientation of (a, b, q); if c lies on
+    // that side too, the net around c is already sheared past flat, and no unfolded cell
+    // exists: the cloth stops there as at the shear limit.
+    if (c && (r.status == SolveStatus::kConverged || r.status == SolveStatus::kShearLimit) &&
+        r.point.allFinite()) {
+      const Vec3 n = s_.normal(r.uv).n;
+      const Vec3 e = b.point - a.point;
+      if (n.dot(e.cross(r.point - a.point)) * n.dot(e.cross(c->point - a.point)) >= 0.0) {
+        r.status = SolveStatus::kShearLimit;
+        r.reason = "the cell would fold (the cloth is sheared flat)";
+      }
+    }
+    return r;
   }
 
   // GuessRule::kExtrapolated for the node across the cell (a, c, b) from c, a and b its weft
@@ -763,6 +779,44 @@ class Scanner {
   // only, is stopped as well: continuing its thread straight (solver 3) past the locked
   // node would fold the cloth over the cells the lock left open (on the sphere octant,
   // case (c) with a 30 degree lock: mapped nodes sheared to 88 degrees, links off by 0.7 d).
+  // True if a thread through node k (just mapped) turns back on itself there: the link to
+  // a mapped neighbour and that neighbour's next link along the same thread make an angle
+  // over 90 degrees. A smooth surface turns a thread by about d / R per link (60 degrees
+  // at a curvature radius R = d); more is cloth folded onto itself, which two-sphere solves
+  // from a net sheared nearly flat can produce without end on a face that never lets it go.
+  bool folds_back(std::uint32_t k) const {
+    const DrapeNode& q = res_.nodes[k];
+    for (int d = 0; d < 4; ++d) {
+      const DrapeNode* a = mapped_nb(q, static_cast<ThreadDir>(d));
+      const DrapeNode* a2 = a ? mapped_nb(*a, static_cast<ThreadDir>(d)) : nullptr;
+      if (a2 && (a->point - q.point).dot(a2->point - a->point) < 0.0) return true;
+    }
+    return false;
+  }
+
+  // True if node k (just mapped) is sheared past kOverlapCheckShear between any of its weft
+  // and warp links. On an open face only such nodes are recorded and tested for overlap:
+  // a net sheared nearly flat can lie on itself (a ribbon of cells folded flat along the
+  // ply's diagonal, revisiting the same stretch of the face without end) while every link
+  // and every solve's thread angle passes; a net sheared less cannot, and is not recorded,
+  // which keeps the test's cost off ordinary drapes.
+  bool steep(std::uint32_t k) const {
+    const DrapeNode& q = res_.nodes[k];
+    const double lim = kPi / 2 - kOverlapCheckShear;
+    for (int dw = 0; dw < 2; ++dw) {
+      const DrapeNode* w = mapped_nb(q, static_cast<ThreadDir>(dw));
+      if (!w) continue;
+      for (int dv = 2; dv < 4; ++dv) {
+        const DrapeNode* v = mapped_nb(q, static_cast<ThreadDir>(dv));
+        if (!v) continue;
+        const Vec3 a = w->point - q.point, b = v->point - q.point;
+        const double g = std::atan2(a.cross(b).norm(), a.dot(b));
+        if (g < lim || g > kPi - lim) return true;
+      }
+    }
+    return false;
+  }
+
   bool behind_lock(const DrapeNode& q) const {
     for (int d = 0; d < 4; ++d) {
       const std::int32_t k = q.nb[d];
@@ -831,8 +885,10 @@ class Scanner {
         r.reason = "no known neighbour";
       }
       resolve(qi, r);
-      // On a closed face the cloth can come round onto itself.
-      if (node(qi).mapped() && closed_ && overlaps(qi)) node(qi).status = NodeStatus::kOverlap;
+      // On a closed face the cloth can come round onto itself; on any face, a net sheared
+      // nearly flat can lie on itself or fold its threads back (steep(), folds_back()).
+      if (node(qi).mapped() && (((closed_ || steep(qi)) && overlaps(qi)) || folds_back(qi)))
+        node(qi).status = NodeStatus::kOverlap;
       if (node(qi).mapped()) push_neighbours(qi);
     }
     while (!heap_.empty()) heap_.pop();  // cancelled: pending nodes stay unresolved

@@ -22,11 +22,15 @@ enum class NodeStatus : std::uint8_t {
   kMapped,      ///< on the face, all constraints satisfied
   kOutside,     ///< its solution lies outside the face (domain or trims)
   kOffPly,      ///< beyond the ply rectangle: no cloth there
-  kShearLimit,  ///< the thread angle would pass the lock angle (eq. 12), or the node has
-                ///< one mapped neighbour and a locked one (its thread would fold past it)
+  kShearLimit,  ///< the thread angle would pass the lock angle (eq. 12) or come within
+                ///< Tolerances::fold_angle of 0 or pi, or its cell would fold (the net around
+                ///< it is sheared flat), or the node has one mapped neighbour and a locked one
+                ///< (its thread would fold past it)
   kFailed,      ///< the solver found no solution (see the solver's reason)
   kOverlap,     ///< the cloth would lie on cloth already laid: the base path or the surface
-                ///< closes on itself (a closed plane section, a seam crossed all round)
+                ///< closes on itself (a closed plane section, a seam crossed all round), a
+                ///< thread turns back on itself, or a net sheared past 60 degrees comes back
+                ///< over itself
   kPending,     ///< internal: in the frontier
 };
 /// "mapped", "outside", "off_ply", "shear_limit", "failed", "overlap", "pending".
@@ -185,7 +189,7 @@ struct DrapeResult {
   double start_moved = 0.0;           ///< distance from the given 3D start to the face
   Vec3 base_normal = Vec3::UnitY();   ///< unit base-plane normal
   Vec3 base_tangent = Vec3::UnitX();  ///< 3D direction of the base path at the start
-  double gamma_min_limit = 0.0;       ///< gamma_min used (radians)
+  double gamma_min_limit = 0.0;       ///< gamma_min of the lock angle (radians; 0 without one)
   double drape_ms = 0.0;              ///< wall time of drape()
 
   /// Node by id, or nullptr.

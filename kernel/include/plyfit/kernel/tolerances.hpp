@@ -16,6 +16,13 @@ struct Tolerances {
   /// magnitude of the coordinates involved and of the face (a few ulps of |F| computed from
   /// them: the surface is evaluated to a few ulps of its control net's size).
   double roundoff_rel = 2e-15;
+  /// Thread angles (radians) closer than fold_angle to 0 or pi are cloth folded flat onto
+  /// itself, not a drape: a node whose angle would pass them stops at the shear limit even
+  /// without a lock angle (eq. 12 with gamma_min = fold_angle). Below it the net can collapse
+  /// onto a curve (weft and warp neighbours at one point) that satisfies every link and
+  /// never leaves the face, and the two-sphere problem degenerates (its Jacobian's condition
+  /// grows as 1 / sin gamma). One degree: far past any woven fabric's locking angle.
+  double fold_angle = 0.017453292519943295;
   /// Iteration cap of every Newton solve.
   int newton_max_iterations = 40;
   /// Cap on step halvings in a line search.
