@@ -27,6 +27,10 @@ constexpr double kMinSweepSin = 1e-6;
 // section, or a closed face wrapped all round.
 constexpr double kOverlapRel = 0.5;
 constexpr double kOverlapSeparation = 2.0;
+// A node solved from two neighbours whose link to a further known neighbour is off by more
+// than this (relative to d) is not mapped: two fronts met around a hole in the net and
+// disagree. Fronts that agree do so to the solver's tolerance.
+constexpr double kFrontMismatchRel = 1e-6;
 // On an open face, nodes sheared past this (radians: 60 degrees) are tested for overlap.
 constexpr double kOverlapCheckShear = 1.0471975511965976;
 // How often (resolved nodes) the scan checks for cancellation and reports progress.
@@ -876,6 +880,17 @@ class Scanner {
         if (!is_weft(ka.dir) && is_weft(kb.dir)) std::swap(ka, kb);
         r = solve_two(qn, *ka.n, ka.dir, res_.rest_length(qn, ka.dir), *kb.n, kb.dir,
                       res_.rest_length(qn, kb.dir));
+        // Links to further known neighbours (fronts that met around a hole in the net) are
+        // not solved for: a node that breaks one is no point of the cloth.
+        for (int x = 0; x < nk && r.status == SolveStatus::kConverged; ++x) {
+          if (known[x].n == ka.n || known[x].n == kb.n) continue;
+          const double rest = res_.rest_length(qn, known[x].dir);
+          const double err = std::abs((r.point - known[x].n->point).norm() - rest);
+          if (err > kFrontMismatchRel * ply_.d()) {
+            r.status = SolveStatus::kFailed;
+            r.reason = "the fronts disagree: a third link is off";
+          }
+        }
       } else if (nk == 1 && behind_lock(qn)) {
         r.status = SolveStatus::kShearLimit;
         r.reason = "behind the shear limit";

@@ -26,7 +26,8 @@ enum class NodeStatus : std::uint8_t {
                 ///< Tolerances::fold_angle of 0 or pi, or its cell would fold (the net around
                 ///< it is sheared flat), or the node has one mapped neighbour and a locked one
                 ///< (its thread would fold past it)
-  kFailed,      ///< the solver found no solution (see the solver's reason)
+  kFailed,      ///< the solver found no solution (see the solver's reason), or two fronts
+                ///< met at the node and disagree (a further link would be off)
   kOverlap,     ///< the cloth would lie on cloth already laid: the base path or the surface
                 ///< closes on itself (a closed plane section, a seam crossed all round), a
                 ///< thread turns back on itself, or a net sheared past 60 degrees comes back
