@@ -592,7 +592,7 @@ class Builder {
   // Boundary of the union of counter-clockwise polygons: edges shared by two polygons (in
   // opposite directions) cancel; the rest chain into loops, outer ones counter-clockwise.
   std::vector<OutlineLoop> assemble(const std::vector<Polygon>& polys) const {
-    const double merge = st_.tol.ply_merge_rel * ply_.d();
+    const double merge = st_.tol.outline_merge_rel * ply_.d();
     std::map<std::pair<int, int>, int> edges;  // ordered: deterministic output
     for (const auto& p : polys) {
       for (std::size_t k = 0; k < p.size(); ++k) {
@@ -640,8 +640,9 @@ class Builder {
         cur = pick->second;
         out.erase(pick);
       }
-      // Vertices closer than the ply's merge distance are one (a crossing computed on a
-      // cell edge and the same boundary corner carried in by the cell's map, 1e-11 d apart).
+      // Vertices closer than outline_merge_rel * d are one (a crossing computed on a cell
+      // edge and the same boundary corner carried in by the cell's map, 1e-11 d apart, or a
+      // corner a hair from the edge that rounding puts on the wrong side of a crossing).
       OutlineLoop l;
       for (int v : ids) {
         const Vec2& p = verts_[v].p2;

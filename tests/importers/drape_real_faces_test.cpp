@@ -6,9 +6,11 @@
 
 #include <plyfit/importers/importers.hpp>
 #include <plyfit/kernel/drape.hpp>
+#include <plyfit/kernel/flat_pattern.hpp>
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -141,5 +143,58 @@ TEST_CASE("drape: where fronts meet around a hole in the net, no link is broken"
     INFO(links << " links, worst " << worst << " d");
     CHECK(links > 500);
     CHECK(worst <= 1e-9);
+  }
+}
+
+TEST_CASE("flat pattern: outlines on real faces are simple where a face corner is a hair from a cell edge") {
+  // Found by the fuzz on example_45_faces.iges face 4: a bowtie of 1.1e-7 mm at a corner.
+  const std::vector<Case> cases = {
+      {"example_45_faces.iges", 4, 1.27219, Vec3(26.963612, 26.324395, 32.277873),
+       Vec3(-0.060501, 0.966651, 0.248847), Vec2(0.201892, 0.979408), Vec2(0.979408, -0.201892),
+       Vec3(-0.113013, -0.817735, -0.564391), true},
+      {"example_45_faces.iges", 4, 0.848665, Vec3(33.772887, 14.003669, 31.443629),
+       Vec3(0.611023, 0.764969, 0.203651), Vec2(0.258866, -0.965913), Vec2(0.965913, 0.258866),
+       Vec3(-0.387342, 0.529303, 0.754854), false},
+  };
+  auto cross = [](const Vec2& o, const Vec2& p, const Vec2& q) {
+    return (p.x() - o.x()) * (q.y() - o.y()) - (p.y() - o.y()) * (q.x() - o.x());
+  };
+  for (const Case& c : cases) {
+    INFO(c.file << " face " << c.face << " d " << c.d);
+    auto f = importers::load_face(std::string(PLYFIT_SHARED_DIR) + "/cad/" + c.file, c.face);
+    REQUIRE(f.ok());
+    DrapeProblem pb;
+    pb.ply.d_weft = pb.ply.d_warp = c.d;
+    pb.ply.start = Vec2(0, 0);
+    pb.ply.base_dir = c.base2;
+    pb.ply.sweeps = {c.sweep2};
+    pb.start = c.start;
+    pb.base_normal = c.base_normal;
+    pb.sweeps = {c.sweep3};
+    if (c.both_sides) {
+      pb.ply.sweeps.push_back(-c.sweep2);
+      pb.sweeps.push_back(-c.sweep3);
+    }
+    auto r = drape(*f, pb);
+    REQUIRE(r.ok());
+    const FlatPattern fp = flat_pattern(*f, *r);
+    REQUIRE_FALSE(fp.outline.empty());
+    int crossings = 0;
+    for (const OutlineLoop& l : fp.outline) {
+      const auto& P = l.points;
+      const std::size_t n = P.size();
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t j = i + 2; j < n; ++j) {
+          if (i == 0 && j == n - 1) continue;
+          const Vec2 a = P[i], b = P[(i + 1) % n], p = P[j], q = P[(j + 1) % n];
+          // Proper crossings only: the boxes overlap and each segment's ends straddle the
+          // other's line (collinear pieces along the base path are no crossing).
+          if (std::max(a.x(), b.x()) < std::min(p.x(), q.x()) || std::max(p.x(), q.x()) < std::min(a.x(), b.x()) ||
+              std::max(a.y(), b.y()) < std::min(p.y(), q.y()) || std::max(p.y(), q.y()) < std::min(a.y(), b.y()))
+            continue;
+          if (cross(a, b, p) * cross(a, b, q) < 0 && cross(p, q, a) * cross(p, q, b) < 0) ++crossings;
+        }
+    }
+    CHECK(crossings == 0);
   }
 }

@@ -38,10 +38,10 @@ FlatPattern drape_flat(const Face& f, double d, Vec2 b2, std::vector<Vec2> w2, V
 }
 
 // Loops are simple (no two non-adjacent edges cross, no two vertices closer than the ply's
-// merge distance at spacing d), outer counter-clockwise, holes clockwise (signed area), and
+// outline merge distance at spacing d), outer counter-clockwise, holes clockwise (signed area), and
 // the reported area/perimeter match the points.
 void check_loops(const FlatPattern& fp, double d) {
-  const double merge = Tolerances{}.ply_merge_rel * d;
+  const double merge = Tolerances{}.outline_merge_rel * d;
   for (const auto& l : fp.outline) {
     const auto& p = l.points;
     const std::size_t n = p.size();

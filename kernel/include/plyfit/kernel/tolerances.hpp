@@ -35,6 +35,11 @@ struct Tolerances {
   /// Two ply points closer than ply_merge_rel * d are the same node (e.g. an auxiliary point
   /// that falls on a thread crossing).
   double ply_merge_rel = 1e-9;
+  /// Consecutive vertices of a flat-pattern outline closer than outline_merge_rel * d are
+  /// one. Where a face corner lies within a hair of a cell edge, the edge's crossings and the
+  /// corner carried in by the cell's map come out in an order rounding decides, and a bowtie
+  /// of 1e-7 d was seen; the outline is accurate to O(d^2) anyway, so nothing real is lost.
+  double outline_merge_rel = 1e-6;
   /// Trim polylines deviate from the exact trim curve by at most trim_chord_rel * face size.
   double trim_chord_rel = 1e-5;
   /// During Newton, an iterate may leave the face's parameter domain by at most this many
