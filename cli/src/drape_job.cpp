@@ -23,6 +23,9 @@ namespace plyfit::cli {
 namespace {
 
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+// The mapped cells (flat chords of the surface, inside the face) cover at most the face; a
+// little more is the trim polylines' chord error. More is cloth lying on cloth.
+constexpr double kCoverageSlack = 0.01;
 
 std::string all_outputs() {
   std::string s;
@@ -460,6 +463,16 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   auto res = drape(*face, job.problem, opt);
   if (tty) std::cerr << "\r\033[K" << std::flush;
   if (!res) return res.error();
+  // The drape tests every node for overlap only on closed faces and where the net is sheared
+  // past 60 degrees (a test of every node would cost half the speed); an immersed net can
+  // still come back over itself elsewhere on a long open face. The coverage shows it.
+  if (face->area() > 0 && res->metrics.surface_area > (1 + kCoverageSlack) * face->area()) {
+    res->partial = true;
+    res->warnings.push_back("the mapped cells cover " +
+                            std::to_string(static_cast<int>(std::lround(
+                                100 * res->metrics.surface_area / face->area()))) +
+                            "% of the face: the cloth lies on itself somewhere");
+  }
   if (cancel && cancel->load()) return Error{"cancelled"};
   run.drape_ms = res->drape_ms;
   const FlatPattern flat = flat_pattern(*face, *res);
