@@ -647,11 +647,15 @@ class Scanner {
     // c, about the normal. The solver kept the ply's orientation of (a, b, q); if c lies on
     // that side too, the net around c is already sheared past flat, and no unfolded cell
     // exists: the cloth stops there as at the shear limit.
+    // (Sides compared by the parts of q - a and c - a across the line: a cell is not bent
+    // by 90 degrees, and no surface evaluation is needed.)
     if (c && (r.status == SolveStatus::kConverged || r.status == SolveStatus::kShearLimit) &&
         r.point.allFinite()) {
-      const Vec3 n = s_.normal(r.uv).n;
-      const Vec3 e = b.point - a.point;
-      if (n.dot(e.cross(r.point - a.point)) * n.dot(e.cross(c->point - a.point)) >= 0.0) {
+      const Vec3 e = (b.point - a.point).normalized();
+      Vec3 u = r.point - a.point, w = c->point - a.point;
+      u -= u.dot(e) * e;
+      w -= w.dot(e) * e;
+      if (u.dot(w) >= 0.0) {
         r.status = SolveStatus::kShearLimit;
         r.reason = "the cell would fold (the cloth is sheared flat)";
       }
@@ -806,7 +810,9 @@ class Scanner {
   // which keeps the test's cost off ordinary drapes.
   bool steep(std::uint32_t k) const {
     const DrapeNode& q = res_.nodes[k];
-    const double lim = kPi / 2 - kOverlapCheckShear;
+    // The angle g between links a and b is below pi/2 - shear or above pi/2 + shear when
+    // |cos g| > sin(shear): (a.b)^2 > sin^2(shear) |a|^2 |b|^2, no trigonometry.
+    const double s2 = std::sin(kOverlapCheckShear) * std::sin(kOverlapCheckShear);
     for (int dw = 0; dw < 2; ++dw) {
       const DrapeNode* w = mapped_nb(q, static_cast<ThreadDir>(dw));
       if (!w) continue;
@@ -814,8 +820,8 @@ class Scanner {
         const DrapeNode* v = mapped_nb(q, static_cast<ThreadDir>(dv));
         if (!v) continue;
         const Vec3 a = w->point - q.point, b = v->point - q.point;
-        const double g = std::atan2(a.cross(b).norm(), a.dot(b));
-        if (g < lim || g > kPi - lim) return true;
+        const double ab = a.dot(b);
+        if (ab * ab > s2 * a.squaredNorm() * b.squaredNorm()) return true;
       }
     }
     return false;
