@@ -29,6 +29,28 @@ struct Case {
   bool both_sides;
 };
 
+Face load(const Case& c) {
+  auto f = importers::load_face(std::string(PLYFIT_SHARED_DIR) + "/cad/" + c.file, c.face);
+  REQUIRE(f.ok());
+  return std::move(f).value();
+}
+
+DrapeProblem problem(const Case& c) {
+  DrapeProblem pb;
+  pb.ply.d_weft = pb.ply.d_warp = c.d;
+  pb.ply.start = Vec2(0, 0);
+  pb.ply.base_dir = c.base2;
+  pb.ply.sweeps = {c.sweep2};
+  pb.start = c.start;
+  pb.base_normal = c.base_normal;
+  pb.sweeps = {c.sweep3};
+  if (c.both_sides) {
+    pb.ply.sweeps.push_back(-c.sweep2);
+    pb.sweeps.push_back(-c.sweep3);
+  }
+  return pb;
+}
+
 }  // namespace
 
 TEST_CASE("drape: on real faces the cloth never runs away, folds or lies on itself") {
@@ -47,20 +69,9 @@ TEST_CASE("drape: on real faces the cloth never runs away, folds or lies on itse
   };
   for (const Case& c : cases) {
     INFO(c.file << " face " << c.face << " d " << c.d);
-    auto f = importers::load_face(std::string(PLYFIT_SHARED_DIR) + "/cad/" + c.file, c.face);
-    REQUIRE(f.ok());
-    DrapeProblem pb;
-    pb.ply.d_weft = pb.ply.d_warp = c.d;
-    pb.ply.start = Vec2(0, 0);
-    pb.ply.base_dir = c.base2;
-    pb.ply.sweeps = {c.sweep2};
-    pb.start = c.start;
-    pb.base_normal = c.base_normal;
-    pb.sweeps = {c.sweep3};
-    if (c.both_sides) {
-      pb.ply.sweeps.push_back(-c.sweep2);
-      pb.sweeps.push_back(-c.sweep3);
-    }
+    const Face face = load(c);
+    const Face* f = &face;
+    const DrapeProblem pb = problem(c);
     const double face_cells = f->area() / (c.d * c.d);
     DrapeOptions opt;
     opt.max_nodes = static_cast<std::uint64_t>(20 * face_cells);  // a runaway hits this
@@ -113,16 +124,9 @@ TEST_CASE("drape: where fronts meet around a hole in the net, no link is broken"
   };
   for (const auto& [c, lock_deg] : cases) {
     INFO(c.file << " face " << c.face << " d " << c.d << " lock " << lock_deg);
-    auto f = importers::load_face(std::string(PLYFIT_SHARED_DIR) + "/cad/" + c.file, c.face);
-    REQUIRE(f.ok());
-    DrapeProblem pb;
-    pb.ply.d_weft = pb.ply.d_warp = c.d;
-    pb.ply.start = Vec2(0, 0);
-    pb.ply.base_dir = c.base2;
-    pb.ply.sweeps = {c.sweep2};
-    pb.start = c.start;
-    pb.base_normal = c.base_normal;
-    pb.sweeps = {c.sweep3};
+    const Face face = load(c);
+    const Face* f = &face;
+    const DrapeProblem pb = problem(c);
     DrapeOptions opt;
     opt.lock_angle = lock_deg * 3.14159265358979323846 / 180;
     auto r = drape(*f, pb, opt);
@@ -161,20 +165,9 @@ TEST_CASE("flat pattern: outlines on real faces are simple where a face corner i
   };
   for (const Case& c : cases) {
     INFO(c.file << " face " << c.face << " d " << c.d);
-    auto f = importers::load_face(std::string(PLYFIT_SHARED_DIR) + "/cad/" + c.file, c.face);
-    REQUIRE(f.ok());
-    DrapeProblem pb;
-    pb.ply.d_weft = pb.ply.d_warp = c.d;
-    pb.ply.start = Vec2(0, 0);
-    pb.ply.base_dir = c.base2;
-    pb.ply.sweeps = {c.sweep2};
-    pb.start = c.start;
-    pb.base_normal = c.base_normal;
-    pb.sweeps = {c.sweep3};
-    if (c.both_sides) {
-      pb.ply.sweeps.push_back(-c.sweep2);
-      pb.sweeps.push_back(-c.sweep3);
-    }
+    const Face face = load(c);
+    const Face* f = &face;
+    const DrapeProblem pb = problem(c);
     auto r = drape(*f, pb);
     REQUIRE(r.ok());
     const FlatPattern fp = flat_pattern(*f, *r);
