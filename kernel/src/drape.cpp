@@ -783,10 +783,6 @@ class Scanner {
     return res_.base_tangent;
   }
 
-  // True if a neighbour of q stopped at the shear limit. Such a node, reached from one side
-  // only, is stopped as well: continuing its thread straight (solver 3) past the locked
-  // node would fold the cloth over the cells the lock left open (on the sphere octant,
-  // case (c) with a 30 degree lock: mapped nodes sheared to 88 degrees, links off by 0.7 d).
   // True if a thread through node k (just mapped) turns back on itself there: the link to
   // a mapped neighbour and that neighbour's next link along the same thread make an angle
   // over 90 degrees. A smooth surface turns a thread by about d / R per link (60 degrees
@@ -827,6 +823,10 @@ class Scanner {
     return false;
   }
 
+  // True if a neighbour of q stopped at the shear limit. Such a node, reached from one side
+  // only, is stopped as well: continuing its thread straight (solver 3) past the locked
+  // node would fold the cloth over the cells the lock left open (on the sphere octant,
+  // case (c) with a 30 degree lock: mapped nodes sheared to 88 degrees, links off by 0.7 d).
   bool behind_lock(const DrapeNode& q) const {
     for (int d = 0; d < 4; ++d) {
       const std::int32_t k = q.nb[d];
