@@ -30,7 +30,7 @@ constexpr double kOverlapSeparation = 2.0;
 // A node solved from two neighbours whose link to a further known neighbour is off by more
 // than this (relative to d) is not mapped: two fronts met around a hole in the net and
 // disagree. Fronts that agree do so to the solver's tolerance.
-constexpr double kFrontMismatchRel = 1e-6;
+constexpr double kFrontMismatchRel = 1e-9;
 // On an open face, nodes sheared past this (radians: 60 degrees) are tested for overlap.
 constexpr double kOverlapCheckShear = 1.0471975511965976;
 // How often (resolved nodes) the scan checks for cancellation and reports progress.
