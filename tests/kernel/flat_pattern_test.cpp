@@ -5,6 +5,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "support/problems.hpp"
+
 #include <cmath>
 
 using namespace plyfit;
@@ -23,15 +25,7 @@ Face builtin(const std::string& name, std::map<std::string, double> p = {}) {
 
 FlatPattern drape_flat(const Face& f, double d, Vec2 b2, std::vector<Vec2> w2, Vec3 s3, Vec3 bn,
                        std::vector<Vec3> w3, Vec2 s2 = Vec2(0, 0)) {
-  DrapeProblem pb;
-  pb.ply.d_weft = pb.ply.d_warp = d;
-  pb.ply.start = s2;
-  pb.ply.base_dir = b2;
-  pb.ply.sweeps = std::move(w2);
-  pb.start = s3;
-  pb.base_normal = bn;
-  pb.sweeps = std::move(w3);
-  auto r = drape(f, pb);
+  auto r = drape(f, support::problem(d, s2, b2, std::move(w2), s3, bn, std::move(w3)));
   REQUIRE(r.ok());
   REQUIRE(r->metrics.nodes.failed == 0);
   return flat_pattern(f, *r);
