@@ -4,13 +4,26 @@
 // of repeated runs; comparisons are ratios measured in the same run.
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace plyfit::bench {
+
+/// Output of a shell command without its trailing newlines, or empty on failure.
+inline std::string capture(const std::string& cmd) {
+  std::string out;
+  std::unique_ptr<FILE, int (*)(FILE*)> p(popen(cmd.c_str(), "r"), pclose);
+  if (!p) return out;
+  std::array<char, 4096> buf;
+  while (std::fgets(buf.data(), buf.size(), p.get())) out += buf.data();
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+  return out;
+}
 
 /// A plyfit-bench subcommand; `run` gets the arguments after its name and returns the exit
 /// code.

@@ -476,24 +476,6 @@ struct HardCase {
   DrapeOptions options;
 };
 
-// A roof of two planes meeting in a C0 crease along x = 0 (degree 2 in u with a double knot),
-// 40 x 60 mm, slopes +-1/2.
-NurbsSurfaceData roof() {
-  NurbsSurfaceData d;
-  d.degree_u = 2;
-  d.degree_v = 1;
-  d.count_u = 5;
-  d.count_v = 2;
-  d.knots_u = {0, 0, 0, 0.5, 0.5, 1, 1, 1};
-  d.knots_v = {0, 0, 1, 1};
-  for (Vec3 p :
-       {Vec3(-20, 0, 0), Vec3(-10, 0, 5), Vec3(0, 0, 10), Vec3(10, 0, 5), Vec3(20, 0, 0)}) {
-    d.poles.push_back(p + Vec3(0, -30, 0));
-    d.poles.push_back(p + Vec3(0, 30, 0));
-  }
-  return d;
-}
-
 Result<std::vector<HardCase>> hard_cases() {
   std::vector<HardCase> out;
   const Vec3 X(1, 0, 0), Y(0, 1, 0), Z(0, 0, 1);
@@ -516,7 +498,7 @@ Result<std::vector<HardCase>> hard_cases() {
                    lock});
   }
   {
-    auto f = data_face(roof());
+    auto f = data_face(support::roof(10));  // 40 x 60 mm
     if (!f) return f.error();
     // The base path runs across the crease.
     out.push_back({"C0 crease (roof, slopes +-1/2), d 0.5", *f, both(0.5, Vec3(-10, 0, 5), Y), {}});

@@ -40,16 +40,6 @@ int run_profile_drape(const std::vector<std::string>&) {
   return 0;
 }
 
-// Output of a shell command, or empty on failure.
-std::string capture(const std::string& cmd) {
-  std::string out;
-  std::unique_ptr<FILE, int (*)(FILE*)> p(popen(cmd.c_str(), "r"), pclose);
-  if (!p) return out;
-  std::array<char, 4096> buf;
-  while (std::fgets(buf.data(), buf.size(), p.get())) out += buf.data();
-  return out;
-}
-
 // The part of the drape a sampled function belongs to.
 std::string category(const std::string& sym) {
   static const std::vector<std::pair<std::regex, std::string>> rules = {

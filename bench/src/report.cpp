@@ -35,16 +35,6 @@ constexpr double kTargetBytesPerNode = 200.0;
 // (beyond the run-to-run noise of a shared machine).
 constexpr double kTargetBatchGrowth = 1.2;
 
-std::string capture(const std::string& cmd) {
-  std::string out;
-  std::unique_ptr<FILE, int (*)(FILE*)> p(popen(cmd.c_str(), "r"), pclose);
-  if (!p) return out;
-  std::array<char, 4096> buf;
-  while (std::fgets(buf.data(), buf.size(), p.get())) out += buf.data();
-  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
-  return out;
-}
-
 std::string read_file(const std::string& path) {
   std::ifstream is(path, std::ios::binary);
   std::stringstream ss;

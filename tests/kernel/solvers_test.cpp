@@ -169,17 +169,7 @@ TEST_CASE("solvers: near the shear limit, converge or say so, never a wrong poin
 TEST_CASE("solvers: a step across a C0 crease") {
   // A roof: two planes z = 1 + x/2 (x < 0) and z = 1 - x/2 (x > 0) meeting in a crease at
   // x = 0, as one degree-2 B-spline with a double knot (C0).
-  NurbsSurfaceData d;
-  d.degree_u = 2;
-  d.degree_v = 1;
-  d.count_u = 5;
-  d.count_v = 2;
-  d.knots_u = {0, 0, 0, 0.5, 0.5, 1, 1, 1};
-  d.knots_v = {0, 0, 1, 1};
-  for (Vec3 p : {Vec3(-2, 0, 0), Vec3(-1, 0, 0.5), Vec3(0, 0, 1), Vec3(1, 0, 0.5), Vec3(2, 0, 0)}) {
-    d.poles.push_back(p + Vec3(0, -3, 0));
-    d.poles.push_back(p + Vec3(0, 3, 0));
-  }
+  const NurbsSurfaceData d = support::roof(1);
   const Face f = make_face(d);
   SolverSettings st;
   st.spacing = 1.0;

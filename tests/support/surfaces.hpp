@@ -28,4 +28,21 @@ inline NurbsSurfaceData wild_plane(bool knots, bool weights) {
   return d;
 }
 
+/// A roof of two planes meeting in a C0 crease along x = 0 (degree 2 in u with a double
+/// knot), 4s x 6s, slopes +-1/2, ridge at z = s: z = s - |x| / 2 for |x| <= 2s.
+inline NurbsSurfaceData roof(double s) {
+  NurbsSurfaceData d;
+  d.degree_u = 2;
+  d.degree_v = 1;
+  d.count_u = 5;
+  d.count_v = 2;
+  d.knots_u = {0, 0, 0, 0.5, 0.5, 1, 1, 1};
+  d.knots_v = {0, 0, 1, 1};
+  for (Vec3 p : {Vec3(-2, 0, 0), Vec3(-1, 0, 0.5), Vec3(0, 0, 1), Vec3(1, 0, 0.5), Vec3(2, 0, 0)}) {
+    d.poles.push_back(s * (p + Vec3(0, -3, 0)));
+    d.poles.push_back(s * (p + Vec3(0, 3, 0)));
+  }
+  return d;
+}
+
 }  // namespace plyfit::support
