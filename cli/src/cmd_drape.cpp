@@ -17,7 +17,9 @@ namespace {
 
 // Set by SIGINT/SIGTERM: the drape stops and no output is written.
 std::atomic<bool> g_interrupted{false};
-extern "C" void on_interrupt(int) { g_interrupted.store(true); }
+extern "C" void on_interrupt(int) {
+  g_interrupted.store(true);
+}
 
 void catch_interrupts() {
   struct sigaction sa {};
@@ -33,9 +35,12 @@ void drape_help(std::ostream& os) {
         "A scene file holds the same keys as the options (without dashes); options given\n"
         "on the command line override it.\n\noptions:\n";
   for (const auto& s : drape_options()) {
-    std::string flag = "  --" + s.key + (s.key == "output" ? ", -o" : "") + (s.value.empty() ? "" : " " + s.value);
-    if (flag.size() < 34) flag += std::string(34 - flag.size(), ' ');
-    else flag += "\n" + std::string(34, ' ');
+    std::string flag =
+        "  --" + s.key + (s.key == "output" ? ", -o" : "") + (s.value.empty() ? "" : " " + s.value);
+    if (flag.size() < 34)
+      flag += std::string(34 - flag.size(), ' ');
+    else
+      flag += "\n" + std::string(34, ' ');
     os << flag << s.help << (s.def.empty() ? "" : " [" + s.def + "]")
        << (s.repeatable ? " (repeatable)" : "") << "\n";
   }
@@ -99,11 +104,13 @@ int run_drape(const std::vector<std::string>& args_in) {
       ++i;
     }
   }
-  args.erase(std::remove_if(args.begin(), args.end(), [&](const std::string& a) {
-               if (a == "--dump-scene") return dump = true;
-               if (a == "--quiet") return quiet = true;
-               return false;
-             }), args.end());
+  args.erase(std::remove_if(args.begin(), args.end(),
+                            [&](const std::string& a) {
+                              if (a == "--dump-scene") return dump = true;
+                              if (a == "--quiet") return quiet = true;
+                              return false;
+                            }),
+             args.end());
   // Every exit after this point leaves an outcome file when asked for one.
   auto finish = [&](int code, const JobOutcome& out) {
     if (!outcome_path.empty()) {
@@ -154,14 +161,16 @@ int run_drape(const std::vector<std::string>& args_in) {
   }
   const auto& m = out->metrics;
   std::cout << "plyfit: " << out->status << ": " << m.nodes.mapped << " nodes mapped ("
-            << m.nodes.auxiliary << " auxiliary base-path points), " << m.nodes.outside << " outside, "
-            << m.nodes.off_ply << " off the ply, " << m.nodes.shear_limit << " at the shear limit, "
-            << m.nodes.failed << " failed, " << m.nodes.overlap << " overlapping; max shear " << out->shear_max_deg << " deg; "
+            << m.nodes.auxiliary << " auxiliary base-path points), " << m.nodes.outside
+            << " outside, " << m.nodes.off_ply << " off the ply, " << m.nodes.shear_limit
+            << " at the shear limit, " << m.nodes.failed << " failed, " << m.nodes.overlap
+            << " overlapping; max shear " << out->shear_max_deg << " deg; "
             << static_cast<long>(out->total_ms) << " ms -> " << job->outdir << "\n";
   return finish(kExitOk, *out);
 }
 
-const CommandRegistrar kRegister{{"drape", "drape a ply on a mold face and write the outputs", 20, run_drape}};
+const CommandRegistrar kRegister{
+    {"drape", "drape a ply on a mold face and write the outputs", 20, run_drape}};
 
 }  // namespace
 }  // namespace plyfit::cli

@@ -10,9 +10,9 @@ namespace plyfit::cli {
 
 /// Exit codes shared by every subcommand.
 enum ExitCode : int {
-  kExitOk = 0,       ///< success (a drape may still be partial)
-  kExitFailure = 1,  ///< the job failed: bad file, bad scene, drape error, failed batch job
-  kExitUsage = 2,    ///< bad command line: unknown option, malformed value
+  kExitOk = 0,             ///< success (a drape may still be partial)
+  kExitFailure = 1,        ///< the job failed: bad file, bad scene, drape error, failed batch job
+  kExitUsage = 2,          ///< bad command line: unknown option, malformed value
   kExitInterrupted = 130,  ///< stopped by SIGINT or SIGTERM (128 + SIGINT, as shells report)
 };
 

@@ -7,13 +7,13 @@
 
 #include <boost/program_options.hpp>
 
+#include <unistd.h>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
-#include <unistd.h>
 
 namespace po = boost::program_options;
 namespace fs = std::filesystem;
@@ -37,33 +37,46 @@ std::string all_outputs() {
 
 const std::vector<OptionSpec>& drape_options() {
   static const std::vector<OptionSpec> list = {
-      {"mold", "FILE|builtin:NAME[:k=v,...]", "", "mold file (STEP, IGES) or a built-in mold", false, "mold"},
+      {"mold", "FILE|builtin:NAME[:k=v,...]", "", "mold file (STEP, IGES) or a built-in mold",
+       false, "mold"},
       {"face", "N", "0", "face index in the mold file (see plyfit info)", false, "mold"},
-      {"format", "KEY", "", "importer to use instead of the file extension (step, iges)", false, "mold"},
+      {"format", "KEY", "", "importer to use instead of the file extension (step, iges)", false,
+       "mold"},
       {"flip-normal", "", "false", "drape on the other side of the surface", false, "mold"},
       {"spacing", "D", "", "thread spacing d (both directions), model units", false, "ply"},
-      {"spacing-weft", "D", "", "weft link length (spacing of the warp threads, along x)", false, "ply"},
-      {"spacing-warp", "D", "", "warp link length (spacing of the weft threads, along y)", false, "ply"},
+      {"spacing-weft", "D", "", "weft link length (spacing of the warp threads, along x)", false,
+       "ply"},
+      {"spacing-warp", "D", "", "warp link length (spacing of the weft threads, along y)", false,
+       "ply"},
       {"ply", "W,H", "", "cloth rectangle [0,W] x [0,H] (default: unbounded)", false, "ply"},
       {"start2d", "X,Y", "", "start point of the base path in ply coordinates", false, "start"},
       {"base2d", "DX,DY", "", "base path direction in ply coordinates", false, "start"},
-      {"sweep2d", "DX,DY", "", "sweep direction in ply coordinates (one per half-plane)", true, "start"},
+      {"sweep2d", "DX,DY", "", "sweep direction in ply coordinates (one per half-plane)", true,
+       "start"},
       {"start3d", "X,Y,Z", "", "start point on the mold (projected onto the face)", false, "start"},
-      {"base-normal", "NX,NY,NZ", "", "normal of the base plane (through the 3D start)", false, "start"},
-      {"sweep3d", "DX,DY,DZ", "", "3D sweep direction, paired in order with --sweep2d", true, "start"},
-      {"lock-angle", "DEG", "90", "largest shear (90 - thread angle) the cloth takes; 90 = no limit", false, "material"},
-      {"warn-angle", "DEG", "", "shear above which cells are flagged (default: lock angle - 5)", false, "material"},
+      {"base-normal", "NX,NY,NZ", "", "normal of the base plane (through the 3D start)", false,
+       "start"},
+      {"sweep3d", "DX,DY,DZ", "", "3D sweep direction, paired in order with --sweep2d", true,
+       "start"},
+      {"lock-angle", "DEG", "90",
+       "largest shear (90 - thread angle) the cloth takes; 90 = no limit", false, "material"},
+      {"warn-angle", "DEG", "", "shear above which cells are flagged (default: lock angle - 5)",
+       false, "material"},
       {"material", "TEXT", "woven", "material name for labels", false, "material"},
       {"ply-name", "TEXT", "ply", "ply name for labels", false, "material"},
-      {"tolerance", "T", "1e-14", "Newton tolerance relative to the spacing (eq. 9)", false, "numerics"},
+      {"tolerance", "T", "1e-14", "Newton tolerance relative to the spacing (eq. 9)", false,
+       "numerics"},
       {"max-iterations", "N", "40", "Newton iteration cap per node", false, "numerics"},
-      {"guess", "extrapolated|paper|parallelogram", "extrapolated", "initial guess of the two-sphere solver (paper: eqs. 10-11)", false, "numerics"},
+      {"guess", "extrapolated|paper|parallelogram", "extrapolated",
+       "initial guess of the two-sphere solver (paper: eqs. 10-11)", false, "numerics"},
       {"max-nodes", "N", "50000000", "stop after reaching this many nodes", false, "numerics"},
       {"output", "DIR", "", "output folder (-o)", false, "output"},
       {"outputs", "LIST", "", "outputs to write, comma-separated (default: all)", false, "output"},
       {"curve-degree", "1|3", "1", "degree of the thread curves in net.step", false, "output"},
-      {"view", "X,Y,Z", "1,1,1", "view direction of drape.svg (towards the viewer)", false, "output"},
-      {"dxf-threads", "true|false", "true", "THREADS layer (thread grid) in flat.dxf", false, "output"},
+      {"view", "X,Y,Z", "1,1,1", "view direction of drape.svg (towards the viewer)", false,
+       "output"},
+      {"dxf-threads", "true|false", "true", "THREADS layer (thread grid) in flat.dxf", false,
+       "output"},
   };
   return list;
 }
@@ -78,8 +91,7 @@ Result<double> parse_number(const std::string& text, const std::string& what) {
   char* end = nullptr;
   errno = 0;
   const double x = std::strtod(t.c_str(), &end);
-  if (end != t.c_str() + t.size())
-    return Error{what + ": '" + text + "' is not a number"};
+  if (end != t.c_str() + t.size()) return Error{what + ": '" + text + "' is not a number"};
   if (!std::isfinite(x) || errno == ERANGE)
     return Error{what + ": '" + text + "' is not a finite number"};
   return x;
@@ -94,13 +106,15 @@ Result<Eigen::Matrix<double, N, 1>> parse_vec(const std::string& text, const std
   std::string part;
   int k = 0;
   while (std::getline(ss, part, ',')) {
-    if (k >= N) return Error{what + ": '" + text + "' has more than " + std::to_string(N) + " numbers"};
+    if (k >= N)
+      return Error{what + ": '" + text + "' has more than " + std::to_string(N) + " numbers"};
     auto x = parse_number(part, what);
     if (!x) return x.error();
     v[k++] = *x;
   }
   if (k != N)
-    return Error{what + ": '" + text + "' must be " + std::to_string(N) + " comma-separated numbers"};
+    return Error{what + ": '" + text + "' must be " + std::to_string(N) +
+                 " comma-separated numbers"};
   return v;
 }
 
@@ -132,9 +146,13 @@ Result<RawOptions> raw_from_args(const std::vector<std::string>& args) {
   for (const auto& s : drape_options()) {
     const std::string name = s.key == "output" ? "output,o" : s.key;
     if (s.value.empty()) {
-      desc.add_options()(name.c_str(), po::value<std::vector<std::string>>()->zero_tokens()->implicit_value({"true"}, "true"), s.help.c_str());
+      desc.add_options()(
+          name.c_str(),
+          po::value<std::vector<std::string>>()->zero_tokens()->implicit_value({"true"}, "true"),
+          s.help.c_str());
     } else {
-      desc.add_options()(name.c_str(), po::value<std::vector<std::string>>()->composing(), s.help.c_str());
+      desc.add_options()(name.c_str(), po::value<std::vector<std::string>>()->composing(),
+                         s.help.c_str());
     }
   }
   RawOptions raw;
@@ -144,7 +162,8 @@ Result<RawOptions> raw_from_args(const std::vector<std::string>& args) {
     const po::parsed_options parsed = po::command_line_parser(args).options(desc).run();
     for (const auto& o : parsed.options) {
       if (o.position_key >= 0)
-        return Error{"unexpected argument '" + o.value.front() + "' (a scene file must come first)"};
+        return Error{"unexpected argument '" + o.value.front() +
+                     "' (a scene file must come first)"};
       const OptionSpec* s = find_spec(o.string_key);
       if (!s) return Error{"unknown option --" + o.string_key};
       auto& vals = raw.values[o.string_key];
@@ -155,7 +174,8 @@ Result<RawOptions> raw_from_args(const std::vector<std::string>& args) {
       if (s->value.empty()) {
         vals.push_back(o.value.empty() ? "true" : o.value.front());
       } else {
-        if (o.value.empty()) return Error{"--" + o.string_key + " needs a value (" + s->value + ")"};
+        if (o.value.empty())
+          return Error{"--" + o.string_key + " needs a value (" + s->value + ")"};
         vals.insert(vals.end(), o.value.begin(), o.value.end());
       }
     }
@@ -187,7 +207,8 @@ Result<RawOptions> raw_from_scene(const std::string& path) {
       auto& vals = raw.values[key];
       raw.dirs[key] = dir;
       raw.origins[key] = path;
-      if (!s->repeatable && !vals.empty()) return Error{path + ": key '" + key + "' given more than once"};
+      if (!s->repeatable && !vals.empty())
+        return Error{path + ": key '" + key + "' given more than once"};
       for (const auto& v : o.value) vals.push_back(v);
       if (o.value.empty()) return Error{path + ": key '" + key + "' has no value"};
     }
@@ -239,17 +260,30 @@ Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
   };
   DrapeJob job;
   // Required keys.
-  for (const char* k : {"mold", "start2d", "base2d", "sweep2d", "start3d", "base-normal", "sweep3d"})
-    if (!get(k)) return Error{where + "missing required " + (where.empty() ? "option --" : "key '") + k + (where.empty() ? "" : "'")};
-  if (need_output && !get("output")) return Error{where + "missing the output folder (" + (where.empty() ? "-o DIR" : "key 'output'") + ")"};
+  for (const char* k :
+       {"mold", "start2d", "base2d", "sweep2d", "start3d", "base-normal", "sweep3d"})
+    if (!get(k))
+      return Error{where + "missing required " + (where.empty() ? "option --" : "key '") + k +
+                   (where.empty() ? "" : "'")};
+  if (need_output && !get("output"))
+    return Error{where + "missing the output folder (" +
+                 (where.empty() ? "-o DIR" : "key 'output'") + ")"};
   job.mold = resolve("mold", *one("mold"));
-  if (auto f = parse_int(*one("face"), name("face"), 0, 1 << 30); f) job.face = *f; else return f.error();
+  if (auto f = parse_int(*one("face"), name("face"), 0, 1 << 30); f)
+    job.face = *f;
+  else
+    return f.error();
   job.format = one("format").value_or("");
-  if (auto b = parse_bool(*one("flip-normal"), name("flip-normal")); b) job.flip_normal = *b; else return b.error();
+  if (auto b = parse_bool(*one("flip-normal"), name("flip-normal")); b)
+    job.flip_normal = *b;
+  else
+    return b.error();
 
   auto& ply = job.problem.ply;
   const auto sp = one("spacing"), sw = one("spacing-weft"), sv = one("spacing-warp");
-  if (!sp && !(sw && sv)) return Error{where + "missing the spacing (" + (where.empty() ? "--spacing D" : "key 'spacing'") + ")"};
+  if (!sp && !(sw && sv))
+    return Error{where + "missing the spacing (" +
+                 (where.empty() ? "--spacing D" : "key 'spacing'") + ")"};
   double d = 0;
   if (sp) {
     auto x = parse_number(*sp, name("spacing"));
@@ -257,9 +291,19 @@ Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
     d = *x;
   }
   ply.d_weft = ply.d_warp = d;
-  if (sw) { auto x = parse_number(*sw, name("spacing-weft")); if (!x) return x.error(); ply.d_weft = *x; }
-  if (sv) { auto x = parse_number(*sv, name("spacing-warp")); if (!x) return x.error(); ply.d_warp = *x; }
-  for (const auto& [k, v] : {std::pair{"spacing", sp ? d : 1.0}, {"spacing-weft", ply.d_weft}, {"spacing-warp", ply.d_warp}})
+  if (sw) {
+    auto x = parse_number(*sw, name("spacing-weft"));
+    if (!x) return x.error();
+    ply.d_weft = *x;
+  }
+  if (sv) {
+    auto x = parse_number(*sv, name("spacing-warp"));
+    if (!x) return x.error();
+    ply.d_warp = *x;
+  }
+  for (const auto& [k, v] : {std::pair{"spacing", sp ? d : 1.0},
+                             {"spacing-weft", ply.d_weft},
+                             {"spacing-warp", ply.d_warp}})
     if (!(v > 0.0)) return Error{name(k) + ": the spacing must be positive"};
   if (auto r = one("ply")) {
     auto v = parse_vec<2>(*r, name("ply"));
@@ -267,16 +311,28 @@ Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
     if (!(v->x() > 0 && v->y() > 0)) return Error{name("ply") + ": W and H must be positive"};
     ply.rect = *v;
   }
-  if (auto v = parse_vec<2>(*one("start2d"), name("start2d")); v) ply.start = *v; else return v.error();
-  if (auto v = parse_vec<2>(*one("base2d"), name("base2d")); v) ply.base_dir = *v; else return v.error();
+  if (auto v = parse_vec<2>(*one("start2d"), name("start2d")); v)
+    ply.start = *v;
+  else
+    return v.error();
+  if (auto v = parse_vec<2>(*one("base2d"), name("base2d")); v)
+    ply.base_dir = *v;
+  else
+    return v.error();
   if (!(ply.base_dir.norm() > 0)) return Error{name("base2d") + ": the direction must be non-zero"};
   for (const auto& s : *get("sweep2d")) {
     auto v = parse_vec<2>(s, name("sweep2d"));
     if (!v) return v.error();
     ply.sweeps.push_back(*v);
   }
-  if (auto v = parse_vec<3>(*one("start3d"), name("start3d")); v) job.problem.start = *v; else return v.error();
-  if (auto v = parse_vec<3>(*one("base-normal"), name("base-normal")); v) job.problem.base_normal = *v; else return v.error();
+  if (auto v = parse_vec<3>(*one("start3d"), name("start3d")); v)
+    job.problem.start = *v;
+  else
+    return v.error();
+  if (auto v = parse_vec<3>(*one("base-normal"), name("base-normal")); v)
+    job.problem.base_normal = *v;
+  else
+    return v.error();
   for (const auto& s : *get("sweep3d")) {
     auto v = parse_vec<3>(s, name("sweep3d"));
     if (!v) return v.error();
@@ -285,14 +341,21 @@ Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
   if (ply.sweeps.size() > 2) return Error{name("sweep2d") + ": at most two sweep directions"};
   if (ply.sweeps.size() != job.problem.sweeps.size())
     return Error{where + "give one 3D sweep direction per 2D sweep direction (" +
-                 std::to_string(ply.sweeps.size()) + " 2D, " + std::to_string(job.problem.sweeps.size()) + " 3D)"};
+                 std::to_string(ply.sweeps.size()) + " 2D, " +
+                 std::to_string(job.problem.sweeps.size()) + " 3D)"};
   for (std::size_t k = 0; k < ply.sweeps.size(); ++k)
-    if (std::abs(cross2(ply.base_dir.normalized(), ply.sweeps[k].normalized())) < job.drape.tol.ply_merge_rel ||
+    if (std::abs(cross2(ply.base_dir.normalized(), ply.sweeps[k].normalized())) <
+            job.drape.tol.ply_merge_rel ||
         !(ply.sweeps[k].norm() > 0))
-      return Error{name("sweep2d") + ": sweep direction " + std::to_string(k + 1) + " is parallel to the base path"};
+      return Error{name("sweep2d") + ": sweep direction " + std::to_string(k + 1) +
+                   " is parallel to the base path"};
 
-  if (auto x = parse_number(*one("lock-angle"), name("lock-angle")); x) job.lock_angle_deg = *x; else return x.error();
-  if (!(job.lock_angle_deg > 0 && job.lock_angle_deg <= 90)) return Error{name("lock-angle") + ": must be in (0, 90] degrees"};
+  if (auto x = parse_number(*one("lock-angle"), name("lock-angle")); x)
+    job.lock_angle_deg = *x;
+  else
+    return x.error();
+  if (!(job.lock_angle_deg > 0 && job.lock_angle_deg <= 90))
+    return Error{name("lock-angle") + ": must be in (0, 90] degrees"};
   job.drape.lock_angle = job.lock_angle_deg * kDegToRad;
   job.warn_angle_deg = job.lock_angle_deg - 5.0;
   if (auto w = one("warn-angle")) {
@@ -303,10 +366,17 @@ Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
   }
   job.material = *one("material");
   job.ply_name = *one("ply-name");
-  if (auto x = parse_number(*one("tolerance"), name("tolerance")); x) job.tolerance_rel = *x; else return x.error();
-  if (!(job.tolerance_rel > 0 && job.tolerance_rel < 1)) return Error{name("tolerance") + ": must be in (0, 1)"};
+  if (auto x = parse_number(*one("tolerance"), name("tolerance")); x)
+    job.tolerance_rel = *x;
+  else
+    return x.error();
+  if (!(job.tolerance_rel > 0 && job.tolerance_rel < 1))
+    return Error{name("tolerance") + ": must be in (0, 1)"};
   job.drape.tol.newton_residual_rel = job.tolerance_rel;
-  if (auto x = parse_int(*one("max-iterations"), name("max-iterations"), 1, 10000); x) job.max_iterations = *x; else return x.error();
+  if (auto x = parse_int(*one("max-iterations"), name("max-iterations"), 1, 10000); x)
+    job.max_iterations = *x;
+  else
+    return x.error();
   job.drape.tol.newton_max_iterations = job.max_iterations;
   const std::string g = *one("guess");
   bool known = false;
@@ -315,11 +385,14 @@ Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
       job.drape.guess = r;
       known = true;
     }
-  if (!known) return Error{name("guess") + ": '" + g + "' must be extrapolated, paper or parallelogram"};
+  if (!known)
+    return Error{name("guess") + ": '" + g + "' must be extrapolated, paper or parallelogram"};
   if (auto x = parse_number(*one("max-nodes"), name("max-nodes")); x) {
-    if (!(*x >= 1 && *x == std::floor(*x))) return Error{name("max-nodes") + ": must be a positive integer"};
+    if (!(*x >= 1 && *x == std::floor(*x)))
+      return Error{name("max-nodes") + ": must be a positive integer"};
     job.drape.max_nodes = static_cast<std::uint64_t>(*x);
-  } else return x.error();
+  } else
+    return x.error();
   if (auto o = one("output")) job.outdir = resolve("output", *o);
   const std::string outs = one("outputs").value_or(all_outputs());
   std::stringstream ss(outs);
@@ -327,18 +400,24 @@ Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
   while (std::getline(ss, item, ',')) {
     if (item.empty()) continue;
     if (!exporters::find_exporter(item))
-      return Error{name("outputs") + ": unknown output '" + item + "' (known: " + exporters::supported_keys() + ")"};
+      return Error{name("outputs") + ": unknown output '" + item +
+                   "' (known: " + exporters::supported_keys() + ")"};
     job.outputs.push_back(item);
   }
   if (auto x = parse_int(*one("curve-degree"), name("curve-degree"), 1, 3); x) {
     if (*x == 2) return Error{name("curve-degree") + ": must be 1 or 3"};
     job.curve_degree = *x;
-  } else return x.error();
+  } else
+    return x.error();
   if (auto v = parse_vec<3>(*one("view"), name("view")); v) {
     if (!(v->norm() > 0)) return Error{name("view") + ": the direction must be non-zero"};
     job.view = *v;
-  } else return v.error();
-  if (auto b = parse_bool(*one("dxf-threads"), name("dxf-threads")); b) job.dxf_threads = *b; else return b.error();
+  } else
+    return v.error();
+  if (auto b = parse_bool(*one("dxf-threads"), name("dxf-threads")); b)
+    job.dxf_threads = *b;
+  else
+    return b.error();
   job.scene = raw.origin == "command line" ? "" : raw.origin;
   return job;
 }
@@ -350,8 +429,12 @@ std::string fmt(double x) {
   os << x;
   return os.str();
 }
-std::string fmt(const Vec2& v) { return fmt(v.x()) + "," + fmt(v.y()); }
-std::string fmt(const Vec3& v) { return fmt(v.x()) + "," + fmt(v.y()) + "," + fmt(v.z()); }
+std::string fmt(const Vec2& v) {
+  return fmt(v.x()) + "," + fmt(v.y());
+}
+std::string fmt(const Vec3& v) {
+  return fmt(v.x()) + "," + fmt(v.y()) + "," + fmt(v.z());
+}
 }  // namespace
 
 std::string dump_scene(const DrapeJob& job) {
@@ -451,14 +534,17 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   }
   if (job.flip_normal) data.reversed = !data.reversed;
   auto face = Face::create(std::move(data), job.drape.tol);
-  if (!face) return Error{job.mold + ": face " + std::to_string(job.face) + ": " + face.error().message};
+  if (!face)
+    return Error{job.mold + ": face " + std::to_string(job.face) + ": " + face.error().message};
   run.import_ms = ms_since(t0);
 
   DrapeOptions opt = job.drape;
   opt.cancel = cancel;
   const bool tty = progress && ::isatty(2);
   if (tty) {
-    opt.progress = [](std::uint64_t n) { std::cerr << "\rplyfit: " << n << " nodes solved" << std::flush; };
+    opt.progress = [](std::uint64_t n) {
+      std::cerr << "\rplyfit: " << n << " nodes solved" << std::flush;
+    };
   }
   auto res = drape(*face, job.problem, opt);
   if (tty) std::cerr << "\r\033[K" << std::flush;
@@ -469,8 +555,8 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   if (face->area() > 0 && res->metrics.surface_area > (1 + kCoverageSlack) * face->area()) {
     res->partial = true;
     res->warnings.push_back("the mapped cells cover " +
-                            std::to_string(static_cast<int>(std::lround(
-                                100 * res->metrics.surface_area / face->area()))) +
+                            std::to_string(static_cast<int>(
+                                std::lround(100 * res->metrics.surface_area / face->area()))) +
                             "% of the face: the cloth lies on itself somewhere");
   }
   if (cancel && cancel->load()) return Error{"cancelled"};

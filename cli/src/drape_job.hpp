@@ -17,11 +17,11 @@ namespace plyfit::cli {
 /// (empty: none) and help.
 struct OptionSpec {
   std::string key;
-  std::string value;   ///< e.g. "X,Y"; empty for a switch
-  std::string def;     ///< default as text, empty if none
+  std::string value;  ///< e.g. "X,Y"; empty for a switch
+  std::string def;    ///< default as text, empty if none
   std::string help;
   bool repeatable = false;
-  std::string section; ///< scene-file section it is listed under by --dump-scene
+  std::string section;  ///< scene-file section it is listed under by --dump-scene
 };
 
 /// All options of a drape job, in help order.
@@ -41,11 +41,11 @@ struct RawOptions {
 
 /// Every input of a drape, converted and validated.
 struct DrapeJob {
-  std::string mold;          ///< file path (resolved) or "builtin:NAME[:k=v,...]"
+  std::string mold;  ///< file path (resolved) or "builtin:NAME[:k=v,...]"
   int face = 0;
-  std::string format;        ///< importer override
+  std::string format;  ///< importer override
   DrapeProblem problem;
-  DrapeOptions drape;        ///< lock angle, tolerances, guess rule, node cap
+  DrapeOptions drape;  ///< lock angle, tolerances, guess rule, node cap
   double lock_angle_deg = 90.0;
   double tolerance_rel = 1e-14;
   int max_iterations = 40;
@@ -54,11 +54,11 @@ struct DrapeJob {
   std::vector<std::string> outputs;
   int curve_degree = 1;
   Vec3 view = Vec3(1, 1, 1);
-  bool dxf_threads = true;   ///< THREADS layer in flat.dxf
+  bool dxf_threads = true;  ///< THREADS layer in flat.dxf
   double warn_angle_deg = 85.0;
   std::string ply_name = "ply";
   std::string material = "woven";
-  std::string scene;         ///< scene file the job came from, if any
+  std::string scene;  ///< scene file the job came from, if any
 };
 
 /// Parses flags (the arguments after `plyfit drape`, minus a leading scene file) into raw

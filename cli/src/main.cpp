@@ -25,7 +25,8 @@ namespace {
 
 void usage(std::ostream& os) {
   auto list = plyfit::cli::commands();
-  std::sort(list.begin(), list.end(), [](const auto& a, const auto& b) { return a.order < b.order; });
+  std::sort(list.begin(), list.end(),
+            [](const auto& a, const auto& b) { return a.order < b.order; });
   os << "plyfit " PLYFIT_VERSION " - composite-ply flat patterns from CAD molds\n\n"
      << "usage: plyfit COMMAND [options]   (plyfit COMMAND --help for its options)\n\n"
      << "commands:\n";

@@ -72,13 +72,10 @@ std::string report_json(const ExportContext& ctx) {
   j["mold"] = {{"unit", ctx.run.mold_unit}, {"face", face}, {"warnings", ctx.run.warnings}};
   j["start"] = {{"point", vec(r.start_point)}, {"uv", vec(r.start_uv)}, {"moved", r.start_moved}};
   j["base_tangent"] = vec(r.base_tangent);
-  j["nodes"] = {{"mapped", m.nodes.mapped},
-                {"auxiliary", m.nodes.auxiliary},
-                {"outside", m.nodes.outside},
-                {"off_ply", m.nodes.off_ply},
+  j["nodes"] = {{"mapped", m.nodes.mapped},           {"auxiliary", m.nodes.auxiliary},
+                {"outside", m.nodes.outside},         {"off_ply", m.nodes.off_ply},
                 {"shear_limit", m.nodes.shear_limit}, {"overlap", m.nodes.overlap},
-                {"failed", m.nodes.failed},
-                {"with_angle", m.angles}};
+                {"failed", m.nodes.failed},           {"with_angle", m.angles}};
   j["area_mesh_points"] = m.area_mesh_points;
   j["flat_area"] = m.flat_area;
   j["surface_area"] = m.surface_area;

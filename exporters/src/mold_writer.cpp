@@ -4,8 +4,8 @@
 
 #include <plyfit/exporters/atomic_file.hpp>
 #include <plyfit/exporters/mold_writer.hpp>
-#include "occt_geometry.hpp"
 #include <plyfit/kernel/nurbs_surface.hpp>
+#include "occt_geometry.hpp"
 
 #include <APIHeaderSection_MakeHeader.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>

@@ -18,8 +18,8 @@
 #include <plyfit/exporters/exporters.hpp>
 #include <plyfit/kernel/nurbs_curve.hpp>
 
-#include "plugins.hpp"
 #include "occt_geometry.hpp"
+#include "plugins.hpp"
 
 #include <APIHeaderSection_MakeHeader.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>

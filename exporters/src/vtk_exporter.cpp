@@ -8,8 +8,8 @@
 //                 undefined (path-only nodes, outside nodes, nodes lacking a thread neighbour)
 //   shear         |pi/2 - gamma| (radians); -1 where thread_angle is undefined
 //   status        0 mapped, 1 outside (position on the extended surface); the other node
-//                 states (off_ply 2, shear_limit 3, failed 4, overlap 6) have no position and are not
-//                 written
+//                 states (off_ply 2, shear_limit 3, failed 4, overlap 6) have no position and are
+//                 not written
 //   on_path       1 for nodes on the base path (auxiliary points and crossings), else 0
 // Cell data:
 //   link_kind     0 weft, 1 warp, 2 base path

@@ -8,7 +8,9 @@ namespace plyfit {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-double rad(double deg) { return deg * kPi / 180.0; }
+double rad(double deg) {
+  return deg * kPi / 180.0;
+}
 }  // namespace
 
 const std::vector<BuiltinInfo>& builtin_molds() {
@@ -27,7 +29,8 @@ const std::vector<BuiltinInfo>& builtin_molds() {
        "sector from the +X axis counter-clockwise by `angle` of the surface of revolution "
        "about Z whose profile is the quarter ellipse r^2/a^2 + z^2/h^2 = 1 (r = a at z = 0, "
        "pole at z = h; h defaults to 10.33, through the paper's (13.75, 7.5))",
-       {{"a", 20.0, "radial semi-axis"}, {"h", kRevolutionHeight, "height (semi-axis along Z)"},
+       {{"a", 20.0, "radial semi-axis"},
+        {"h", kRevolutionHeight, "height (semi-axis along Z)"},
         {"angle", 120.0, "sector angle, degrees"}}},
       {"cylinder",
        "x^2 + y^2 = R^2, 0 <= z <= H, from the +X axis counter-clockwise by `angle`; closed "
@@ -36,9 +39,12 @@ const std::vector<BuiltinInfo>& builtin_molds() {
       {"cone",
        "cone frustum about Z with radius r0 at z = 0 and r1 at z = H, from the +X axis "
        "counter-clockwise by `angle` (r1 = 0 gives the apex)",
-       {{"r0", 20.0, "radius at z = 0"}, {"r1", 10.0, "radius at z = H"}, {"H", 15.0, "height"},
+       {{"r0", 20.0, "radius at z = 0"},
+        {"r1", 10.0, "radius at z = H"},
+        {"H", 15.0, "height"},
         {"angle", 90.0, "sector angle, degrees"}}},
-      {"plane", "rectangle [0, W] x [0, H] in the plane z = 0, normal +Z",
+      {"plane",
+       "rectangle [0, W] x [0, H] in the plane z = 0, normal +Z",
        {{"W", 100.0, "size along X"}, {"H", 100.0, "size along Y"}}},
       {"saddle",
        "hyperbolic paraboloid z = (x^2 - y^2) / (2 rho) over [-size/2, size/2]^2, normal "
@@ -47,18 +53,24 @@ const std::vector<BuiltinInfo>& builtin_molds() {
       {"wave",
        "bicubic free-form over [0, size]^2 with n x n poles at heights "
        "amplitude sin(2 pi x / wavelength) cos(2 pi y / wavelength), normal towards +Z",
-       {{"size", 100.0, "edge length"}, {"amplitude", 5.0, "pole height amplitude"},
-        {"wavelength", 60.0, "wavelength"}, {"n", 12.0, "poles per direction (>= 4)"}}},
+       {{"size", 100.0, "edge length"},
+        {"amplitude", 5.0, "pole height amplitude"},
+        {"wavelength", 60.0, "wavelength"},
+        {"n", 12.0, "poles per direction (>= 4)"}}},
       {"torus",
        "torus about Z with major radius R and tube radius r; tube angle t0..t1 (0 = outer "
        "equator, 90 = top), from the +X axis counter-clockwise by `angle`",
-       {{"R", 30.0, "major radius"}, {"r", 10.0, "tube radius"}, {"t0", -90.0, "tube angle start"},
-        {"t1", 90.0, "tube angle end"}, {"angle", 90.0, "sector angle, degrees"}}},
+       {{"R", 30.0, "major radius"},
+        {"r", 10.0, "tube radius"},
+        {"t0", -90.0, "tube angle start"},
+        {"t1", 90.0, "tube angle end"},
+        {"angle", 90.0, "sector angle, degrees"}}},
   };
   return list;
 }
 
-Result<FaceData> builtin_mold(const std::string& name, const std::map<std::string, double>& params) {
+Result<FaceData> builtin_mold(const std::string& name,
+                              const std::map<std::string, double>& params) {
   const BuiltinInfo* info = nullptr;
   for (const auto& b : builtin_molds())
     if (b.name == name) info = &b;
@@ -73,14 +85,16 @@ Result<FaceData> builtin_mold(const std::string& name, const std::map<std::strin
     if (!v.count(k)) {
       std::string keys;
       for (const auto& p : info->params) keys += (keys.empty() ? "" : ", ") + p.key;
-      return Error{"built-in mold '" + name + "' has no parameter '" + k + "' (its parameters: " +
-                   keys + ")"};
+      return Error{"built-in mold '" + name + "' has no parameter '" + k +
+                   "' (its parameters: " + keys + ")"};
     }
-    if (!std::isfinite(x)) return Error{"parameter '" + k + "' of '" + name + "' is not a finite number"};
+    if (!std::isfinite(x))
+      return Error{"parameter '" + k + "' of '" + name + "' is not a finite number"};
     v[k] = x;
   }
   auto positive = [&](const char* k) -> Status {
-    if (!(v[k] > 0.0)) return Error{"parameter '" + std::string(k) + "' of '" + name + "' must be positive"};
+    if (!(v[k] > 0.0))
+      return Error{"parameter '" + std::string(k) + "' of '" + name + "' must be positive"};
     return ok_status();
   };
   auto angle = [&](const char* k) -> Status {

@@ -11,8 +11,8 @@ namespace plyfit {
 namespace {
 
 // 5-point Gauss-Legendre rule on [-1, 1].
-constexpr double kGaussX[5] = {-0.9061798459386640, -0.5384693101056831, 0.0,
-                               0.5384693101056831, 0.9061798459386640};
+constexpr double kGaussX[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
+                               0.9061798459386640};
 constexpr double kGaussW[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
                                0.4786286704993665, 0.2369268850561891};
 
@@ -51,7 +51,8 @@ Result<Face> Face::create(FaceData data, const Tolerances& tol) {
     if (loop.points.size() < 3)
       return Error{"trim loop " + std::to_string(l) + " has fewer than 3 points"};
     for (const auto& p : loop.points)
-      if (!p.allFinite()) return Error{"trim loop " + std::to_string(l) + " has a non-finite point"};
+      if (!p.allFinite())
+        return Error{"trim loop " + std::to_string(l) + " has a non-finite point"};
   }
   f.loops_ = std::move(data.loops);
   f.build_slabs();
@@ -90,16 +91,18 @@ void Face::build_slabs() {
       if (a.y() != b.y()) segs_.push_back({a, b});  // horizontal edges never cross the ray
     }
   }
-  const int nslab = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(segs_.size()))), 1,
-                               4096);
+  const int nslab =
+      std::clamp(static_cast<int>(std::sqrt(static_cast<double>(segs_.size()))), 1, 4096);
   slab_v0_ = loops_min_.y();
   slab_h_ = std::max((loops_max_.y() - loops_min_.y()) / nslab, 1e-300);
   slabs_.assign(nslab, {});
   for (int s = 0; s < static_cast<int>(segs_.size()); ++s) {
     const double lo = std::min(segs_[s].a.y(), segs_[s].b.y());
     const double hi = std::max(segs_[s].a.y(), segs_[s].b.y());
-    const int k0 = std::clamp(static_cast<int>(std::floor((lo - slab_v0_) / slab_h_)), 0, nslab - 1);
-    const int k1 = std::clamp(static_cast<int>(std::floor((hi - slab_v0_) / slab_h_)), 0, nslab - 1);
+    const int k0 =
+        std::clamp(static_cast<int>(std::floor((lo - slab_v0_) / slab_h_)), 0, nslab - 1);
+    const int k1 =
+        std::clamp(static_cast<int>(std::floor((hi - slab_v0_) / slab_h_)), 0, nslab - 1);
     for (int k = k0; k <= k1; ++k) slabs_[k].push_back(s);
   }
 }
@@ -301,7 +304,8 @@ Projection Face::project(const Vec3& p) const {
           // rounding: there, a step that keeps the distance and shrinks the (scaled)
           // gradient is progress too.
           const Vec3 rc = c.p - p;
-          const double gc = std::hypot(c.du.dot(rc) / std::sqrt(D.x()), c.dv.dot(rc) / std::sqrt(D.y()));
+          const double gc =
+              std::hypot(c.du.dot(rc) / std::sqrt(D.x()), c.dv.dot(rc) / std::sqrt(D.y()));
           const double g0 = std::hypot(g.x() / std::sqrt(D.x()), g.y() / std::sqrt(D.y()));
           const bool flat = cd <= dist + tol_.roundoff_rel * (p.norm() + dist + size_);
           if (c.ok && (cd < dist || (flat && gc < g0))) {

@@ -44,7 +44,8 @@ std::vector<std::vector<bool>> collapsed_vertices(const DrapeSurface& s,
       const Vec2 a = L[k], b = L[(k + 1) % n];
       const SurfaceEval1 ea = s.eval1(a), em = s.eval1(0.5 * (a + b)), eb = s.eval1(b);
       const double len = (em.p - ea.p).norm() + (eb.p - em.p).norm();
-      if (ea.ok && em.ok && eb.ok && len <= kCollapsedRel * s.size()) g[k] = v[k] = v[(k + 1) % n] = true;
+      if (ea.ok && em.ok && eb.ok && len <= kCollapsedRel * s.size())
+        g[k] = v[k] = v[(k + 1) % n] = true;
     }
     out.push_back(std::move(v));
     segments.push_back(std::move(g));
@@ -85,8 +86,12 @@ class BoundaryIndex {
         if (collapsed[l][k]) continue;
         const Vec2 a = L[k], b = L[(k + 1) % L.size()];
         auto on = [](double x, double y, double e) { return std::abs(x - y) <= e; };
-        if (cu && ((on(a.x(), d.u0, eu) && on(b.x(), d.u0, eu)) || (on(a.x(), d.u1, eu) && on(b.x(), d.u1, eu)))) continue;
-        if (cv && ((on(a.y(), d.v0, ev) && on(b.y(), d.v0, ev)) || (on(a.y(), d.v1, ev) && on(b.y(), d.v1, ev)))) continue;
+        if (cu && ((on(a.x(), d.u0, eu) && on(b.x(), d.u0, eu)) ||
+                   (on(a.x(), d.u1, eu) && on(b.x(), d.u1, eu))))
+          continue;
+        if (cv && ((on(a.y(), d.v0, ev) && on(b.y(), d.v0, ev)) ||
+                   (on(a.y(), d.v1, ev) && on(b.y(), d.v1, ev))))
+          continue;
         for (int su = cu ? -1 : 0; su <= (cu ? 1 : 0); ++su)
           for (int sv = cv ? -1 : 0; sv <= (cv ? 1 : 0); ++sv) {
             const Vec2 sh(su * d.width_u(), sv * d.width_v());
@@ -241,7 +246,8 @@ class Builder {
     auto solved = [&](const NodeId& id) {
       for (int d = 0; d < 4; ++d)
         if (const auto n = ply_.neighbour(id.i, id.j, static_cast<ThreadDir>(d)))
-          if (const auto it = slot.find(n->id.key()); it != slot.end() && !virtual_.count(n->id.key())) {
+          if (const auto it = slot.find(n->id.key());
+              it != slot.end() && !virtual_.count(n->id.key())) {
             queue.push_back(it->second);
             retry.insert(it->second);
           }
@@ -286,7 +292,8 @@ class Builder {
   std::vector<Nb> virtual_neighbours(const NodeId& id) const {
     std::vector<Nb> nbs;
     if (id.is_path_only() || virtual_.count(id.key())) return nbs;
-    if (const DrapeNode* n = r_.find(id); n && (n->mapped() || n->has(DrapeNode::kExtended))) return nbs;
+    if (const DrapeNode* n = r_.find(id); n && (n->mapped() || n->has(DrapeNode::kExtended)))
+      return nbs;
     const Vec2 q2 = ply_.pos(id);
     if (ply_.side(q2) != 0 && ply_.sweep_for_side(ply_.side(q2)) < 0) return nbs;
     for (int d = 0; d < 4; ++d) {
@@ -313,8 +320,12 @@ class Builder {
     for (const Nb& a : nbs)
       for (const Nb& b : nbs) {
         if (!is_weft(a.dir) || is_weft(b.dir)) continue;
-        const double side = cross2(ply_.pos(b.id) - ply_.pos(a.id), q2 - ply_.pos(a.id)) > 0 ? 1.0 : -1.0;
-        if (accept_virtual(id, solve_two_spheres(s_, {a.p.point, a.p.uv, a.rest, b.p.point, b.p.uv, b.rest, side, std::nullopt}, st_)))
+        const double side =
+            cross2(ply_.pos(b.id) - ply_.pos(a.id), q2 - ply_.pos(a.id)) > 0 ? 1.0 : -1.0;
+        if (accept_virtual(id, solve_two_spheres(s_,
+                                                 {a.p.point, a.p.uv, a.rest, b.p.point, b.p.uv,
+                                                  b.rest, side, std::nullopt},
+                                                 st_)))
           return true;
       }
     return false;
@@ -336,7 +347,8 @@ class Builder {
       if (drape_only && (virtual_.count(a.id.key()) || virtual_.count(before->id.key()))) continue;
       const auto pb = position(before->id);
       if (!pb) continue;
-      if (accept_virtual(id, solve_plane_sphere(s_, {a.p.point, a.p.uv, a.rest, a.p.point - pb->point}, st_)))
+      if (accept_virtual(
+              id, solve_plane_sphere(s_, {a.p.point, a.p.uv, a.rest, a.p.point - pb->point}, st_)))
         return true;
     }
     return false;
@@ -502,7 +514,8 @@ class Builder {
         const Vec2 a = uv + s_.delta(uv, L[k]);
         const Vec2 b = a + s_.delta(L[k], L[(k + 1) % L.size()]);
         const Vec2 ab = b - a;
-        const double t = ab.squaredNorm() > 0 ? std::clamp((uv - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+        const double t =
+            ab.squaredNorm() > 0 ? std::clamp((uv - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
         const double d = (a + t * ab - uv).norm();
         if (d < bd) {
           bd = d;
@@ -676,7 +689,7 @@ class Builder {
   const Ply& ply_;
   std::vector<std::vector<Vec2>> loops_;
   std::vector<std::vector<bool>> collapsed_segments_;  // per loop segment: collapsed
-  std::vector<std::vector<bool>> collapsed_;  // per loop vertex: on a collapsed edge
+  std::vector<std::vector<bool>> collapsed_;           // per loop vertex: on a collapsed edge
   BoundaryIndex index_;
   SolverSettings st_;
   std::vector<Vertex> verts_;

@@ -16,8 +16,8 @@ inline Status check_knots(const std::vector<double>& knots, int count, int degre
   if (degree < 1 || degree > 25)
     return Error{"degree in " + what + " is " + std::to_string(degree) + ", must be 1..25"};
   if (count < degree + 1)
-    return Error{"need at least degree + 1 = " + std::to_string(degree + 1) + " poles in " +
-                 what + ", got " + std::to_string(count)};
+    return Error{"need at least degree + 1 = " + std::to_string(degree + 1) + " poles in " + what +
+                 ", got " + std::to_string(count)};
   const size_t expected = static_cast<size_t>(count) + degree + 1;
   if (knots.size() != expected)
     return Error{"knot count in " + what + " is " + std::to_string(knots.size()) +
@@ -34,8 +34,7 @@ inline Status check_knots(const std::vector<double>& knots, int count, int degre
       return Error{"knot multiplicity in " + what + " exceeds degree + 1 at index " +
                    std::to_string(i)};
   }
-  if (!(knots[degree] < knots[count]))
-    return Error{"empty parameter domain in " + what};
+  if (!(knots[degree] < knots[count])) return Error{"empty parameter domain in " + what};
   return ok_status();
 }
 

@@ -14,8 +14,8 @@ Result<NurbsCurve<Dim>> NurbsCurve<Dim>::create(NurbsCurveData<Dim> data) {
   const int n = static_cast<int>(data.poles.size());
   if (auto s = detail::check_knots(data.knots, n, data.degree, "curve"); !s) return s.error();
   if (!data.weights.empty() && data.weights.size() != data.poles.size())
-    return Error{"curve weight count is " + std::to_string(data.weights.size()) +
-                 ", must be " + std::to_string(n)};
+    return Error{"curve weight count is " + std::to_string(data.weights.size()) + ", must be " +
+                 std::to_string(n)};
   NurbsCurve c;
   c.hpoles_.resize(static_cast<size_t>(n) * (Dim + 1));
   for (int k = 0; k < n; ++k) {
@@ -178,7 +178,9 @@ Result<NurbsCurve3> interpolate_cubic(const std::vector<Vec3>& points) {
   // positive, so Gaussian elimination without pivoting is stable (de Boor).
   const int bw = p;  // half bandwidth
   std::vector<double> A(static_cast<size_t>(n) * (2 * bw + 1), 0.0);
-  auto at = [&](int r, int c) -> double& { return A[static_cast<size_t>(r) * (2 * bw + 1) + (c - r + bw)]; };
+  auto at = [&](int r, int c) -> double& {
+    return A[static_cast<size_t>(r) * (2 * bw + 1) + (c - r + bw)];
+  };
   int first = 0, last = 0;
   detail::span_range(d.knots.data(), n - 1, p, first, last);
   for (int k = 0; k < n; ++k) {

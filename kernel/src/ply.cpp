@@ -6,7 +6,9 @@
 namespace plyfit {
 
 namespace {
-bool finite2(const Vec2& v) { return v.allFinite(); }
+bool finite2(const Vec2& v) {
+  return v.allFinite();
+}
 }  // namespace
 
 // Sets n.id / n.pos / n.link_from for a path point at n.pos: a regular node when it is on a
@@ -27,11 +29,13 @@ static void classify_path_point(const PlySpec& spec, double merge, std::int32_t 
   n.id = NodeId::path(k);
   if (on_i) {
     n.pos.x() = ri * dx;
-    n.link_from = NodeId::regular(static_cast<std::int32_t>(ri), static_cast<std::int32_t>(std::floor(fj)));
+    n.link_from =
+        NodeId::regular(static_cast<std::int32_t>(ri), static_cast<std::int32_t>(std::floor(fj)));
     n.link_dir = ThreadDir::kPlusY;
   } else if (on_j) {
     n.pos.y() = rj * dy;
-    n.link_from = NodeId::regular(static_cast<std::int32_t>(std::floor(fi)), static_cast<std::int32_t>(rj));
+    n.link_from =
+        NodeId::regular(static_cast<std::int32_t>(std::floor(fi)), static_cast<std::int32_t>(rj));
     n.link_dir = ThreadDir::kPlusX;
   }
 }
@@ -123,12 +127,14 @@ bool Ply::generate_next(bool forward) {
   const double dx = spec_.d_weft, dy = spec_.d_warp;
   if (std::abs(dir.x()) > 0.0) {
     const double f = last.pos.x() / dx;
-    const double nxt = dir.x() > 0 ? std::floor(f + merge_ / dx) + 1 : std::ceil(f - merge_ / dx) - 1;
+    const double nxt =
+        dir.x() > 0 ? std::floor(f + merge_ / dx) + 1 : std::ceil(f - merge_ / dx) - 1;
     t_v = (nxt * dx - last.pos.x()) / dir.x();
   }
   if (std::abs(dir.y()) > 0.0) {
     const double f = last.pos.y() / dy;
-    const double nxt = dir.y() > 0 ? std::floor(f + merge_ / dy) + 1 : std::ceil(f - merge_ / dy) - 1;
+    const double nxt =
+        dir.y() > 0 ? std::floor(f + merge_ / dy) + 1 : std::ceil(f - merge_ / dy) - 1;
     t_h = (nxt * dy - last.pos.y()) / dir.y();
   }
   if (!std::isfinite(t_v) && !std::isfinite(t_h)) {
@@ -138,8 +144,8 @@ bool Ply::generate_next(bool forward) {
   PathNode n;
   n.tau = last.tau + sgn * std::min(t_v, t_h);
   n.pos = spec_.start + n.tau * spec_.base_dir;
-  const std::int32_t k = forward ? static_cast<std::int32_t>(vec.size())
-                                 : -static_cast<std::int32_t>(vec.size()) - 1;
+  const std::int32_t k =
+      forward ? static_cast<std::int32_t>(vec.size()) : -static_cast<std::int32_t>(vec.size()) - 1;
   classify_path_point(spec_, merge_, k, n);
   if (!on_ply(n.pos)) {
     done = true;

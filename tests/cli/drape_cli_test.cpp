@@ -24,7 +24,8 @@ std::string with(const std::string& opt, const std::string& value) {
   const auto at = s.find("--" + opt + " ");
   if (at == std::string::npos) return s + " --" + opt + " " + value;
   const auto end = s.find(" --", at + 2);
-  return s.substr(0, at) + "--" + opt + " " + value + (end == std::string::npos ? "" : s.substr(end));
+  return s.substr(0, at) + "--" + opt + " " + value +
+         (end == std::string::npos ? "" : s.substr(end));
 }
 }  // namespace
 
@@ -95,11 +96,17 @@ TEST_CASE("cli: plyfit drape works on a face of every shared CAD file") {
     const Vec3 across = n.cross(n.cross(base_normal)).normalized();   // tangent, off the path
     std::ostringstream args;
     args.precision(17);
-    auto v3 = [&](const Vec3& v) { std::ostringstream o; o.precision(17); o << v.x() << "," << v.y() << "," << v.z(); return o.str(); };
+    auto v3 = [&](const Vec3& v) {
+      std::ostringstream o;
+      o.precision(17);
+      o << v.x() << "," << v.y() << "," << v.z();
+      return o.str();
+    };
     args << "drape --mold '" << path << "' --face " << best << " --spacing " << face->size() / 40
          << " --start2d 0,0 --base2d 1,0 --sweep2d 0,1 --sweep2d 0,-1 --start3d=" << v3(pr.point)
          << " --base-normal=" << v3(base_normal) << " --sweep3d=" << v3(across)
-         << " --sweep3d=" << v3(-across) << " --outputs json,dxf -o '" << s.file("out" + std::to_string(files)) << "'";
+         << " --sweep3d=" << v3(-across) << " --outputs json,dxf -o '"
+         << s.file("out" + std::to_string(files)) << "'";
     const CliRun r = plyfit_run(args.str(), s);
     INFO(args.str() << "\n-> " << r.out << r.err);
     REQUIRE(r.code == 0);
@@ -132,11 +139,13 @@ TEST_CASE("cli: a drape whose cells cover more than the face is partial and says
   Scratch s("drape_coverage");
   const std::string path = std::string(PLYFIT_SHARED_DIR) + "/cad/trj8_c2-db-214.stp";
   const CliRun r = plyfit_run(
-      "drape --mold '" + path + "' --face 0 --spacing 0.463887 --start2d 0,0 "
-      "--base2d -0.970592,-0.240731 --sweep2d 0.240731,-0.970592 --sweep2d -0.240731,0.970592 "
-      "--start3d 0.048519,6.378657,17.526492 --base-normal 0.305640,-0.867714,-0.391991 "
-      "--sweep3d -0.606028,-0.751077,0.261942 --sweep3d 0.606028,0.751077,-0.261942 "
-      "--outputs json -o '" + s.file("out") + "'",
+      "drape --mold '" + path +
+          "' --face 0 --spacing 0.463887 --start2d 0,0 "
+          "--base2d -0.970592,-0.240731 --sweep2d 0.240731,-0.970592 --sweep2d -0.240731,0.970592 "
+          "--start3d 0.048519,6.378657,17.526492 --base-normal 0.305640,-0.867714,-0.391991 "
+          "--sweep3d -0.606028,-0.751077,0.261942 --sweep3d 0.606028,0.751077,-0.261942 "
+          "--outputs json -o '" +
+          s.file("out") + "'",
       s);
   INFO(r.out << r.err);
   REQUIRE(r.code == 0);

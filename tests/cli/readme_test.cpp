@@ -18,7 +18,9 @@ using namespace plyfit;
 using namespace plyfit::test;
 
 namespace {
-std::string readme() { return slurp(std::string(PLYFIT_SOURCE_DIR) + "/README.md"); }
+std::string readme() {
+  return slurp(std::string(PLYFIT_SOURCE_DIR) + "/README.md");
+}
 }  // namespace
 
 TEST_CASE("cli: the README documents every command, option, mold, output and status") {
@@ -71,7 +73,8 @@ TEST_CASE("cli: the README documents every command, option, mold, output and sta
       CHECK(outputs.find(f) != std::string::npos);
     }
   // Node statuses (report.json's nodes).
-  for (const char* st : {"mapped", "auxiliary", "outside", "off_ply", "shear_limit", "failed", "overlap"}) {
+  for (const char* st :
+       {"mapped", "auxiliary", "outside", "off_ply", "shear_limit", "failed", "overlap"}) {
     INFO("status " << st);
     std::string quoted = "`";
     quoted += st;

@@ -96,7 +96,8 @@ TEST_CASE("drape: on real faces the cloth never runs away, folds or lies on itse
       if (t1.dot(nrm) <= 0 || t2.dot(nrm) <= 0) ++folded;
       area += 0.5 * (t1.norm() + t2.norm());
     }
-    INFO(cells << " cells, " << folded << " folded, area " << area << " of the face's " << f->area());
+    INFO(cells << " cells, " << folded << " folded, area " << area << " of the face's "
+               << f->area());
     CHECK(cells > 100);
     CHECK(folded == 0);
     CHECK(area <= f->area());
@@ -137,7 +138,8 @@ TEST_CASE("drape: where fronts meet around a hole in the net, no link is broken"
     int links = 0;
     for (const DrapeNode& n : r->nodes) {
       if (!n.mapped() || n.id.is_path_only()) continue;
-      for (const NodeId m : {NodeId::regular(n.id.i + 1, n.id.j), NodeId::regular(n.id.i, n.id.j + 1)}) {
+      for (const NodeId m :
+           {NodeId::regular(n.id.i + 1, n.id.j), NodeId::regular(n.id.i, n.id.j + 1)}) {
         const DrapeNode* q = r->find(m);
         if (!q || !q->mapped()) continue;
         ++links;
@@ -150,7 +152,9 @@ TEST_CASE("drape: where fronts meet around a hole in the net, no link is broken"
   }
 }
 
-TEST_CASE("flat pattern: outlines on real faces are simple where a face corner is a hair from a cell edge") {
+TEST_CASE(
+    "flat pattern: outlines on real faces are simple where a face corner is a hair from a cell "
+    "edge") {
   // Found by the fuzz on example_45_faces.iges face 4: a bowtie of 1.1e-7 mm at a corner.
   const std::vector<Case> cases = {
       {"example_45_faces.iges", 4, 1.27219, Vec3(26.963612, 26.324395, 32.277873),
@@ -182,10 +186,13 @@ TEST_CASE("flat pattern: outlines on real faces are simple where a face corner i
           const Vec2 a = P[i], b = P[(i + 1) % n], p = P[j], q = P[(j + 1) % n];
           // Proper crossings only: the boxes overlap and each segment's ends straddle the
           // other's line (collinear pieces along the base path are no crossing).
-          if (std::max(a.x(), b.x()) < std::min(p.x(), q.x()) || std::max(p.x(), q.x()) < std::min(a.x(), b.x()) ||
-              std::max(a.y(), b.y()) < std::min(p.y(), q.y()) || std::max(p.y(), q.y()) < std::min(a.y(), b.y()))
+          if (std::max(a.x(), b.x()) < std::min(p.x(), q.x()) ||
+              std::max(p.x(), q.x()) < std::min(a.x(), b.x()) ||
+              std::max(a.y(), b.y()) < std::min(p.y(), q.y()) ||
+              std::max(p.y(), q.y()) < std::min(a.y(), b.y()))
             continue;
-          if (cross(a, b, p) * cross(a, b, q) < 0 && cross(p, q, a) * cross(p, q, b) < 0) ++crossings;
+          if (cross(a, b, p) * cross(a, b, q) < 0 && cross(p, q, a) * cross(p, q, b) < 0)
+            ++crossings;
         }
     }
     CHECK(crossings == 0);

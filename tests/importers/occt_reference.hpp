@@ -4,9 +4,9 @@
 // (TopExp::MapShapes), and the converted kernel faces are compared with OCCT's evaluation,
 // classification and projection of the original faces.
 
-#include "occt_geometry.hpp"
 #include <plyfit/importers/importers.hpp>
 #include <plyfit/kernel/face.hpp>
+#include "occt_geometry.hpp"
 
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_NurbsConvert.hxx>

@@ -61,22 +61,29 @@ TEST_CASE("cells: for_each_touched_cell visits every cell near a mapped node onc
     Vec3 u_edge, v_edge, start;
     bool sparse;
   };
-  for (const Case& c : {Case{"square plate", Vec3(40, 0, 0), Vec3(0, 40, 0), Vec3(20, 20, 0), false},
-                        Case{"diagonal strip", Vec3(1000, 0, 0), Vec3(0, 2, 0), Vec3(500, 1, 0), true}}) {
+  for (const Case& c :
+       {Case{"square plate", Vec3(40, 0, 0), Vec3(0, 40, 0), Vec3(20, 20, 0), false},
+        Case{"diagonal strip", Vec3(1000, 0, 0), Vec3(0, 2, 0), Vec3(500, 1, 0), true}}) {
     INFO(c.name);
     FaceData fd;
     fd.surface = plane_patch(Vec3(0, 0, 0), c.u_edge, c.v_edge);
     auto f = Face::create(fd);
     REQUIRE(f.ok());
-    const auto r = drape(*f, support::problem(1.0, Vec2(0, 0), Vec2(1, 1), {Vec2(-1, 1), Vec2(1, -1)}, c.start,
-                                               Vec3(0, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)}));
+    const auto r =
+        drape(*f, support::problem(1.0, Vec2(0, 0), Vec2(1, 1), {Vec2(-1, 1), Vec2(1, -1)}, c.start,
+                                   Vec3(0, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)}));
     REQUIRE(r.ok());
     REQUIRE(r->metrics.nodes.mapped > 100);
     // The hash set is used beyond 64 cells of the box per node.
     CHECK((box_cells_per_node(*r) > 64) == c.sparse);
     for (int ring : {0, 1}) {
       std::vector<std::pair<int, int>> got;
-      for_each_touched_cell(*r, [&](std::int32_t i, std::int32_t j) { got.push_back({i, j}); }, ring);
+      for_each_touched_cell(
+          *r,
+          [&](std::int32_t i, std::int32_t j) {
+            got.push_back({i, j});
+          },
+          ring);
       CHECK(got == touched_reference(*r, ring));
     }
   }

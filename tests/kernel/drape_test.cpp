@@ -19,10 +19,10 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 // Accuracy the drape promises at its default tolerance (issue 4 / issue 3).
-constexpr double kLinkRel = 1e-10;       // link length error / d
-constexpr double kRightAngle = 1e-12;    // thread angles on a plane
-constexpr double kZeroShear = 1e-10;     // cylinder with threads along and around the axis
-constexpr double kSymmetry = 1e-12;      // mirror-symmetric setups, relative to the mold size
+constexpr double kLinkRel = 1e-10;     // link length error / d
+constexpr double kRightAngle = 1e-12;  // thread angles on a plane
+constexpr double kZeroShear = 1e-10;   // cylinder with threads along and around the axis
+constexpr double kSymmetry = 1e-12;    // mirror-symmetric setups, relative to the mold size
 
 Face builtin(const std::string& name, std::map<std::string, double> p = {}) {
   auto fd = builtin_mold(name, p);
@@ -161,7 +161,8 @@ TEST_CASE("drape: shear on developable molds vanishes as the spacing shrinks") {
       const Vec2 w2 = diag ? Vec2(-1, 1) : Vec2(-1, 0);
       std::vector<double> s;
       for (double d : {1.0, 0.5, 0.25}) {
-        const DrapeResult r = run(f, problem(d, Vec2(0, 0), b2, {w2, -w2}, s3, tang, {tang, -tang}));
+        const DrapeResult r =
+            run(f, problem(d, Vec2(0, 0), b2, {w2, -w2}, s3, tang, {tang, -tang}));
         CHECK(r.metrics.nodes.failed == 0);
         s.push_back(max_shear(r));
       }
@@ -187,7 +188,8 @@ TEST_CASE("drape: a setup symmetric about a plane gives a symmetric net") {
     REQUIRE(m);
     REQUIRE(m->mapped());
     CHECK((Vec3(m->point.z(), m->point.y(), m->point.x()) - n.point).norm() < kSymmetry * R);
-    if (n.has(DrapeNode::kHasAngle)) CHECK(std::abs(n.thread_angle - (kPi - m->thread_angle)) < kSymmetry);
+    if (n.has(DrapeNode::kHasAngle))
+      CHECK(std::abs(n.thread_angle - (kPi - m->thread_angle)) < kSymmetry);
     ++pairs;
   }
   CHECK(pairs == static_cast<int>(r.metrics.nodes.mapped));
@@ -195,8 +197,9 @@ TEST_CASE("drape: a setup symmetric about a plane gives a symmetric net") {
 
 TEST_CASE("drape: moving, turning or scaling mold and inputs together moves the net") {
   const NurbsSurfaceData base = wave_surface(100.0, 8.0, 70.0, 10);
-  const DrapeProblem pb = problem(2.0, Vec2(0, 0), Vec2(1, 0.3), {Vec2(0, 1), Vec2(0, -1)},
-                                  Vec3(50, 50, 0), Vec3(-0.3, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)});
+  const DrapeProblem pb =
+      problem(2.0, Vec2(0, 0), Vec2(1, 0.3), {Vec2(0, 1), Vec2(0, -1)}, Vec3(50, 50, 0),
+              Vec3(-0.3, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)});
   FaceData fd;
   fd.surface = base;
   const Face f0 = Face::create(fd).value();
@@ -227,7 +230,8 @@ TEST_CASE("drape: moving, turning or scaling mold and inputs together moves the 
       CHECK(m->status == n.status);
       if (!n.mapped()) continue;
       pos = std::max(pos, (m->point - T(n.point)).norm() / scale);
-      if (n.has(DrapeNode::kHasAngle)) ang = std::max(ang, std::abs(m->thread_angle - n.thread_angle));
+      if (n.has(DrapeNode::kHasAngle))
+        ang = std::max(ang, std::abs(m->thread_angle - n.thread_angle));
     }
     CHECK(pos < 1e-9 * 100);
     CHECK(ang < 1e-9);
@@ -248,7 +252,8 @@ TEST_CASE("drape: the paper's Table 1 cases on the sphere octant (R = 20, d = 1)
                         Case{"b", Vec2(20, 0), Vec2(1, 0), Vec2(0, 1), Vec3(R / 2, 0, R / 2)},
                         Case{"c", Vec2(15, 0), Vec2(1, 1), Vec2(-1, 1), Vec3(0, 0, R)}}) {
     INFO("case " << c.name);
-    const DrapeResult r = run(f, problem(1.0, c.s2, c.b2, {c.w2}, c.s3, Vec3(0, 1, 0), {Vec3(0, 1, 0)}));
+    const DrapeResult r =
+        run(f, problem(1.0, c.s2, c.b2, {c.w2}, c.s3, Vec3(0, 1, 0), {Vec3(0, 1, 0)}));
     CHECK_FALSE(r.partial);
     CHECK(r.metrics.nodes.failed == 0);
     CHECK(r.metrics.edge_length_max_rel < kLinkRel);
@@ -305,9 +310,27 @@ TEST_CASE("drape: the paper's Table 3 cases on the one-third surface of revoluti
       {"a", {10, 0, 0}, {0, 1, 0}, {{0, 1, 0}}, {0, 0}, {0, 1}, {{1, 0}}},
       {"b", {10, 0, 0}, {0, 1, 0}, {{0, 1, 0}}, {0, 30}, {1, 1}, {{1, -1}}},
       {"c", {55. / 8, 0, 7.5}, {0, 1, 0}, {{0, 1, 0}}, {0, 20}, {0, 1}, {{1, 0}}},
-      {"d", {10, 10 * r3, 0}, {1, -1, 0}, {{1, -1, 0}, {-1, 1, 0}}, {35, 0}, {0, 1}, {{-1, 0}, {1, 0}}},
-      {"e", {55. / 8, 55. / 8 * r3, 7.5}, {1, -1, 0}, {{1, -1, 0}, {-1, 1, 0}}, {35, 35}, {1, 1}, {{-1, 1}, {1, -1}}},
-      {"f", {55. / 8, 55. / 8 * r3, 7.5}, {1, -1, 0}, {{1, -1, 0}, {-1, 1, 0}}, {35, 35}, {0, 1}, {{-1, 0}, {1, 0}}},
+      {"d",
+       {10, 10 * r3, 0},
+       {1, -1, 0},
+       {{1, -1, 0}, {-1, 1, 0}},
+       {35, 0},
+       {0, 1},
+       {{-1, 0}, {1, 0}}},
+      {"e",
+       {55. / 8, 55. / 8 * r3, 7.5},
+       {1, -1, 0},
+       {{1, -1, 0}, {-1, 1, 0}},
+       {35, 35},
+       {1, 1},
+       {{-1, 1}, {1, -1}}},
+      {"f",
+       {55. / 8, 55. / 8 * r3, 7.5},
+       {1, -1, 0},
+       {{1, -1, 0}, {-1, 1, 0}},
+       {35, 35},
+       {0, 1},
+       {{-1, 0}, {1, 0}}},
   };
   for (const auto& c : cases) {
     INFO("case " << c.name);
@@ -330,8 +353,9 @@ TEST_CASE("drape: the paper's Table 3 cases on the one-third surface of revoluti
 
 TEST_CASE("drape: the same input gives the same result, bit for bit") {
   const Face f = builtin("wave");
-  const DrapeProblem pb = problem(1.5, Vec2(0.2, 0.1), Vec2(1, 0.4), {Vec2(0, 1), Vec2(0, -1)},
-                                  Vec3(50, 50, 0), Vec3(-0.4, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)});
+  const DrapeProblem pb =
+      problem(1.5, Vec2(0.2, 0.1), Vec2(1, 0.4), {Vec2(0, 1), Vec2(0, -1)}, Vec3(50, 50, 0),
+              Vec3(-0.4, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)});
   const DrapeResult a = run(f, pb), b = run(f, pb);
   REQUIRE(a.nodes.size() == b.nodes.size());
   for (std::size_t k = 0; k < a.nodes.size(); ++k) {
@@ -356,8 +380,9 @@ TEST_CASE("drape: a huge ply on a small face holds only what it maps") {
 TEST_CASE("drape: the hemisphere's seam is crossed, not a boundary") {
   const Face f = builtin("hemisphere", {{"R", 10}});
   // Base path on the plane x = 0 through the pole; the sweeps cross the seam meridian at +X.
-  const DrapeResult r = run(f, problem(0.5, Vec2(0, 0), Vec2(0, 1), {Vec2(-1, 0), Vec2(1, 0)},
-                                       Vec3(0, 0, 10), Vec3(1, 0, 0), {Vec3(1, 0, 0), Vec3(-1, 0, 0)}));
+  const DrapeResult r =
+      run(f, problem(0.5, Vec2(0, 0), Vec2(0, 1), {Vec2(-1, 0), Vec2(1, 0)}, Vec3(0, 0, 10),
+                     Vec3(1, 0, 0), {Vec3(1, 0, 0), Vec3(-1, 0, 0)}));
   CHECK(r.metrics.nodes.failed == 0);
   // No node near the seam meridian (y ~ 0, x > 0) and above the equator is left outside.
   for (const auto& n : r.nodes) {
@@ -391,8 +416,10 @@ TEST_CASE("drape: flip-normal drapes the other side; cancellation stops early") 
   std::atomic<bool> stop{true};
   DrapeOptions opt;
   opt.cancel = &stop;
-  const DrapeResult c = run(builtin("wave"), problem(0.5, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)},
-                                                      Vec3(50, 50, 0), Vec3(0, 1, 0), {Vec3(0, 1, 0)}), opt);
+  const DrapeResult c = run(builtin("wave"),
+                            problem(0.5, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)}, Vec3(50, 50, 0),
+                                    Vec3(0, 1, 0), {Vec3(0, 1, 0)}),
+                            opt);
   CHECK(c.partial);
 }
 
@@ -443,8 +470,9 @@ TEST_CASE("drape: a closed plane section or a closed face never wraps the cloth 
   };
   SECTION("the base plane cuts a hemisphere in a circle; the ply is unbounded") {
     const Face f = builtin("hemisphere", {{"R", 10}});
-    const DrapeResult r = run(f, problem(1.0, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)},
-                                         Vec3(8, 0, 6), Vec3(0, 0, 1), {Vec3(0, 0, 1), Vec3(0, 0, -1)}));
+    const DrapeResult r =
+        run(f, problem(1.0, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)}, Vec3(8, 0, 6),
+                       Vec3(0, 0, 1), {Vec3(0, 0, 1), Vec3(0, 0, -1)}));
     CHECK(r.metrics.nodes.overlap > 0);
     CHECK(r.metrics.nodes.mapped < 2000);  // one hemisphere's worth, not a runaway
     // The base path goes round once: about 2 pi * 8 / d links.
@@ -453,8 +481,9 @@ TEST_CASE("drape: a closed plane section or a closed face never wraps the cloth 
   }
   SECTION("a full cylinder, base path along the axis, swept both ways round") {
     const Face f = builtin("cylinder", {{"R", 10}, {"H", 30}, {"angle", 360}});
-    const DrapeResult r = run(f, problem(1.0, Vec2(0, 0), Vec2(0, 1), {Vec2(1, 0), Vec2(-1, 0)},
-                                         Vec3(10, 0, 15), Vec3(0, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)}));
+    const DrapeResult r =
+        run(f, problem(1.0, Vec2(0, 0), Vec2(0, 1), {Vec2(1, 0), Vec2(-1, 0)}, Vec3(10, 0, 15),
+                       Vec3(0, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)}));
     CHECK(r.metrics.nodes.overlap > 0);
     CHECK(r.metrics.nodes.failed == 0);
     CHECK(r.metrics.surface_area > 0.95 * f.area());
@@ -465,8 +494,10 @@ TEST_CASE("drape: a closed plane section or a closed face never wraps the cloth 
     const Face f = builtin("hemisphere", {{"R", 10}});
     DrapeOptions opt;
     opt.max_nodes = 20;
-    const DrapeResult r = run(f, problem(0.1, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)}, Vec3(8, 0, 6),
-                                         Vec3(0, 0, 1), {Vec3(0, 0, 1)}), opt);
+    const DrapeResult r = run(f,
+                              problem(0.1, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)}, Vec3(8, 0, 6),
+                                      Vec3(0, 0, 1), {Vec3(0, 0, 1)}),
+                              opt);
     CHECK(r.partial);
     CHECK(r.nodes.size() <= 20);
   }

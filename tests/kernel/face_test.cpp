@@ -75,8 +75,7 @@ TEST_CASE("kernel: closed seams wrap parameters and differences") {
   const double P = d.width_v();
   CHECK(f->contains(Vec2(0.5 * (d.u0 + d.u1), d.v1 + 0.1 * P)));
   CHECK(f->wrap(Vec2(0.3, d.v0 - 0.25 * P)).y() == Approx(d.v0 + 0.75 * P));
-  CHECK(f->delta(Vec2(0.3, d.v1 - 0.01 * P), Vec2(0.3, d.v0 + 0.01 * P)).y() ==
-        Approx(0.02 * P));
+  CHECK(f->delta(Vec2(0.3, d.v1 - 0.01 * P), Vec2(0.3, d.v0 + 0.01 * P)).y() == Approx(0.02 * P));
   // Evaluation across the seam continues the surface.
   const Vec3 a = f->eval1(Vec2(0.5, d.v1 + 0.1 * P)).p;
   const Vec3 b = f->eval1(Vec2(0.5, d.v0 + 0.1 * P)).p;
@@ -94,7 +93,8 @@ TEST_CASE("kernel: projection finds the nearest point of the face") {
   // Points off the sphere inside the octant's cone project radially.
   Rng rng(4);
   for (int k = 0; k < 50; ++k) {
-    const Vec3 dir = Vec3(rng.uniform(0.05, 1), rng.uniform(0.05, 1), rng.uniform(0.05, 1)).normalized();
+    const Vec3 dir =
+        Vec3(rng.uniform(0.05, 1), rng.uniform(0.05, 1), rng.uniform(0.05, 1)).normalized();
     const double r = rng.uniform(0.3 * R, 2 * R);
     const Projection pr = f->project(r * dir);
     REQUIRE(pr.ok);

@@ -56,7 +56,8 @@ void check_loops(const FlatPattern& fp, double d) {
         const Vec2 a0 = p[i], a1 = p[(i + 1) % n], b0 = p[j], b1 = p[(j + 1) % n];
         const double d1 = cross2(a1 - a0, b0 - a0), d2 = cross2(a1 - a0, b1 - a0);
         const double d3 = cross2(b1 - b0, a0 - b0), d4 = cross2(b1 - b0, a1 - b0);
-        if (((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 && d4 != 0)
+        if (((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 &&
+            d4 != 0)
           ++crossings;
       }
     }
@@ -74,7 +75,8 @@ TEST_CASE("flat pattern: a cylinder sector develops into the rectangle R alpha x
   const double size = std::max(R * alpha, H);  // ~20
   double prev_area = 0, prev_per = 0;
   for (double d : {size / 50, size / 100}) {
-    const FlatPattern fp = drape_flat(f, d, Vec2(0, 1), {Vec2(-1, 0), Vec2(1, 0)}, s3, tang, {tang, -tang});
+    const FlatPattern fp =
+        drape_flat(f, d, Vec2(0, 1), {Vec2(-1, 0), Vec2(1, 0)}, s3, tang, {tang, -tang});
     REQUIRE(fp.outline.size() == 1);
     check_loops(fp, d);
     const double ea = std::abs(fp.area - R * alpha * H) / (R * alpha * H);
@@ -104,7 +106,8 @@ TEST_CASE("flat pattern: a cone sector develops into the annular sector") {
   const Vec3 s3(15 * std::cos(a), 15 * std::sin(a), 7.5), tang(-std::sin(a), std::cos(a), 0);
   double prev_area = 0, prev_per = 0;
   for (double d : {ro * phi / 50, ro * phi / 100}) {
-    const FlatPattern fp = drape_flat(f, d, Vec2(0, 1), {Vec2(-1, 0), Vec2(1, 0)}, s3, tang, {tang, -tang});
+    const FlatPattern fp =
+        drape_flat(f, d, Vec2(0, 1), {Vec2(-1, 0), Vec2(1, 0)}, s3, tang, {tang, -tang});
     REQUIRE(fp.outline.size() == 1);
     check_loops(fp, d);
     const double ea = std::abs(fp.area - A) / A, ep = std::abs(fp.perimeter - P) / P;
@@ -120,7 +123,9 @@ TEST_CASE("flat pattern: a cone sector develops into the annular sector") {
   }
 }
 
-TEST_CASE("flat pattern: every outline point of a cone sector, corners included, is within a second-order band of the exact one") {
+TEST_CASE(
+    "flat pattern: every outline point of a cone sector, corners included, is within a "
+    "second-order band of the exact one") {
   // The area and perimeter average errors out; this checks every point. The net's chords lie
   // within kappa d^2 / 8 of the surface (kappa its largest curvature, at the small radius:
   // cos(half-angle) / r1), so the development is that accurate up to a small factor; a band
@@ -154,7 +159,8 @@ TEST_CASE("flat pattern: every outline point of a cone sector, corners included,
   };
   for (double k : {50.0, 400.0}) {
     const double d = ro * phi / k;
-    const FlatPattern fp = drape_flat(f, d, Vec2(0, 1), {Vec2(-1, 0), Vec2(1, 0)}, s3, tang, {tang, -tang});
+    const FlatPattern fp =
+        drape_flat(f, d, Vec2(0, 1), {Vec2(-1, 0), Vec2(1, 0)}, s3, tang, {tang, -tang});
     REQUIRE(fp.outline.size() == 1);
     double worst = 0;
     Vec2 at = Vec2::Zero();
@@ -163,7 +169,8 @@ TEST_CASE("flat pattern: every outline point of a cone sector, corners included,
         worst = off_boundary(p);
         at = p;
       }
-    INFO("d = L/" << k << ": worst " << worst / (d * d) << " d^2 at (" << at.x() << ", " << at.y() << ")");
+    INFO("d = L/" << k << ": worst " << worst / (d * d) << " d^2 at (" << at.x() << ", " << at.y()
+                  << ")");
     CHECK(worst <= kappa * d * d / 4);
     // The four corners of the face are in the outline, each carried in by its own cell.
     for (double e : {-phi / 2, phi / 2})
@@ -189,8 +196,9 @@ TEST_CASE("flat pattern: a circular trim hole comes out as a circle of its radiu
   }
   fd.loops.push_back({hole});
   const Face f = Face::create(fd).value();
-  const FlatPattern fp = drape_flat(f, 2.0, Vec2(1, 0.3), {Vec2(0, 1), Vec2(0, -1)},
-                                    Vec3(30, 30, 0), Vec3(-0.3, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)});
+  const FlatPattern fp =
+      drape_flat(f, 2.0, Vec2(1, 0.3), {Vec2(0, 1), Vec2(0, -1)}, Vec3(30, 30, 0), Vec3(-0.3, 1, 0),
+                 {Vec3(0, 1, 0), Vec3(0, -1, 0)});
   REQUIRE(fp.outline.size() == 2);
   check_loops(fp, 2.0);
   CHECK_FALSE(fp.outline[0].hole);
@@ -212,8 +220,8 @@ TEST_CASE("flat pattern: a circular trim hole comes out as a circle of its radiu
 
 TEST_CASE("flat pattern: the paper's sphere cases give one simple outline") {
   const Face f = builtin("sphere-octant");
-  const FlatPattern fp = drape_flat(f, 1.0, Vec2(1, 0), {Vec2(0, 1)}, Vec3(0, 0, 20), Vec3(0, 1, 0),
-                                    {Vec3(0, 1, 0)});
+  const FlatPattern fp =
+      drape_flat(f, 1.0, Vec2(1, 0), {Vec2(0, 1)}, Vec3(0, 0, 20), Vec3(0, 1, 0), {Vec3(0, 1, 0)});
   REQUIRE(fp.outline.size() == 1);
   check_loops(fp, 1.0);
   // The pole (the start) is a right-angled corner of the pattern: the base path along x and
@@ -264,4 +272,3 @@ TEST_CASE("flat pattern: at a pole the outline has the face's corner angle") {
   }
   CHECK(near >= 2);
 }
-

@@ -32,7 +32,8 @@ TEST_CASE("kernel: curve validation names the problem") {
 
 TEST_CASE("kernel: circle arcs are exact, with exact derivatives") {
   const double R = 3.5;
-  for (auto [a0, a1] : {std::pair{0.0, 1.0}, std::pair{2.0, -1.5}, std::pair{0.0, 6.283185307179586}}) {
+  for (auto [a0, a1] :
+       {std::pair{0.0, 1.0}, std::pair{2.0, -1.5}, std::pair{0.0, 6.283185307179586}}) {
     auto c = NurbsCurve2::create(circle_arc(R, a0, a1));
     REQUIRE(c.ok());
     CHECK((c->point(c->t0()) - Vec2(R * std::cos(a0), R * std::sin(a0))).norm() < kRoundoffRel * R);

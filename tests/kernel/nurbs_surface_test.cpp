@@ -123,8 +123,8 @@ TEST_CASE("kernel: linear precision for any degree and knot vector, clamped or n
     auto s = NurbsSurface::create(d);
     REQUIRE(s.ok());
     const auto& dom = s->domain();
-    const double scale = 1.0 + std::max({std::abs(dom.u0), std::abs(dom.u1), std::abs(dom.v0),
-                                         std::abs(dom.v1)});
+    const double scale =
+        1.0 + std::max({std::abs(dom.u0), std::abs(dom.u1), std::abs(dom.v0), std::abs(dom.v1)});
     const double tol = 1e-11 * scale * scale;  // degree-25 bases lose a few digits
     for (int k = 0; k < 50; ++k) {
       // Up to 10% beyond the domain for degrees <= 7. Extrapolating a degree-25 polynomial
@@ -212,8 +212,8 @@ TEST_CASE("kernel: an extended rational surface reports where it is undefined, n
   d.count_v = 2;
   d.knots_u = {0, 0, 0, 1, 1, 1};
   d.knots_v = {0, 0, 1, 1};
-  d.poles = {Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(1, 0, 1), Vec3(1, 1, 1),
-             Vec3(2, 0, 0), Vec3(2, 1, 0)};
+  d.poles = {Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(1, 0, 1),
+             Vec3(1, 1, 1), Vec3(2, 0, 0), Vec3(2, 1, 0)};
   d.weights = {1, 1, 3, 3, 1, 1};
   auto s = NurbsSurface::create(d);
   REQUIRE(s.ok());

@@ -35,7 +35,9 @@ void check_on_surface(const Face& f, const SolveResult& r) {
   CHECK((f.eval1(r.uv).p - r.point).norm() <= 1e-12 * f.size());
   CHECK(r.point.allFinite());
 }
-double sphere_error(const Vec3& p, const Vec3& c, double rho) { return std::abs((p - c).norm() - rho); }
+double sphere_error(const Vec3& p, const Vec3& c, double rho) {
+  return std::abs((p - c).norm() - rho);
+}
 
 }  // namespace
 
@@ -119,7 +121,8 @@ TEST_CASE("solvers: the sphere octant's pole (paper cases (a) and (c) start ther
   SECTION("two spheres next to the pole") {
     // a and b one chord from the pole along the meridians at 0 and 90 degrees; the node
     // between them lies one chord from both, off the pole.
-    const Vec3 a(R * std::sin(phi), 0, R * std::cos(phi)), b(0, R * std::sin(phi), R * std::cos(phi));
+    const Vec3 a(R * std::sin(phi), 0, R * std::cos(phi)),
+        b(0, R * std::sin(phi), R * std::cos(phi));
     const SolveResult r = solve_two_spheres(
         f, {a, f.project(a).uv, d, b, f.project(b).uv, d, -1.0, std::nullopt}, st);
     REQUIRE(r.status == SolveStatus::kConverged);
@@ -127,8 +130,8 @@ TEST_CASE("solvers: the sphere octant's pole (paper cases (a) and (c) start ther
     CHECK(sphere_error(r.point, b, d) < kConstraintRel * d);
     CHECK(r.point.x() > a.x() * 0.5);  // the side away from the pole
     // The other branch is the pole itself.
-    const SolveResult q = solve_two_spheres(
-        f, {a, f.project(a).uv, d, b, f.project(b).uv, d, 1.0, std::nullopt}, st);
+    const SolveResult q =
+        solve_two_spheres(f, {a, f.project(a).uv, d, b, f.project(b).uv, d, 1.0, std::nullopt}, st);
     REQUIRE(q.status == SolveStatus::kConverged);
     CHECK((q.point - pole).norm() < 10 * kConstraintRel * d);
     CHECK(q.point.allFinite());
@@ -230,7 +233,9 @@ TEST_CASE("solvers: strongly non-uniform parametrisation and extreme weights") {
   for (int k = 0; k < 300; ++k) {
     const Projection pp = f.project(Vec3(rng.uniform(-7, 7), rng.uniform(-7, 7), 0));
     const SurfaceEval1 ep = f.eval1(pp.uv);
-    auto uvdir = [&](double t) { return Vec2(std::cos(t) / ep.du.norm(), std::sin(t) / ep.dv.norm()); };
+    auto uvdir = [&](double t) {
+      return Vec2(std::cos(t) / ep.du.norm(), std::sin(t) / ep.dv.norm());
+    };
     const double t1 = rng.uniform(0, 2 * kPi), t2 = t1 + rng.uniform(0.6, 2.5);
     Vec2 ua, ub;
     if (!point_at_distance(f, pp.uv, uvdir(t1), 0.5, ua) ||
@@ -240,7 +245,8 @@ TEST_CASE("solvers: strongly non-uniform parametrisation and extreme weights") {
     const Vec3 a = f.eval1(ua).p, b = f.eval1(ub).p;
     const double side = (b - a).cross(pp.point - a).z() > 0 ? 1.0 : -1.0;  // n = +z
     const SolveResult r = solve_two_spheres(f, {a, ua, 0.5, b, ub, 0.5, side, std::nullopt}, st);
-    UNSCOPED_INFO("two-sphere " << to_string(r.status) << " " << r.reason << " it " << r.iterations << " p " << pp.point.transpose() << " uv " << pp.uv.transpose());
+    UNSCOPED_INFO("two-sphere " << to_string(r.status) << " " << r.reason << " it " << r.iterations
+                                << " p " << pp.point.transpose() << " uv " << pp.uv.transpose());
     if (r.status != SolveStatus::kConverged) continue;
     ++ok2;
     CHECK((r.point - pp.point).norm() < 1e-9);
@@ -259,7 +265,8 @@ TEST_CASE("solvers: the same problem at scales 1e-3, 1 and 1e4 gives the scaled 
     st.spacing = 2.0 * scale;
     const Vec3 a = f.eval1(Vec2(0.5, 0.5)).p, b = f.eval1(Vec2(0.52, 0.48)).p;
     const SolveResult r = solve_two_spheres(
-        f, {a, Vec2(0.5, 0.5), 2.0 * scale, b, Vec2(0.52, 0.48), 2.0 * scale, 1.0, std::nullopt}, st);
+        f, {a, Vec2(0.5, 0.5), 2.0 * scale, b, Vec2(0.52, 0.48), 2.0 * scale, 1.0, std::nullopt},
+        st);
     REQUIRE(r.status == SolveStatus::kConverged);
     CHECK(sphere_error(r.point, a, 2.0 * scale) < kConstraintRel * 2.0 * scale);
     if (scale == 1.0) {
@@ -281,7 +288,8 @@ TEST_CASE("solvers: curvature radius equal to d, and a saddle") {
     const Vec3 x0(R, 0, 0);
     const Projection p0 = f.project(x0);
     // Chord 1 on a great circle of radius 1: 60 degrees.
-    const SolveResult r = solve_base_path(f, {p0.point, p0.uv, Vec3(0, 1, 0), Vec3(0, 0, 1), d}, st);
+    const SolveResult r =
+        solve_base_path(f, {p0.point, p0.uv, Vec3(0, 1, 0), Vec3(0, 0, 1), d}, st);
     REQUIRE(r.status == SolveStatus::kConverged);
     CHECK((r.point - Vec3(std::cos(kPi / 3), 0, std::sin(kPi / 3))).norm() < 10 * kConstraintRel);
     const SolveResult q = solve_plane_sphere(f, {p0.point, p0.uv, d, Vec3(0, 1, 1)}, st);
@@ -362,12 +370,12 @@ TEST_CASE("solvers: a step past the domain edge or into a trim hole leaves the f
     const double t = -2 * kPi * k / 720;
     hole.emplace_back(0.5 + 0.1 * std::cos(t), 0.5 + 0.1 * std::sin(t));
   }
-  const Face g = make_face(plane_patch(Vec3(0, 0, 0), Vec3(10, 0, 0), Vec3(0, 10, 0)),
-                           {TrimLoop{{Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}}, TrimLoop{hole}});
+  const Face g =
+      make_face(plane_patch(Vec3(0, 0, 0), Vec3(10, 0, 0), Vec3(0, 10, 0)),
+                {TrimLoop{{Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}}, TrimLoop{hole}});
   st.spacing = 1.0;
   const Vec3 y0(3.5, 5, 0);
-  const SolveResult h =
-      solve_plane_sphere(g, {y0, g.project(y0).uv, 1.0, Vec3(1, 0, 0)}, st);
+  const SolveResult h = solve_plane_sphere(g, {y0, g.project(y0).uv, 1.0, Vec3(1, 0, 0)}, st);
   CHECK(h.status == SolveStatus::kLeftFace);
   CHECK(h.extended);
   CHECK((h.point - Vec3(4.5, 5, 0)).norm() < kConstraintRel);
@@ -407,8 +415,11 @@ TEST_CASE("solvers: random valid configurations are recovered, never folded", "[
       // Half the cases start from the drape's parallelogram guess, half from none (the
       // solver's planar guess).
       const bool with_guess = (&k - configs.data()) % 2 == 0;
-      const SolveResult r2 = solve_two_spheres(
-          f, {k.a, k.ua, c.d, k.b, k.ub, c.d, k.side, with_guess ? std::optional<Vec2>(k.guess) : std::nullopt}, st);
+      const SolveResult r2 =
+          solve_two_spheres(f,
+                            {k.a, k.ua, c.d, k.b, k.ub, c.d, k.side,
+                             with_guess ? std::optional<Vec2>(k.guess) : std::nullopt},
+                            st);
       if (r2.status == SolveStatus::kConverged) {
         const double sd = f.normal(r2.uv).n.dot((k.b - k.a).cross(r2.point - k.a));
         REQUIRE(sd * k.side > 0);  // never the folded branch
@@ -438,8 +449,8 @@ TEST_CASE("solvers: random valid configurations are recovered, never folded", "[
         ++ok1;
       }
     }
-    INFO(c.name << ": trials " << trials << " solver2 " << ok2 << " solver1 " << ok1
-                << " solver3 " << ok3 << " mean iterations (2) " << double(it2) / ok2);
+    INFO(c.name << ": trials " << trials << " solver2 " << ok2 << " solver1 " << ok1 << " solver3 "
+                << ok3 << " mean iterations (2) " << double(it2) / ok2);
     REQUIRE(trials > 3000);
     CHECK(ok2 >= 0.999 * trials);
     CHECK(ok1 >= 0.999 * trials);

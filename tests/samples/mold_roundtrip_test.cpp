@@ -148,13 +148,13 @@ TEST_CASE("samples: the mold writer refuses what it cannot write, naming the fil
 TEST_CASE("samples: the listed face areas are the exact areas of the analytic samples") {
   // plyfit info's area (OpenCASCADE's adaptive integration) against closed forms.
   constexpr double kPi = 3.14159265358979323846;
-  constexpr double kAreaRel = 1e-9;  // the integration reaches ~2e-10 on these faces
+  constexpr double kAreaRel = 1e-9;                // the integration reaches ~2e-10 on these faces
   const double L = std::hypot(20.0 - 10.0, 15.0);  // cone slant length (r0 20, r1 10, H 15)
   const std::vector<std::pair<std::string, double>> exact = {
-      {"sphere-octant", 4 * kPi * 20 * 20 / 8},          // R = 20
-      {"hemisphere", 2 * kPi},                             // R = 1
-      {"cylinder-sector", 10 * (kPi / 2) * 20},            // R 10, 90 degrees, H 20
-      {"cone-sector", (kPi / 2) * (20 + 10) / 2 * L},      // lateral area of a frustum quarter
+      {"sphere-octant", 4 * kPi * 20 * 20 / 8},        // R = 20
+      {"hemisphere", 2 * kPi},                         // R = 1
+      {"cylinder-sector", 10 * (kPi / 2) * 20},        // R 10, 90 degrees, H 20
+      {"cone-sector", (kPi / 2) * (20 + 10) / 2 * L},  // lateral area of a frustum quarter
   };
   for (const auto& [stem, area] : exact) {
     for (const char* ext : {".step", ".igs"}) {

@@ -42,8 +42,7 @@ struct SolverCase {
 };
 
 /// n configurations on the inner 70% of the face's domain, spacing d.
-inline std::vector<SolverCase> make_solver_cases(const Face& f, double d, int n,
-                                                 unsigned seed) {
+inline std::vector<SolverCase> make_solver_cases(const Face& f, double d, int n, unsigned seed) {
   constexpr double kPi = 3.14159265358979323846;
   std::mt19937_64 gen(seed);
   auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(gen); };
@@ -53,7 +52,9 @@ inline std::vector<SolverCase> make_solver_cases(const Face& f, double d, int n,
     SolverCase k;
     k.uc = Vec2(dom.u0 + dom.width_u() * uni(0.15, 0.85), dom.v0 + dom.width_v() * uni(0.15, 0.85));
     const SurfaceEval1 ec = f.eval1(k.uc);
-    auto uvdir = [&](double t) { return Vec2(std::cos(t) / ec.du.norm(), std::sin(t) / ec.dv.norm()); };
+    auto uvdir = [&](double t) {
+      return Vec2(std::cos(t) / ec.du.norm(), std::sin(t) / ec.dv.norm());
+    };
     const double t1 = uni(0, 2 * kPi), t2 = t1 + uni(0.5, kPi - 0.5);
     if (!point_at_distance(f, k.uc, uvdir(t1), d, k.ua)) continue;
     if (!point_at_distance(f, k.uc, uvdir(t2), d, k.ub)) continue;

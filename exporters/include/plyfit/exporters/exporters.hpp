@@ -20,21 +20,21 @@ namespace plyfit::exporters {
 
 /// Inputs of a run that are not part of the DrapeProblem, echoed in the report.
 struct RunInfo {
-  std::string mold;          ///< file path or "builtin:..." as given
-  int face = 0;              ///< face index
-  FaceInfo face_info;        ///< what the mold says about the face
-  std::string mold_unit;     ///< the file's unit (geometry is in mm)
+  std::string mold;       ///< file path or "builtin:..." as given
+  int face = 0;           ///< face index
+  FaceInfo face_info;     ///< what the mold says about the face
+  std::string mold_unit;  ///< the file's unit (geometry is in mm)
   bool flip_normal = false;
   double tolerance_rel = 0;  ///< Newton tolerance relative to d
   int max_iterations = 0;
   double lock_angle_deg = 90;
-  std::string guess = "paper";     ///< initial-guess rule of the two-sphere solver
-  std::uint64_t max_nodes = 0;     ///< node cap
-  std::string ply_name;      ///< for labels
-  std::string material;      ///< for labels
+  std::string guess = "paper";  ///< initial-guess rule of the two-sphere solver
+  std::uint64_t max_nodes = 0;  ///< node cap
+  std::string ply_name;         ///< for labels
+  std::string material;         ///< for labels
   double import_ms = 0, drape_ms = 0, total_ms = 0;
-  std::vector<std::string> outputs;  ///< exporter keys being written
-  std::vector<std::string> warnings; ///< import warnings etc.
+  std::vector<std::string> outputs;   ///< exporter keys being written
+  std::vector<std::string> warnings;  ///< import warnings etc.
 };
 
 /// Options of the writers.
@@ -42,9 +42,9 @@ struct ExportOptions {
   /// Cells whose shear exceeds this (radians) go to the DXF SHEAR_WARN layer and are flagged
   /// in the pictures; default: 5 degrees below the lock angle.
   double warn_shear = 1.4835298641951802;
-  bool dxf_threads = true;     ///< THREADS layer in flat.dxf
-  int curve_degree = 1;        ///< net.step thread curves: 1 (polyline) or 3 (interpolated)
-  Vec3 view = Vec3(1, 1, 1);   ///< drape.svg view direction (towards the viewer)
+  bool dxf_threads = true;    ///< THREADS layer in flat.dxf
+  int curve_degree = 1;       ///< net.step thread curves: 1 (polyline) or 3 (interpolated)
+  Vec3 view = Vec3(1, 1, 1);  ///< drape.svg view direction (towards the viewer)
 };
 
 /// Everything a writer may use.

@@ -23,9 +23,9 @@ std::vector<std::vector<NodeId>> cell_parts(const Ply& ply, std::int32_t i, std:
 /// Calls f(i, j, nodes, n) for every mapped cell part (all its nodes mapped): the quadrangles
 /// of four mapped regular nodes (nodes counter-clockwise from (i, j)) and the mapped parts of
 /// the cells the path crosses. No allocation per cell.
-void for_each_mapped_cell(
-    const DrapeResult& r,
-    const std::function<void(std::int32_t i, std::int32_t j, const std::uint32_t* nodes, int n)>& f);
+void for_each_mapped_cell(const DrapeResult& r,
+                          const std::function<void(std::int32_t i, std::int32_t j,
+                                                   const std::uint32_t* nodes, int n)>& f);
 
 /// A mapped cell part: its cell (lower-left regular node (i, j)) and its nodes (indices into
 /// DrapeResult::nodes, counter-clockwise).
@@ -44,8 +44,9 @@ void for_each_touched_cell(const DrapeResult& res, F&& f, int ring = 0) {
   const double dx = res.ply->spec().d_weft, dy = res.ply->spec().d_warp;
   auto cell_of = [&](const DrapeNode& n) {
     if (!n.id.is_path_only()) return std::pair<std::int64_t, std::int64_t>(n.id.i, n.id.j);
-    return std::pair<std::int64_t, std::int64_t>(static_cast<std::int64_t>(std::floor(n.ply.x() / dx)),
-                                                 static_cast<std::int64_t>(std::floor(n.ply.y() / dy)));
+    return std::pair<std::int64_t, std::int64_t>(
+        static_cast<std::int64_t>(std::floor(n.ply.x() / dx)),
+        static_cast<std::int64_t>(std::floor(n.ply.y() / dy)));
   };
   // Cells seen: a bitmap over the box of the touched cells, or a hash set where that box
   // is much larger than the node count (a thin ply along a diagonal).
@@ -70,7 +71,11 @@ void for_each_touched_cell(const DrapeResult& res, F&& f, int ring = 0) {
       const auto k = static_cast<std::size_t>((j - j0) * w + (i - i0));
       if (seen_bits[k]) return;
       seen_bits[k] = true;
-    } else if (!seen_set.insert(NodeId::regular(static_cast<std::int32_t>(i), static_cast<std::int32_t>(j)).key()).second) {
+    } else if (!seen_set
+                    .insert(
+                        NodeId::regular(static_cast<std::int32_t>(i), static_cast<std::int32_t>(j))
+                            .key())
+                    .second) {
       return;
     }
     f(static_cast<std::int32_t>(i), static_cast<std::int32_t>(j));

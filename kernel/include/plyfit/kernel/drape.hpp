@@ -149,7 +149,7 @@ struct NodeCounts {
   std::uint64_t off_ply = 0;
   std::uint64_t shear_limit = 0;
   std::uint64_t failed = 0;
-  std::uint64_t overlap = 0;      ///< stopped where the cloth would lie on itself
+  std::uint64_t overlap = 0;  ///< stopped where the cloth would lie on itself
 };
 
 /// The metrics of §7.1 and independent residual checks.

@@ -12,8 +12,8 @@ namespace plyfit {
 /// A closed outline loop in ply coordinates (the first point is not repeated).
 struct OutlineLoop {
   std::vector<Vec2> points;
-  bool hole = false;       ///< holes run clockwise, outer loops counter-clockwise
-  double area = 0.0;       ///< enclosed area (positive)
+  bool hole = false;  ///< holes run clockwise, outer loops counter-clockwise
+  double area = 0.0;  ///< enclosed area (positive)
   double perimeter = 0.0;
 };
 

@@ -12,10 +12,10 @@ namespace plyfit {
 /// Plain data of a NURBS surface, as importers and constructors produce it. Validated by
 /// NurbsSurface::create().
 struct NurbsSurfaceData {
-  int degree_u = 1;  ///< degree in u (1..25)
-  int degree_v = 1;  ///< degree in v (1..25)
-  int count_u = 0;   ///< number of poles along u
-  int count_v = 0;   ///< number of poles along v
+  int degree_u = 1;             ///< degree in u (1..25)
+  int degree_v = 1;             ///< degree in v (1..25)
+  int count_u = 0;              ///< number of poles along u
+  int count_v = 0;              ///< number of poles along v
   std::vector<double> knots_u;  ///< flat knot vector, count_u + degree_u + 1 values
   std::vector<double> knots_v;  ///< flat knot vector, count_v + degree_v + 1 values
   std::vector<Vec3> poles;      ///< count_u * count_v poles, index i * count_v + j (i along u)

@@ -42,9 +42,13 @@ struct NodeId {
 /// warp (+y, -y).
 enum class ThreadDir : std::uint8_t { kPlusX = 0, kMinusX = 1, kPlusY = 2, kMinusY = 3 };
 /// The opposite direction.
-inline ThreadDir opposite(ThreadDir d) { return static_cast<ThreadDir>(static_cast<int>(d) ^ 1); }
+inline ThreadDir opposite(ThreadDir d) {
+  return static_cast<ThreadDir>(static_cast<int>(d) ^ 1);
+}
 /// True for the weft directions (+x, -x).
-inline bool is_weft(ThreadDir d) { return static_cast<int>(d) < 2; }
+inline bool is_weft(ThreadDir d) {
+  return static_cast<int>(d) < 2;
+}
 
 /// A node on the base path.
 struct PathNode {
@@ -68,7 +72,7 @@ struct PlySpec {
   double d_warp = 1.0;  ///< warp link length = spacing of the weft threads (along y)
   /// Optional cloth rectangle [0, W] x [0, H]; absent: unbounded cloth.
   std::optional<Vec2> rect;
-  Vec2 start = Vec2::Zero();  ///< start point of the base path (anywhere)
+  Vec2 start = Vec2::Zero();      ///< start point of the base path (anywhere)
   Vec2 base_dir = Vec2::UnitX();  ///< base path direction (normalised on construction)
   /// Sweep directions, at most one per half-plane; none may be parallel to the base path.
   std::vector<Vec2> sweeps;
@@ -95,7 +99,9 @@ class Ply {
   /// path (within the merge tolerance).
   int side(const Vec2& p) const;
   /// Index of the sweep direction for half-plane `side`, or -1 if that side is not swept.
-  int sweep_for_side(int side) const { return side > 0 ? sweep_plus_ : side < 0 ? sweep_minus_ : -1; }
+  int sweep_for_side(int side) const {
+    return side > 0 ? sweep_plus_ : side < 0 ? sweep_minus_ : -1;
+  }
   /// Distance from the base path to p along its half-plane's sweep direction (eq. of §6.2's
   /// ordering); 0 on the path.
   double sweep_distance(const Vec2& p) const;

@@ -59,6 +59,8 @@ class [[nodiscard]] Result {
 /// Result of an operation with no value.
 struct Unit {};
 using Status = Result<Unit>;
-inline Status ok_status() { return Unit{}; }
+inline Status ok_status() {
+  return Unit{};
+}
 
 }  // namespace plyfit

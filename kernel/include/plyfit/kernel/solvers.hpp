@@ -48,8 +48,8 @@ struct SolveResult {
 
 /// Settings shared by the three solvers.
 struct SolverSettings {
-  double spacing = 1.0;     ///< d, the scale of every tolerance
-  double gamma_min = 0.0;   ///< minimum thread angle, radians (eq. 12); 0 disables the test
+  double spacing = 1.0;    ///< d, the scale of every tolerance
+  double gamma_min = 0.0;  ///< minimum thread angle, radians (eq. 12); 0 disables the test
   Tolerances tol;
 };
 
@@ -57,11 +57,11 @@ struct SolverSettings {
 /// normal `plane_normal`, at distance `distance` from `from`, going forward along `forward`
 /// (a 3D direction roughly along the path; the solution satisfies (p - from).forward > 0).
 struct BasePathStep {
-  Vec3 from;               ///< last known point x0 (on the surface)
-  Vec2 from_uv;            ///< its parameters
-  Vec3 plane_normal;       ///< base-plane normal (any length)
-  Vec3 forward;            ///< direction of travel (any length)
-  double distance = 1.0;   ///< d_xyz: rest length to the next point
+  Vec3 from;              ///< last known point x0 (on the surface)
+  Vec2 from_uv;           ///< its parameters
+  Vec3 plane_normal;      ///< base-plane normal (any length)
+  Vec3 forward;           ///< direction of travel (any length)
+  double distance = 1.0;  ///< d_xyz: rest length to the next point
 };
 /// Initial guess by eqs. (7)-(8): a step of `distance` along `forward` projected on the
 /// tangent plane at x0, mapped to (u, v) with the local metric.
@@ -79,9 +79,9 @@ struct TwoSphereStep {
   Vec3 b;
   Vec2 b_uv;
   double rb = 1.0;
-  double side = 1.0;           ///< +1 or -1, see above
-  std::optional<Vec2> guess;   ///< initial (u, v) (eqs. 10-11); if absent, the planar
-                               ///< two-circle solution in the tangent plane is used
+  double side = 1.0;          ///< +1 or -1, see above
+  std::optional<Vec2> guess;  ///< initial (u, v) (eqs. 10-11); if absent, the planar
+                              ///< two-circle solution in the tangent plane is used
 };
 SolveResult solve_two_spheres(const DrapeSurface& surface, const TwoSphereStep& step,
                               const SolverSettings& settings);

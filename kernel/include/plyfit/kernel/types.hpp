@@ -44,7 +44,9 @@ struct ParamDomain {
 };
 
 /// 2D cross product (z component of the 3D cross product of (a, 0) and (b, 0)).
-inline double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+inline double cross2(const Vec2& a, const Vec2& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
 
 /// True when every component of v is finite.
 template <typename Derived>
