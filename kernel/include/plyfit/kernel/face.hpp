@@ -4,6 +4,7 @@
 #include <plyfit/kernel/nurbs_curve.hpp>
 #include <plyfit/kernel/nurbs_surface.hpp>
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -54,7 +55,13 @@ class DrapeSurface {
 
 /// A closed polyline in the (u, v) plane; the first point is not repeated at the end.
 struct TrimLoop {
+  /// Marks a segment that lies on no shared edge: a free edge (or a seam of a closed face).
+  static constexpr std::int32_t kFreeEdge = -1;
   std::vector<Vec2> points;
+  /// For a face of a shell: the shared edge each segment lies on (segment k runs from
+  /// points[k] to points[k + 1], the last one back to points[0]), an index into the shell's
+  /// edges, or kFreeEdge. Empty: every segment is free (a face on its own).
+  std::vector<std::int32_t> edges;
 };
 
 /// Plain data of a face, as importers and built-in molds produce it.
