@@ -143,7 +143,7 @@ TEST_CASE("cli: a dumped scene loads back to the same job") {
   // Every kind of key: switches, repeatable keys, defaults, non-default numerics.
   const std::string flags =
       kFlags +
-      " --ply 30,25 --lock-angle 60 --warn-angle 50 --material 'carbon twill' "
+      " --ply 30,25 --lock-angle 60 --warn-angle 50 --material carbon-twill "
       "--ply-name P1 --tolerance 1e-13 --max-iterations 30 --guess parallelogram "
       "--flip-normal --view 0,0,1 -o '" +
       tmp.file("out") + "'";
