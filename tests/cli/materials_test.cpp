@@ -17,9 +17,7 @@ using nlohmann::json;
 
 namespace {
 
-const std::string kFlags =
-    "--mold builtin:sphere-octant --spacing 1 --start2d 0,0 --base2d 1,0 --sweep2d 0,1 "
-    "--start3d 0,0,20 --base-normal 0,1,0 --sweep3d 0,1,0";
+const std::string& kFlags = kOctantFlags;
 
 std::string source(const std::string& rel) {
   return slurp(std::string(PLYFIT_SOURCE_DIR) + "/" + rel);

@@ -14,9 +14,7 @@ using nlohmann::json;
 namespace {
 
 /// Table 1 case (a) on the built-in octant, as flags.
-const std::string kFlags =
-    "--mold builtin:sphere-octant --spacing 1 --start2d 0,0 --base2d 1,0 --sweep2d 0,1 "
-    "--start3d 0,0,20 --base-normal 0,1,0 --sweep3d 0,1,0";
+const std::string& kFlags = kOctantFlags;
 
 /// The same drape as a scene file with sections.
 const std::string kScene =

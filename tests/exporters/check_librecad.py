@@ -24,22 +24,13 @@ import tempfile
 import ezdxf
 from ezdxf import bbox
 
+from check_dxf import inside  # the even-odd point-in-outline test (same folder)
+
 DPI = 100             # rasterisation of the A4 page
 INK = 240             # a grey level below this is ink (not white: cyan layers are light)
 ASPECT_REL = 0.03     # the ink box's aspect ratio against the drawing's (line widths, rounding)
 PROBE_PX = 4          # ink searched this many pixels around a point
 TIMEOUT_S = 120
-
-
-def inside(loops, x, y):
-    c = False
-    for pts in loops:
-        for k in range(len(pts)):
-            x0, y0 = pts[k]
-            x1, y1 = pts[(k + 1) % len(pts)]
-            if (y0 > y) != (y1 > y) and x < x0 + (y - y0) * (x1 - x0) / (y1 - y0):
-                c = not c
-    return c
 
 
 def read_pgm(path):
