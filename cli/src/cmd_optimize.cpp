@@ -39,38 +39,46 @@ extern "C" void on_optimize_signal(int) {
 
 po::options_description optimize_options() {
   po::options_description opts("options");
+  auto text = [](const char* name, const char* def = nullptr) {
+    auto* v = po::value<std::string>()->value_name(name);
+    return def ? v->default_value(def) : v;
+  };
   opts.add_options()("help,h", "show this help")(
-      "vary", po::value<std::string>()->default_value("start,angle"),
-      "what varies, a list of: start (the seed point on the face), angle (the ply's threads "
-      "turned about the normal at the seed), path (the base path turned)")(
-      "objective", po::value<std::string>()->default_value("energy"),
+      "vary", text("LIST", "start,angle"),
+      "what varies, comma-separated: start (the seed point on the face), angle (the ply's "
+      "threads turned about the normal at the seed), path (the base path turned)")(
+      "objective", text("LIST", "energy"),
       "objectives to refine, comma-separated: energy (sum cos^2 gamma), max-shear, area (the "
-      "flat pattern's)")("evaluations", po::value<std::string>()->default_value("200"),
+      "flat pattern's)")("evaluations", text("N", "200"),
                          "drapes of the search (half a space-filling design, half refinement)")(
-      "min-coverage", po::value<std::string>(),
-      "smallest coverage of the face, percent (default: the scene's, less 0.5)")(
-      "radius", po::value<std::string>(),
-      "seeds within this distance (mm) of the scene's start (default: anywhere on the face)")(
-      "angle-range", po::value<std::string>(),
+      "min-coverage", text("PCT"),
+      "smallest coverage of the face, percent (default: the best coverage found, at most 100, "
+      "less 0.5)")("radius", text("R"),
+                   "seeds within this distance (mm) of the scene's start (default: anywhere on "
+                   "the face)")(
+      "angle-range", text("DEG"),
       "ply angles within +-DEG of the scene's (default: half the cloth's symmetry period, 45 "
-      "for a square weave)")("path-range", po::value<std::string>(),
+      "for a square weave)")("path-range", text("DEG"),
                              "base-path angles within +-DEG of the scene's (default: 90)")(
-      "jobs,j", po::value<std::string>(), "drapes run at a time (default: the number of cores)")(
-      "output,o", po::value<std::string>(),
-      "write optimize.json, front.svg and best-OBJECTIVE.ini into DIR")("quiet",
-                                                                        "no progress line");
+      "jobs,j", text("N"), "drapes run at a time (default: the number of cores)")(
+      "output,o", text("DIR"), "write optimize.json, front.svg and best-OBJECTIVE.ini into DIR")(
+      "quiet", "no progress line");
   return opts;
 }
 
 void optimize_help(std::ostream& os) {
-  os << "usage: plyfit optimize SCENE [--vary start,angle] [--objective energy|max-shear|area]\n"
+  os << "usage: plyfit optimize SCENE [--vary start,angle,path] [--objective "
+        "energy|max-shear|area]\n"
         "                       [--evaluations N] [--min-coverage PCT] [--radius R]\n"
-        "                       [--angle-range DEG] [-j N] [-o DIR] [--quiet]\n\n"
-        "Drapes the scene's ply from many initial conditions (the seed point on the face and\n"
-        "the ply's angle; both sides of the base path), N at a time, and prints the best drape\n"
-        "per objective and the Pareto front over energy, max shear and flat area. A drape\n"
-        "counts only if it is ok (no failed node, no cloth on cloth) and covers at least the\n"
-        "minimum coverage of the face. The same input gives the same result for any -j.\n\n"
+        "                       [--angle-range DEG] [--path-range DEG] [-j N] [-o DIR] "
+        "[--quiet]\n\n"
+        "Drapes the scene's ply from many initial conditions (the seed point on the face, the\n"
+        "ply's angle, the base path's angle; both sides of the base path), N at a time, and\n"
+        "prints the best drape per objective and the Pareto front over energy, max shear and\n"
+        "flat area. A drape counts only if it is ok (no failed node, no cloth on cloth) and\n"
+        "covers at least the minimum coverage of the face. Exit 0 when done, 1 for a bad scene\n"
+        "or mold or when no drape counts, 2 for a bad command line, 130 when interrupted.\n"
+        "The same input gives the same result for any -j.\n\n"
      << optimize_options();
 }
 
@@ -145,27 +153,34 @@ int run_optimize(const std::vector<std::string>& args) {
   if (vm.count("min-coverage")) {
     auto c = number(vm, "min-coverage");
     if (!c) return usage(c.error().message);
-    if (!(*c > 0 && *c <= 100)) return usage("--min-coverage: must be in (0, 100] percent");
+    if (!(*c > 0 && *c <= 100))
+      return usage("--min-coverage: '" + vm["min-coverage"].as<std::string>() +
+                   "' must be in (0, 100] percent");
     o.min_coverage = *c / 100.0;
   }
   if (vm.count("radius")) {
     auto x = number(vm, "radius");
     if (!x) return usage(x.error().message);
-    if (!(*x > 0)) return usage("--radius: must be positive");
+    if (!(*x > 0))
+      return usage("--radius: '" + vm["radius"].as<std::string>() + "' must be positive");
     if (!o.vary_start) return usage("--radius: the seed does not vary (--vary has no start)");
     o.radius = *x;
   }
   if (vm.count("angle-range")) {
     auto x = number(vm, "angle-range");
     if (!x) return usage(x.error().message);
-    if (!(*x > 0 && *x <= 180)) return usage("--angle-range: must be in (0, 180] degrees");
+    if (!(*x > 0 && *x <= 180))
+      return usage("--angle-range: '" + vm["angle-range"].as<std::string>() +
+                   "' must be in (0, 180] degrees");
     if (!o.vary_angle) return usage("--angle-range: the angle does not vary (--vary has no angle)");
     o.angle_range = *x * kDegToRad;
   }
   if (vm.count("path-range")) {
     auto x = number(vm, "path-range");
     if (!x) return usage(x.error().message);
-    if (!(*x > 0 && *x <= 90)) return usage("--path-range: must be in (0, 90] degrees");
+    if (!(*x > 0 && *x <= 90))
+      return usage("--path-range: '" + vm["path-range"].as<std::string>() +
+                   "' must be in (0, 90] degrees");
     if (!o.vary_path)
       return usage("--path-range: the base path does not vary (--vary has no path)");
     o.path_range = *x * kDegToRad;

@@ -106,7 +106,7 @@ struct Space {
 /// scene's own angle (0) first, then the others within +-range, each once modulo the period.
 /// There the base path passes through crossings, not between them (no short split links),
 /// and the drape's figures jump: the sphere octant's energy from its centre is 7.0 with the
-/// base path along a thread and 32 with it 0.6 degrees off. A continuous design would never
+/// base path along a thread and 31.7 with it 0.6 degrees off. A continuous design would never
 /// land on them.
 std::vector<double> lattice_angles(const PlySpec& ply, double path, double range, double period) {
   const double beta = std::atan2(ply.base_dir.y(), ply.base_dir.x());
