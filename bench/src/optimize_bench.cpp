@@ -25,15 +25,6 @@ namespace fs = std::filesystem;
 /// figure, quoted by issue 14; not measured here).
 constexpr double kKinDrapeMaxSeconds[2] = {700.0, 1000.0};
 
-std::string plyfit_binary() {
-  if (const char* env = std::getenv("PLYFIT_BIN")) return env;
-#ifdef PLYFIT_BIN
-  return PLYFIT_BIN;
-#else
-  return "plyfit";
-#endif
-}
-
 nlohmann::json read_json(const std::string& path) {
   std::ifstream in(path);
   std::stringstream ss;

@@ -18,6 +18,7 @@
 #include <csignal>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <thread>
 
@@ -150,40 +151,36 @@ int run_optimize(const std::vector<std::string>& args) {
   } else {
     o.evaluations = static_cast<int>(*n);
   }
-  if (vm.count("min-coverage")) {
-    auto c = number(vm, "min-coverage");
-    if (!c) return usage(c.error().message);
-    if (!(*c > 0 && *c <= 100))
-      return usage("--min-coverage: '" + vm["min-coverage"].as<std::string>() +
-                   "' must be in (0, 100] percent");
-    o.min_coverage = *c / 100.0;
-  }
-  if (vm.count("radius")) {
-    auto x = number(vm, "radius");
+  // The optional numbers: each within (lo, hi], and the bounds of a coordinate only when it
+  // varies.
+  struct Bounded {
+    const char* key;
+    double lo, hi;
+    const char* range;
+    bool needed;
+    const char* needs;
+    std::optional<double>* to;
+    double scale;
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  const Bounded bounded[] = {
+      {"min-coverage", 0, 100, "in (0, 100] percent", true, "", &o.min_coverage, 0.01},
+      {"radius", 0, inf, "positive", o.vary_start, "the seed does not vary (--vary has no start)",
+       &o.radius, 1.0},
+      {"angle-range", 0, 180, "in (0, 180] degrees", o.vary_angle,
+       "the angle does not vary (--vary has no angle)", &o.angle_range, kDegToRad},
+      {"path-range", 0, 90, "in (0, 90] degrees", o.vary_path,
+       "the base path does not vary (--vary has no path)", &o.path_range, kDegToRad},
+  };
+  for (const Bounded& b : bounded) {
+    if (!vm.count(b.key)) continue;
+    const std::string flag = std::string("--") + b.key;
+    auto x = number(vm, b.key);
     if (!x) return usage(x.error().message);
-    if (!(*x > 0))
-      return usage("--radius: '" + vm["radius"].as<std::string>() + "' must be positive");
-    if (!o.vary_start) return usage("--radius: the seed does not vary (--vary has no start)");
-    o.radius = *x;
-  }
-  if (vm.count("angle-range")) {
-    auto x = number(vm, "angle-range");
-    if (!x) return usage(x.error().message);
-    if (!(*x > 0 && *x <= 180))
-      return usage("--angle-range: '" + vm["angle-range"].as<std::string>() +
-                   "' must be in (0, 180] degrees");
-    if (!o.vary_angle) return usage("--angle-range: the angle does not vary (--vary has no angle)");
-    o.angle_range = *x * kDegToRad;
-  }
-  if (vm.count("path-range")) {
-    auto x = number(vm, "path-range");
-    if (!x) return usage(x.error().message);
-    if (!(*x > 0 && *x <= 90))
-      return usage("--path-range: '" + vm["path-range"].as<std::string>() +
-                   "' must be in (0, 90] degrees");
-    if (!o.vary_path)
-      return usage("--path-range: the base path does not vary (--vary has no path)");
-    o.path_range = *x * kDegToRad;
+    if (!(*x > b.lo && *x <= b.hi))
+      return usage(flag + ": '" + vm[b.key].as<std::string>() + "' must be " + b.range);
+    if (!b.needed) return usage(flag + ": " + b.needs);
+    *b.to = *x * b.scale;
   }
   o.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (vm.count("jobs")) {
