@@ -588,7 +588,7 @@ Result<OptimizeResult> optimize(const DrapeJob& scene, const Face& face, const O
   ref.status = scene_res.partial ? "partial" : "ok";
   for (const auto& w : scene_res.warnings) ref.note += (ref.note.empty() ? "partial: " : "; ") + w;
   ref.figures = figures_of(face, scene_res);
-  ref.candidate.uv = scene_res.start_uv;
+  ref.candidate.uv = scene_res.start_at.uv;
   ref.seed = scene_res.start_point;
   r.evaluations.push_back(ref);
   r.min_coverage_default = !o.min_coverage;
@@ -605,7 +605,7 @@ Result<OptimizeResult> optimize(const DrapeJob& scene, const Face& face, const O
   r.radius = o.radius;
   // The seeds' box: the face's samples (within the radius), one sample step wider.
   const ParamDomain& dom = face.domain();
-  const Vec2 uv0 = scene_res.start_uv;
+  const Vec2 uv0 = scene_res.start_at.uv;
   Vec2 lo = uv0, hi = uv0;
   if (o.vary_start) {
     for (const auto& [uv, p] : sample_face(face, kSeedBoxSamples)) {
