@@ -269,6 +269,8 @@ Figures figures_of(const Face& face, const DrapeResult& res) {
   f.flat_area = flat.area;
   f.mapped = m.nodes.mapped;
   f.shear_limit = m.nodes.shear_limit;
+  f.overlap = m.nodes.overlap;
+  f.off_ply = m.nodes.off_ply;
   if (face.area() > 0) {
     f.cell_coverage = m.surface_area / face.area();
     f.coverage = outline_surface_area(res, flat) / face.area();

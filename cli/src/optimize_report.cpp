@@ -167,6 +167,8 @@ std::string optimize_json(const DrapeJob& scene, const OptimizeResult& r, const 
     j["cell_coverage"] = f.cell_coverage;
     j["mapped"] = f.mapped;
     j["shear_limit"] = f.shear_limit;
+    j["overlap"] = f.overlap;
+    j["off_ply"] = f.off_ply;
     return j;
   };
   ordered_json j;
