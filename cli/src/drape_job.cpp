@@ -562,23 +562,6 @@ Result<Face> load_face(const DrapeJob& job, exporters::RunInfo* run_out) {
   return face;
 }
 
-Result<DrapeResult> drape_face(const Face& face, const DrapeProblem& problem,
-                               const DrapeOptions& options) {
-  auto res = drape(face, problem, options);
-  if (!res) return res;
-  // The drape tests every node for overlap only on closed faces and where the net is sheared
-  // past 60 degrees (a test of every node would cost half the speed); an immersed net can
-  // still come back over itself elsewhere on a long open face. The coverage shows it.
-  if (face.area() > 0 && res->metrics.surface_area > (1 + kCoverageSlack) * face.area()) {
-    res->partial = true;
-    res->warnings.push_back("the mapped cells cover " +
-                            std::to_string(static_cast<int>(
-                                std::lround(100 * res->metrics.surface_area / face.area()))) +
-                            "% of the face: the cloth lies on itself somewhere");
-  }
-  return res;
-}
-
 Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel, bool progress) {
   const auto t0 = std::chrono::steady_clock::now();
   auto ms_since = [](auto t) {
@@ -608,9 +591,19 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
       std::cerr << "\rplyfit: " << n << " nodes solved" << std::flush;
     };
   }
-  auto res = drape_face(*face, job.problem, opt);
+  auto res = drape(*face, job.problem, opt);
   if (tty) std::cerr << "\r\033[K" << std::flush;
   if (!res) return res.error();
+  // The drape tests every node for overlap only on closed faces and where the net is sheared
+  // past 60 degrees (a test of every node would cost half the speed); an immersed net can
+  // still come back over itself elsewhere on a long open face. The coverage shows it.
+  if (face->area() > 0 && res->metrics.surface_area > (1 + kCoverageSlack) * face->area()) {
+    res->partial = true;
+    res->warnings.push_back("the mapped cells cover " +
+                            std::to_string(static_cast<int>(
+                                std::lround(100 * res->metrics.surface_area / face->area()))) +
+                            "% of the face: the cloth lies on itself somewhere");
+  }
   if (cancel && cancel->load()) return Error{"cancelled"};
   run.drape_ms = res->drape_ms;
   const FlatPattern flat = flat_pattern(*face, *res);

@@ -101,11 +101,6 @@ struct JobOutcome {
 /// with `plyfit optimize` (which drapes one face many times).
 Result<Face> load_face(const DrapeJob& job, exporters::RunInfo* run = nullptr);
 
-/// drape() on `face`, marked partial (with a warning) when the mapped cells cover more than
-/// the face (the cloth lies on itself): run_job's drape, shared with `plyfit optimize`.
-Result<DrapeResult> drape_face(const Face& face, const DrapeProblem& problem,
-                               const DrapeOptions& options);
-
 /// Runs a job end to end; outputs are written atomically into job.outdir. `cancel` stops
 /// the drape (no files are written then). Progress goes to stderr when it is a terminal and
 /// `progress` is true.

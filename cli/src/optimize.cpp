@@ -263,16 +263,14 @@ Figures figures_of(const Face& face, const DrapeResult& res) {
   const DrapeMetrics& m = res.metrics;
   Figures f;
   f.energy = m.shear_energy;
-  f.max_shear_deg = m.angles ? std::max(std::abs(90.0 - m.gamma_min * kRadToDeg),
-                                        std::abs(m.gamma_max * kRadToDeg - 90.0))
-                             : 0.0;
+  f.max_shear_deg = m.shear_max * kRadToDeg;
   f.flat_area = flat.area;
   f.mapped = m.nodes.mapped;
   f.shear_limit = m.nodes.shear_limit;
   f.overlap = m.nodes.overlap;
   f.off_ply = m.nodes.off_ply;
   if (face.area() > 0) {
-    f.cell_coverage = m.surface_area / face.area();
+    f.cell_coverage = m.coverage;
     f.coverage = outline_surface_area(res, flat) / face.area();
   }
   return f;
@@ -287,7 +285,7 @@ std::string percent(double fraction) {
 /// Drapes a problem and fills an evaluation's figures and status (not its feasibility).
 void drape_into(const Face& face, const DrapeProblem& pb, const DrapeOptions& opt, Evaluation& ev) {
   try {
-    auto res = drape_face(face, pb, opt);
+    auto res = drape(face, pb, opt);
     if (!res) {
       ev.status = "error";
       ev.note = res.error().message;
@@ -589,7 +587,7 @@ Result<OptimizeResult> optimize(const DrapeJob& scene, const Face& face, const O
   ref.phase = "scene";
   DrapeResult scene_res;
   try {
-    auto res = drape_face(face, scene.problem, dopt);
+    auto res = drape(face, scene.problem, dopt);
     if (!res) return Error{(scene.scene.empty() ? "" : scene.scene + ": ") + res.error().message};
     scene_res = std::move(res).value();
   } catch (const std::exception& e) {
