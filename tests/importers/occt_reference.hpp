@@ -19,12 +19,10 @@
 #include <GCPnts_QuasiUniformDeflection.hxx>
 #include <GProp_GProps.hxx>
 #include <Geom2dAdaptor_Curve.hxx>
-#include <GeomAPI_ProjectPointOnCurve.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GeomLProp_SLProps.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_BezierSurface.hxx>
-#include <Geom_Curve.hxx>
 #include <Geom_Plane.hxx>
 #include <IGESControl_Reader.hxx>
 #include <Message.hxx>
@@ -282,51 +280,6 @@ inline int check_contains(const Face& face, const TopoDS_Face& classified, int n
   }
   CHECK(disagree == 0);
   return compared;
-}
-
-/// The surface images of points along a converted face's trim polylines lie within
-/// trim_chord_rel of the face size (plus the edge's own tolerance: OCCT's 3D edge curve and its
-/// pcurve agree only to it, plus `extra`) of the original face's edges, OCCT's 3D curves. About
-/// 60 segment midpoints per loop are checked. Returns the worst distance over the allowed one.
-inline double check_loops_on_edges(const Face& face, const TopoDS_Face& original,
-                                   double extra = 0.0) {
-  struct EdgeCurve {
-    Handle(Geom_Curve) c;
-    double a, b, tol;
-  };
-  std::vector<EdgeCurve> edges;
-  for (TopExp_Explorer ex(original, TopAbs_EDGE); ex.More(); ex.Next()) {
-    const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
-    EdgeCurve ec;
-    ec.c = BRep_Tool::Curve(e, ec.a, ec.b);
-    ec.tol = BRep_Tool::Tolerance(e);
-    if (!ec.c.IsNull()) edges.push_back(ec);
-  }
-  const double allowed_base = Tolerances{}.trim_chord_rel * occt_size(original) + extra;
-  GeomAPI_ProjectPointOnCurve proj;
-  double worst = 0.0;
-  for (const auto& loop : face.loops()) {
-    const size_t n = loop.points.size();
-    const size_t stride = std::max<size_t>(1, n / 60);  // about 60 segments per loop
-    for (size_t k = 0; k < n; k += stride) {
-      const Vec2 mid = 0.5 * (loop.points[k] + loop.points[(k + 1) % n]);
-      const Vec3 p = face.eval1(mid).p;
-      const gp_Pnt P(p.x(), p.y(), p.z());
-      double best = 1e300, best_allowed = allowed_base;
-      for (const auto& ec : edges) {
-        double d = std::min(P.Distance(ec.c->Value(ec.a)), P.Distance(ec.c->Value(ec.b)));
-        proj.Init(P, ec.c, ec.a, ec.b);
-        if (proj.NbPoints() > 0) d = std::min(d, proj.LowerDistance());
-        if (d < best) {
-          best = d;
-          best_allowed = allowed_base + ec.tol;
-        }
-      }
-      worst = std::max(worst, best / best_allowed);
-      CHECK(best <= best_allowed);
-    }
-  }
-  return worst;
 }
 
 /// The OCCT face whose (u, v) the converted face uses: the original when the conversion keeps

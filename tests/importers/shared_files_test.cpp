@@ -8,6 +8,9 @@
 
 #include "importers/occt_reference.hpp"
 
+#include <GeomAPI_ProjectPointOnCurve.hxx>
+#include <Geom_Curve.hxx>
+
 using namespace plyfit;
 using namespace plyfit::test;
 
@@ -119,13 +122,15 @@ void check_file_contains(const std::string& name) {
   WARN(name << ": " << trimmed << " trimmed faces compared with the classifier");
 }
 
-// The trim polylines of every trimmed face of a file follow the face's edges (see
-// check_loops_on_edges). Returns the worst distance over the allowed one.
+// The surface images of points along the trim polylines lie within trim_chord_rel of the face
+// size (plus the edge's own tolerance: OCCT's 3D edge curve and its pcurve agree only to it)
+// of the face's edges, OCCT's 3D curves. Returns the worst distance over the allowed one.
 double check_trim_accuracy(const std::string& name) {
   INFO(name);
   auto file = importers::open_mold(shared_cad(name));
   REQUIRE(file.ok());
   const Reference ref = read_reference(shared_cad(name), is_iges(name));
+  const Tolerances tol;
   double worst = 0.0;
   for (int i = 0; i < ref.count(); ++i) {
     INFO("face " << i);
@@ -134,7 +139,41 @@ double check_trim_accuracy(const std::string& name) {
     if (data->loops.empty()) continue;
     auto face = Face::create(data.value());
     REQUIRE(face.ok());
-    worst = std::max(worst, check_loops_on_edges(*face, ref.face(i)));
+    struct EdgeCurve {
+      Handle(Geom_Curve) c;
+      double a, b, tol;
+    };
+    std::vector<EdgeCurve> edges;
+    for (TopExp_Explorer ex(ref.face(i), TopAbs_EDGE); ex.More(); ex.Next()) {
+      const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
+      EdgeCurve ec;
+      ec.c = BRep_Tool::Curve(e, ec.a, ec.b);
+      ec.tol = BRep_Tool::Tolerance(e);
+      if (!ec.c.IsNull()) edges.push_back(ec);
+    }
+    const double allowed_base = tol.trim_chord_rel * occt_size(ref.face(i));
+    GeomAPI_ProjectPointOnCurve proj;
+    for (const auto& loop : face->loops()) {
+      const size_t n = loop.points.size();
+      const size_t stride = std::max<size_t>(1, n / 60);  // about 60 segments per loop
+      for (size_t k = 0; k < n; k += stride) {
+        const Vec2 mid = 0.5 * (loop.points[k] + loop.points[(k + 1) % n]);
+        const Vec3 p = face->eval1(mid).p;
+        const gp_Pnt P(p.x(), p.y(), p.z());
+        double best = 1e300, best_allowed = allowed_base;
+        for (const auto& ec : edges) {
+          double d = std::min(P.Distance(ec.c->Value(ec.a)), P.Distance(ec.c->Value(ec.b)));
+          proj.Init(P, ec.c, ec.a, ec.b);
+          if (proj.NbPoints() > 0) d = std::min(d, proj.LowerDistance());
+          if (d < best) {
+            best = d;
+            best_allowed = allowed_base + ec.tol;
+          }
+        }
+        worst = std::max(worst, best / best_allowed);
+        CHECK(best <= best_allowed);
+      }
+    }
   }
   return worst;
 }
