@@ -1,7 +1,7 @@
 // plyfit-bench shell FILE [--faces all|I,J,...] [--runs R]: how long sewing faces of a mold into
 // a shell and converting them takes (MoldFile::convert_shell), against converting the same
 // faces one by one (convert_face) in the same run. Medians of R >= 5 runs, each on a freshly
-// opened file (so that no face listing is cached between runs).
+// opened file (so that no face listing is cached between runs), the three kinds interleaved.
 
 #include "bench.hpp"
 
@@ -53,26 +53,23 @@ int run_shell(const std::vector<std::string>& args) {
     std::cerr << "plyfit-bench: " << shell.error().message << "\n";
     return 1;
   }
+  // The three timings interleaved run by run, so that a change in the machine's load (it is
+  // shared) touches them alike.
   bool ok = true;
-  const double t_open = median_time(
-      [&] {
-        auto f = importers::open_mold(path);
-        ok = ok && f.ok();
-      },
-      runs);
-  const double t_shell = median_time(
-      [&] {
-        auto f = importers::open_mold(path);
-        ok = ok && f.ok() && (*f)->convert_shell(faces).ok();
-      },
-      runs);
-  const double t_faces = median_time(
-      [&] {
-        auto f = importers::open_mold(path);
-        ok = ok && f.ok();
-        for (int i : chosen) ok = ok && (*f)->convert_face(i).ok();
-      },
-      runs);
+  std::vector<double> opens, shells, each;
+  for (int r = 0; r < std::max(runs, kMinRuns); ++r) {
+    opens.push_back(time_once([&] { ok = ok && importers::open_mold(path).ok(); }));
+    shells.push_back(time_once([&] {
+      auto f = importers::open_mold(path);
+      ok = ok && f.ok() && (*f)->convert_shell(faces).ok();
+    }));
+    each.push_back(time_once([&] {
+      auto f = importers::open_mold(path);
+      ok = ok && f.ok();
+      for (int i : chosen) ok = ok && (*f)->convert_face(i).ok();
+    }));
+  }
+  const double t_open = median(opens), t_shell = median(shells), t_faces = median(each);
   if (!ok) {
     std::cerr << "plyfit-bench: an import failed during timing\n";
     return 1;
