@@ -5,7 +5,6 @@
 #include "occt_mold.hpp"
 
 #include <BRepBuilderAPI_Sewing.hxx>
-#include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <Geom2d_Curve.hxx>
 #include <Geom_Surface.hxx>
@@ -23,7 +22,6 @@
 #include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
-#include <TopoDS_Compound.hxx>
 
 #include <algorithm>
 #include <cmath>
@@ -129,7 +127,8 @@ double edge_gap(const TopoDS_Edge& e, const TopoDS_Face& a, const TopoDS_Face& b
   return std::max({largest, g1, g2});
 }
 
-// The orientation of each edge of `face` as the face uses it (seams, used twice, are left out).
+// The orientation of each edge of `face` as the face uses it (a seam, used twice, is listed
+// twice).
 std::vector<std::pair<TopoDS_Shape, TopAbs_Orientation>> edge_uses(const TopoDS_Face& face) {
   std::vector<std::pair<TopoDS_Shape, TopAbs_Orientation>> uses;
   for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next())
@@ -347,8 +346,8 @@ Result<ShellData> sew_faces(const ShellInput& in, const std::vector<int>& given,
   if (part_count > 1)
     warnings.push_back("sewing: the " + std::to_string(n) + " faces form " +
                        std::to_string(part_count) +
-                       " separate shells (no shared edge joins them); a drape stays on the "
-                       "one it starts on");
+                       " separate shells that no shared edge joins; a drape stays on the one it "
+                       "starts on");
   if (non_manifold > 0)
     warnings.push_back("sewing: " + count(non_manifold, "edge") +
                        (non_manifold == 1 ? " bounds" : " bound") +
