@@ -256,11 +256,14 @@ FaceInfo describe_face(const TopoDS_Face& f, int index) {
 // Samples one edge's pcurve as a polyline in the edge's direction on the face. Segments are
 // halved until, at three interior fractions, both the 3D distance between the surface images
 // of the pcurve point and of the chord point, and the chord's (u, v) deviation weighted by the
-// surface's parametric speeds, are at most `tol3d`.
+// surface's parametric speeds, are at most `tol3d`. With `chords3d` (faces of a shell, whose
+// shared edges are matched in 3D), the straight 3D chord between the images of a segment's
+// ends must also be within `tol3d` of the pcurve's image: an edge straight in (u, v) but curved
+// in space (a circle along a cylinder's v = 0) is then refined too.
 class EdgeSampler {
  public:
-  EdgeSampler(const Handle(Geom_BSplineSurface) & s, double tol3d, Vec2 speeds)
-      : s_(s), tol_(tol3d), speeds_(std::move(speeds)) {}
+  EdgeSampler(const Handle(Geom_BSplineSurface) & s, double tol3d, Vec2 speeds, bool chords3d)
+      : s_(s), tol_(tol3d), speeds_(std::move(speeds)), chords3d_(chords3d) {}
 
   Status sample(const TopoDS_Edge& e, const TopoDS_Face& f, std::vector<Vec2>& out) {
     double a = 0, b = 0;
@@ -306,7 +309,10 @@ class EdgeSampler {
       const Vec2 d = q - lin;
       err = std::max(err, std::hypot(d.x() * speeds_.x(), d.y() * speeds_.y()));
       if (err > tol_) break;
-      err = std::max(err, (point(q) - point(lin)).norm());
+      const Vec3 on = point(q);
+      err = std::max(err, (on - point(lin)).norm());
+      if (err > tol_) break;
+      if (chords3d_) err = std::max(err, (on - (point(p0) + fr * (point(p1) - point(p0)))).norm());
       if (err > tol_) break;
     }
     if (err <= tol_ || depth >= kMaxRefineDepth || out.size() > kMaxLoopPoints) {
@@ -323,6 +329,7 @@ class EdgeSampler {
   Handle(Geom2d_Curve) c_;
   double tol_;
   Vec2 speeds_;
+  bool chords3d_;
 };
 
 // The edges of a wire in order along it, with their orientation in the wire.
@@ -351,7 +358,7 @@ Result<std::vector<TrimLoop>> trim_loops(const TopoDS_Face& f,
   if (!outer.IsNull()) wires.push_back(outer);
   for (TopExp_Explorer ex(f, TopAbs_WIRE); ex.More(); ex.Next())
     if (!ex.Current().IsSame(outer)) wires.push_back(TopoDS::Wire(ex.Current()));
-  EdgeSampler sampler(s, tol3d, speeds);
+  EdgeSampler sampler(s, tol3d, speeds, tag != nullptr);
   std::vector<TrimLoop> loops;
   size_t total = 0;
   for (const auto& w : wires) {
