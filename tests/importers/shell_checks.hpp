@@ -5,6 +5,7 @@
 // the original edges, and contains() agrees with OpenCASCADE's classifier.
 
 #include <plyfit/importers/importers.hpp>
+#include <plyfit/kernel/shell.hpp>
 
 #include <BRepBuilderAPI_MakeVertex.hxx>
 #include <BRepExtrema_DistShapeShape.hxx>
@@ -256,6 +257,22 @@ inline void check_faces_like_convert_face(importers::MoldFile& file, const Shell
     CHECK(check_contains(faces[k], face_in_converted_parameters(ref.face(i)), samples, rng) >
           samples / 2);
   }
+}
+
+/// Marks an expectation of check_kernel_shell as not checked.
+constexpr int kUnchecked = -1000;
+
+/// The kernel's Shell built from the importer's data: it accepts it, and finds the Euler
+/// characteristic and the number of free boundary loops given (known independently; or
+/// kUnchecked).
+inline void check_kernel_shell(const ShellData& data, int euler, int free_loops) {
+  auto shell = Shell::create(data);
+  INFO((shell.ok() ? std::string() : shell.error().message));
+  REQUIRE(shell.ok());
+  CHECK(shell->face_count() == static_cast<std::int32_t>(data.faces.size()));
+  CHECK(shell->edge_count() == data.edge_count);
+  if (euler != kUnchecked) CHECK(shell->euler_characteristic() == euler);
+  if (free_loops != kUnchecked) CHECK(shell->free_loop_count() == free_loops);
 }
 
 /// True when one of `warnings` contains `text`.

@@ -55,8 +55,9 @@ int occt_shared_edges(const TopoDS_Shape& shape) {
   return shared;
 }
 
-// Sews every face of a file whose faces share no edge: as many shells as faces, a warning.
-ShellCheck sew_apart(SharedFile& f) {
+// Sews every face of a file whose faces share no edge: as many shells as faces, a warning;
+// the kernel's Shell finds `euler` and `free_loops` (check_kernel_shell).
+ShellCheck sew_apart(SharedFile& f, int euler, int free_loops) {
   const int n = f.ref.count();
   auto shell = f.file->convert_shell({});
   REQUIRE(shell.ok());
@@ -67,6 +68,7 @@ ShellCheck sew_apart(SharedFile& f) {
   auto [faces, sizes] = kernel_faces(*f.file, *shell);
   const ShellCheck c = check_shell(*shell, faces, sizes);
   check_faces_like_convert_face(*f.file, *shell, faces, f.ref, {}, 1000);
+  check_kernel_shell(*shell, euler, free_loops);
   return c;
 }
 
@@ -100,6 +102,7 @@ TEST_CASE("importers: the deflector's 18 faces (occ22470.igs) sew into one close
   CHECK(c.shared == occt_shared);
   CHECK(c.free_runs == free_edges.Extent());
   CHECK(c.vertices - c.shared + 18 == occt_euler);
+  check_kernel_shell(*shell, occt_euler, 0);
   // The gap closed is no larger than the tolerances OpenCASCADE's reader gave the edges.
   double edge_tol = 0.0;
   for (int e = 1; e <= edges.Extent(); ++e)
@@ -140,7 +143,8 @@ TEST_CASE("importers: surf114's four patches cross each other but share no borde
     REQUIRE(d.IsDone());
     CHECK(d.Value() <= f.cap);
   }
-  CHECK(sew_apart(f).shared == 0);
+  // The patches' own topology (tubes, a collapsed end) is not checked here.
+  CHECK(sew_apart(f, kUnchecked, kUnchecked).shared == 0);
 }
 
 TEST_CASE("importers: trj7's four panels lie apart: four shells, no shared edge") {
@@ -152,7 +156,8 @@ TEST_CASE("importers: trj7's four panels lie apart: four shells, no shared edge"
       REQUIRE(d.IsDone());
       CHECK(d.Value() > f.cap);
     }
-  CHECK(sew_apart(f).free_runs == 4);  // one loop of free edges per panel
+  // One loop of free edges per panel: four discs.
+  CHECK(sew_apart(f, 4, 4).free_runs == 4);
 }
 
 TEST_CASE("importers: the cornetta's 110 faces sew into one shell like the file's own", "[slow]") {
@@ -168,4 +173,5 @@ TEST_CASE("importers: the cornetta's 110 faces sew into one shell like the file'
                     << shell->tolerance << " mm, worst use-to-use distance " << c.worst_ratio
                     << " of the allowed");
   check_faces_like_convert_face(*f.file, *shell, faces, f.ref, {}, 300);
+  check_kernel_shell(*shell, kUnchecked, kUnchecked);
 }
