@@ -151,5 +151,5 @@ TEST_CASE("cli: a drape whose cells cover more than the face is partial and says
   REQUIRE(r.code == 0);
   const std::string report = slurp(s.file("out") + "/report.json");
   CHECK(report.find("\"status\": \"partial\"") != std::string::npos);
-  CHECK(report.find("% of the face: the cloth lies on itself somewhere") != std::string::npos);
+  CHECK(report.find("% of the surface: the cloth lies on itself somewhere") != std::string::npos);
 }
