@@ -36,9 +36,10 @@ int run_sample(const std::vector<std::string>& args) {
     return kExitUsage;
   }
   if (vm.count("help")) {
-    std::cout << "Writes a built-in mold as a one-face STEP or IGES file (exact NURBS, the face\n"
-                 "normal as plyfit's, 17 significant digits, a fixed header time stamp so that\n"
-                 "the bytes depend only on the inputs).\n\n"
+    std::cout << "Writes a built-in mold as a one-face STEP or IGES file (exact NURBS surface,\n"
+                 "trims and holes as exact curves on it, the face normal as plyfit's, 17\n"
+                 "significant digits, a fixed header time stamp so that the bytes depend only\n"
+                 "on the inputs).\n\n"
               << opts << "\nbuilt-in molds (see plyfit drape --help for their parameters):";
     for (const auto& b : builtin_molds()) std::cout << " " << b.name;
     std::cout << "\n";
@@ -55,7 +56,7 @@ int run_sample(const std::vector<std::string>& args) {
     print_error("sample: " + spec.error().message);
     return kExitUsage;
   }
-  auto face = builtin_mold(spec->first, spec->second);
+  auto face = builtin_face(spec->first, spec->second);
   if (!face) {
     print_error("sample: " + face.error().message);
     return kExitUsage;

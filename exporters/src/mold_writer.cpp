@@ -8,7 +8,11 @@
 #include "occt_geometry.hpp"
 
 #include <APIHeaderSection_MakeHeader.hxx>
+#include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepLib.hxx>
+#include <BRep_Builder.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <IGESBasic_Name.hxx>
 #include <IGESControl_Controller.hxx>
@@ -36,7 +40,9 @@
 #include <TColStd_Array2OfReal.hxx>
 #include <TColgp_Array2OfPnt.hxx>
 #include <TCollection_HAsciiString.hxx>
+#include <TopoDS.hxx>
 #include <TopoDS_Face.hxx>
+#include <TopoDS_Wire.hxx>
 #include <XSControl_WorkSession.hxx>
 
 #include <algorithm>
@@ -59,6 +65,94 @@ constexpr const char* kRealFormat = "%.16E";
 /// smaller ones are written as 0, larger ones are refused.
 constexpr double kSmallestWritten = 1e-99;
 constexpr double kLargestWritten = 1e99;
+/// Tolerance (model units) asked of OpenCASCADE's 3D edge curves, the approximations of the
+/// trims' surface images: 1e-7, its Precision::Confusion(), the tolerance CAD files are written to.
+/// Edges record the deviation actually reached as their tolerance.
+constexpr double kEdgeCurveTolerance = 1e-7;
+
+// Clears magnitudes below kSmallestWritten; false when one is kLargestWritten or more.
+bool fits(double& x) {
+  if (std::abs(x) < kSmallestWritten) x = 0.0;
+  return std::abs(x) < kLargestWritten;
+}
+
+template <typename Point>
+bool fits(std::vector<Point>& points, std::vector<double>& weights, std::vector<double>& knots) {
+  bool all = true;
+  for (auto& p : points)
+    for (int k = 0; k < p.size(); ++k) all = fits(p[k]) && all;
+  for (auto* v : {&weights, &knots})
+    for (double& x : *v) all = fits(x) && all;
+  return all;
+}
+
+// Twice the signed area of a closed polyline (positive: counter-clockwise).
+double signed_area2(const std::vector<Vec2>& pts) {
+  double a = 0.0;
+  for (size_t k = 0; k < pts.size(); ++k) {
+    const Vec2& p = pts[k];
+    const Vec2& q = pts[(k + 1) % pts.size()];
+    a += p.x() * q.y() - q.x() * p.y();
+  }
+  return a;
+}
+
+// One loop of exact (u, v) curves as a wire of edges on `surface`, counter-clockwise when
+// `ccw` (an outer boundary: the face on its left), clockwise otherwise (a hole).
+Result<TopoDS_Wire> make_wire(const std::vector<NurbsCurveData2>& curves,
+                              const std::vector<Vec2>& polyline,
+                              const Handle(Geom_BSplineSurface) & surface, bool ccw) {
+  BRepBuilderAPI_MakeWire mw;
+  for (const auto& c : curves) {
+    const Handle(Geom2d_BSplineCurve) c2 = occt::to_occt(c);
+    BRepBuilderAPI_MakeEdge me(c2, surface, c2->FirstParameter(), c2->LastParameter());
+    if (!me.IsDone()) return Error{"could not build an edge on a trim curve"};
+    mw.Add(me.Edge());
+    if (!mw.IsDone()) return Error{"the trim curves of a loop do not join end to end"};
+  }
+  TopoDS_Wire w = mw.Wire();
+  if ((signed_area2(polyline) > 0.0) != ccw) w.Reverse();
+  return w;
+}
+
+// The face of `b` on its surface as an OpenCASCADE face with its trims (see write_mold).
+Result<TopoDS_Face> make_face(const BuiltinFace& b, const ParamDomain& dom) {
+  const Handle(Geom_BSplineSurface) bs = to_occt(b.face.surface);
+  TopoDS_Face f;
+  size_t first_hole = 0;
+  if (b.exact_loops.empty() || b.natural_outer) {
+    BRepBuilderAPI_MakeFace make(bs, dom.u0, dom.u1, dom.v0, dom.v1, Precision::Confusion());
+    if (!make.IsDone()) return Error{"could not build a face on the surface"};
+    f = make.Face();
+    first_hole = 1;
+  } else {
+    auto outer = make_wire(b.exact_loops[0], b.face.loops[0].points, bs, true);
+    if (!outer) return outer.error();
+    BRepBuilderAPI_MakeFace make(bs, *outer, Standard_True);
+    if (!make.IsDone()) return Error{"could not build a face inside the outer trim"};
+    f = make.Face();
+    first_hole = 1;
+  }
+  if (b.exact_loops.size() > first_hole) {
+    BRepBuilderAPI_MakeFace make(f);
+    for (size_t k = first_hole; k < b.exact_loops.size(); ++k) {
+      auto hole = make_wire(b.exact_loops[k], b.face.loops[k].points, bs, false);
+      if (!hole) return hole.error();
+      make.Add(*hole);
+    }
+    if (!make.IsDone()) return Error{"could not add the holes to the face"};
+    f = make.Face();
+  }
+  if (!b.exact_loops.empty()) {
+    if (!BRepLib::BuildCurves3d(f, kEdgeCurveTolerance))
+      return Error{"could not build the 3D curves of the trims"};
+    BRepLib::SameParameter(f, kEdgeCurveTolerance);
+    BRepLib::UpdateTolerances(f);
+  }
+  // A forward face's normal is Su x Sv, as plyfit's; a reversed face is flipped.
+  if (b.face.reversed) f.Reverse();
+  return f;
+}
 
 Handle(TCollection_HAsciiString) hstr(const std::string& s) {
   return new TCollection_HAsciiString(s.c_str());
@@ -154,7 +248,8 @@ std::vector<std::string> mold_formats() {
   return {"step", "iges"};
 }
 
-Status write_mold(const FaceData& face, const std::string& path, const MoldWriteOptions& options) {
+Status write_mold(const BuiltinFace& face, const std::string& path,
+                  const MoldWriteOptions& options) {
   std::string format = options.format;
   if (format.empty()) {
     std::string ext = std::filesystem::path(path).extension().string();
@@ -169,23 +264,36 @@ Status write_mold(const FaceData& face, const std::string& path, const MoldWrite
   }
   if (format != "step" && format != "iges")
     return Error{path + ": unknown mold format '" + format + "' (supported: step, iges)"};
-  if (!face.loops.empty())
-    return Error{path + ": the mold writer writes untrimmed faces only (this face has " +
-                 std::to_string(face.loops.size()) + " trim loops)"};
   // Validate with the kernel's own rules first: OpenCASCADE throws on bad data.
-  NurbsSurfaceData data = face.surface;
-  auto fits = [](double& x) {
-    if (std::abs(x) < kSmallestWritten) x = 0.0;
-    return std::abs(x) < kLargestWritten;
-  };
-  bool all_fit = true;
-  for (auto& p : data.poles)
-    for (int k = 0; k < 3; ++k) all_fit = fits(p[k]) && all_fit;
-  for (auto* v : {&data.knots_u, &data.knots_v, &data.weights})
-    for (double& x : *v) all_fit = fits(x) && all_fit;
+  BuiltinFace b = face;
+  NurbsSurfaceData& data = b.face.surface;
+  bool all_fit = fits(data.poles, data.weights, data.knots_u);
+  for (double& x : data.knots_v) all_fit = fits(x) && all_fit;
+  for (auto& loop : b.exact_loops)
+    for (auto& c : loop) all_fit = fits(c.poles, c.weights, c.knots) && all_fit;
   if (!all_fit) return Error{path + ": a pole, weight or knot is 1e99 or larger: not written"};
   auto surface = NurbsSurface::create(data);
   if (!surface) return Error{path + ": invalid surface: " + surface.error().message};
+  const ParamDomain& dom = surface->domain();
+  if (b.exact_loops.size() != b.face.loops.size())
+    return Error{path + ": " + std::to_string(b.exact_loops.size()) + " exact trim loops for " +
+                 std::to_string(b.face.loops.size()) + " trim polylines"};
+  for (size_t k = 0; k < b.exact_loops.size(); ++k) {
+    if (b.exact_loops[k].empty() || b.face.loops[k].points.size() < 3)
+      return Error{path + ": trim loop " + std::to_string(k) + " has fewer than three points"};
+    for (const auto& c : b.exact_loops[k])
+      if (auto cv = NurbsCurve2::create(c); !cv)
+        return Error{path + ": invalid trim curve in loop " + std::to_string(k) + ": " +
+                     cv.error().message};
+    // The domain, widened by the parameter tolerance: trims on its border are kept.
+    const double mu = Tolerances{}.param_rel * dom.width_u(),
+                 mv = Tolerances{}.param_rel * dom.width_v();
+    for (const Vec2& p : b.face.loops[k].points)
+      if (!(p.x() >= dom.u0 - mu && p.x() <= dom.u1 + mu && p.y() >= dom.v0 - mv &&
+            p.y() <= dom.v1 + mv))
+        return Error{path + ": trim loop " + std::to_string(k) +
+                     " leaves the surface's parameter domain"};
+  }
 
   // OpenCASCADE's data exchange keeps global state (static parameters, messenger): one
   // writer at a time.
@@ -194,24 +302,38 @@ Status write_mold(const FaceData& face, const std::string& path, const MoldWrite
   static std::once_flag quiet;
   std::call_once(quiet, [] { Message::DefaultMessenger()->ChangePrinters().Clear(); });
   try {
-    const Handle(Geom_BSplineSurface) bs = to_occt(data);
-    const ParamDomain& dom = surface->domain();
-    BRepBuilderAPI_MakeFace make(bs, dom.u0, dom.u1, dom.v0, dom.v1, Precision::Confusion());
-    if (!make.IsDone()) return Error{path + ": could not build a face on the surface"};
-    TopoDS_Face f = make.Face();
-    // A forward face's normal is Su x Sv, as plyfit's; a reversed face is flipped.
-    if (face.reversed) f.Reverse();
+    auto f = make_face(b, dom);
+    if (!f) return Error{path + ": " + f.error().message};
     AtomicFile file(path, true);
     if (!file.ok())
       return Error{path + ": cannot create the file (folder missing or not writable?)"};
-    const Status st = format == "step" ? write_step(f, path, options, file.stream())
-                                       : write_iges(f, path, options, file.stream());
+    const Status st = format == "step" ? write_step(*f, path, options, file.stream())
+                                       : write_iges(*f, path, options, file.stream());
     if (!st) return st;
     return file.commit();
   } catch (const Standard_Failure& e) {
     return Error{path + ": OpenCASCADE failed writing the mold: " +
                  std::string(e.GetMessageString() ? e.GetMessageString() : "unknown error")};
   }
+}
+
+Status write_mold(const FaceData& face, const std::string& path, const MoldWriteOptions& options) {
+  BuiltinFace b;
+  b.face = face;
+  b.natural_outer = false;
+  for (const auto& loop : face.loops) {
+    // One degree-1 B-spline through the loop's points and back to the first, parameter = the
+    // index of the point.
+    NurbsCurveData2 c;
+    c.degree = 1;
+    c.poles = loop.points;
+    if (!loop.points.empty()) c.poles.push_back(loop.points.front());
+    c.knots.push_back(0.0);
+    for (size_t k = 0; k < c.poles.size(); ++k) c.knots.push_back(static_cast<double>(k));
+    c.knots.push_back(c.knots.back());
+    b.exact_loops.push_back({std::move(c)});
+  }
+  return write_mold(b, path, options);
 }
 
 }  // namespace plyfit::exporters
