@@ -23,6 +23,10 @@ inline const std::vector<SampleMold>& sample_molds() {
       {"saddle", "saddle"},
       {"hemisphere:R=1", "hemisphere"},
       {"wave", "wave"},
+      {"plate:W=100,H=60,hole_r=10,hole_x=50,hole_y=30", "plate-hole"},
+      {"dish:R=30,rho=40,hole_r=8", "dish"},
+      {"cylinder:angle=360", "tube"},
+      {"cylinder:angle=360,window_angle=60,window_height=8", "tube-window"},
   };
   return list;
 }
