@@ -61,7 +61,7 @@ struct TrimLoop {
   /// For a face of a shell: the shared edge each segment lies on (segment k runs from
   /// points[k] to points[k + 1], the last one back to points[0]), an index into the shell's
   /// edges, or kFreeEdge. Empty: every segment is free (a face on its own).
-  std::vector<std::int32_t> edges;
+  std::vector<std::int32_t> edges = {};
 };
 
 /// Plain data of a face, as importers and built-in molds produce it.
