@@ -6,6 +6,7 @@
 #include <plyfit/kernel/builtin_molds.hpp>
 #include <plyfit/kernel/face.hpp>
 #include <plyfit/kernel/result.hpp>
+#include <plyfit/kernel/shell.hpp>
 
 #include <string>
 #include <vector>
@@ -46,5 +47,18 @@ Status write_mold(const BuiltinFace& face, const std::string& path,
 /// surface's natural boundary. Otherwise as write_mold(const BuiltinFace&, ...).
 Status write_mold(const FaceData& face, const std::string& path,
                   const MoldWriteOptions& options = {});
+
+/// Writes the faces of `shell` as one mold file, sewn into a shell where OpenCASCADE's sewing
+/// (BRepBuilderAPI_Sewing, tolerance: the shell's, at least twice the trim tolerance of the
+/// largest face) joins them; faces it cannot join stay apart in the file. A face whose loops
+/// all lie on its domain's border is bounded by its surface's natural boundary (seams and
+/// collapsed edges as OpenCASCADE makes them); any other face by its loops, each cut into one
+/// edge per run of segments on the same shared edge (degree-1 curves on the surface through
+/// the loop's points; runs whose surface image is a point are collapsed edges). Each face
+/// carries FaceData::name (empty: "face N", N its index in the shell) and keeps plyfit's
+/// orientation. Otherwise as write_mold(): atomic, 17 significant digits, fixed time stamp,
+/// errors naming the file and the face.
+Status write_shell(const ShellData& shell, const std::string& path,
+                   const MoldWriteOptions& options = {});
 
 }  // namespace plyfit::exporters
