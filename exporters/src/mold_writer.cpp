@@ -244,11 +244,15 @@ Status write_step(const TopoDS_Shape& shape, const std::vector<NamedFace>& faces
       p->SetName(hstr(product));
     }
   }
-  // Each face's ADVANCED_FACE and its surface carry its name.
+  // Each face's ADVANCED_FACE and its surface carry its name. A face written alone is the
+  // transfer's root, bound to its representation: it is the model's only face.
   const Handle(Transfer_FinderProcess) fp = writer.WS()->TransferWriter()->FinderProcess();
   for (const auto& [face, name] : faces) {
     if (name.empty()) continue;
-    const auto f = Handle(StepShape_AdvancedFace)::DownCast(entity_of(fp, face));
+    Handle(StepShape_AdvancedFace) f =
+        Handle(StepShape_AdvancedFace)::DownCast(entity_of(fp, face));
+    for (int i = 1; f.IsNull() && faces.size() == 1 && i <= model->NbEntities(); ++i)
+      f = Handle(StepShape_AdvancedFace)::DownCast(model->Value(i));
     if (f.IsNull()) return Error{path + ": the STEP writer made no face of '" + name + "'"};
     f->SetName(hstr(name));
     if (const auto s = Handle(StepGeom_BSplineSurface)::DownCast(f->FaceGeometry()); !s.IsNull())
@@ -284,6 +288,9 @@ Status write_iges(const TopoDS_Shape& shape, const std::vector<NamedFace>& faces
     if (name.empty()) continue;
     const Handle(Standard_Transient) e = entity_of(writer.TransferProcess(), face);
     Handle(IGESGeom_BSplineSurface) s = Handle(IGESGeom_BSplineSurface)::DownCast(e);
+    // A face written alone (faces mode): the model's only surface.
+    for (int i = 1; e.IsNull() && faces.size() == 1 && i <= model->NbEntities(); ++i)
+      if (s.IsNull()) s = Handle(IGESGeom_BSplineSurface)::DownCast(model->Value(i));
     if (const auto t = Handle(IGESGeom_TrimmedSurface)::DownCast(e); !t.IsNull())
       s = Handle(IGESGeom_BSplineSurface)::DownCast(t->Surface());
     if (const auto f = Handle(IGESSolid_Face)::DownCast(e); !f.IsNull())
