@@ -23,9 +23,9 @@
 
 #include <catch2/catch.hpp>
 
+#include "cli/cli_util.hpp"
 #include "test_util.hpp"
 
-#include <unistd.h>
 #include <filesystem>
 #include <map>
 
@@ -36,19 +36,6 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr std::int32_t kFree = TrimLoop::kFreeEdge;
-
-struct Scratch {
-  std::filesystem::path dir;
-  Scratch() {
-    dir = std::filesystem::temp_directory_path() / ("plyfit_shells_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-  }
-  ~Scratch() {
-    std::error_code ec;
-    std::filesystem::remove_all(dir, ec);
-  }
-  std::string file(const std::string& name) const { return (dir / name).string(); }
-};
 
 // The plate [x0, x1] x [0, h] in z = 0 with u = x, v = y.
 NurbsSurfaceData plate(double x0, double x1, double h) {
@@ -141,7 +128,7 @@ int shared_edges(const TopoDS_Shape& shape) {
 }  // namespace
 
 TEST_CASE("samples: a shell written as one file reads back face by face, bit for bit") {
-  Scratch tmp;
+  Scratch tmp("shells");
   for (const auto& c : cases()) {
     for (const char* ext : {"step", "igs"}) {
       const std::string path = tmp.file(c.name + "." + ext);
@@ -185,7 +172,7 @@ TEST_CASE("samples: a shell written as one file reads back face by face, bit for
 }
 
 TEST_CASE("samples: the shell writer refuses bad shells, naming the file and the face") {
-  Scratch tmp;
+  Scratch tmp("shells_bad");
   ShellData empty;
   auto st = exporters::write_shell(empty, tmp.file("e.step"));
   REQUIRE_FALSE(st.ok());
