@@ -2,8 +2,9 @@
 // (faces sewn by OpenCASCADE) reads back through the importers face by face, each surface bit
 // for bit, with its orientation and name; OpenCASCADE's own reading finds one valid shell whose
 // shared edges are the shell's. Shells built here from exact analytic patches: two plates side
-// by side, a plate cut along its diagonal into two trimmed triangles, and two sphere octants
-// sharing a meridian and the pole.
+// by side, a plate cut along its diagonal into two trimmed triangles, two sphere octants
+// sharing a meridian and the pole, and an octant cut from the equator to the pole (a trimmed
+// face with a collapsed edge).
 
 #include <plyfit/exporters/mold_writer.hpp>
 #include <plyfit/importers/importers.hpp>
@@ -98,6 +99,16 @@ std::vector<Case> cases() {
     s.faces.push_back(face(b, border(b), {0, kFree, kFree, kFree}, "octant-2"));
     s.edge_count = 1;
     v.push_back({"octants", s});
+  }
+  {  // One sphere octant cut along a (u, v) diagonal from the equator at longitude 0 to the
+     // pole: the first piece is trimmed with the collapsed pole edge in its loop.
+    ShellData s;
+    const auto o = sphere_patch(20, 0, kPi / 2, 0, kPi / 2);
+    const auto c = border(o);  // c[0], c[3] at the pole (u = u0)
+    s.faces.push_back(face(o, {c[0], c[1], c[3]}, {kFree, 0, kFree}, "cut-1"));
+    s.faces.push_back(face(o, {c[1], c[2], c[3]}, {kFree, kFree, 0}, "cut-2"));
+    s.edge_count = 1;
+    v.push_back({"octant-cut", s});
   }
   return v;
 }
