@@ -288,7 +288,7 @@ Result<BuiltinFace> builtin_face(const std::string& name,
       const double r = v["R"], mid = rad(v["angle"]) / 2, half = rad(v["window_angle"]) / 2;
       const double z0 = (v["H"] - v["window_height"]) / 2, z1 = z0 + v["window_height"];
       auto uv_at = [&](double a, double z) {
-        return face->project(Vec3(r * std::cos(a), r * std::sin(a), z)).uv;
+        return face->project(Vec3(r * std::cos(a), r * std::sin(a), z)).at.uv;
       };
       const Vec2 c0 = uv_at(mid - half, z0), c1 = uv_at(mid + half, z1);
       b.exact_loops.push_back(domain_border(fd.surface));
