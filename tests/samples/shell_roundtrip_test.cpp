@@ -9,6 +9,7 @@
 #include <plyfit/exporters/mold_writer.hpp>
 #include <plyfit/importers/importers.hpp>
 #include <plyfit/kernel/analytic_surfaces.hpp>
+#include <plyfit/kernel/builtin_shells.hpp>
 #include <plyfit/kernel/shell.hpp>
 
 #include <BRepCheck_Analyzer.hxx>
@@ -25,6 +26,7 @@
 #include <catch2/catch.hpp>
 
 #include "cli/cli_util.hpp"
+#include "samples/sample_list.hpp"
 #include "test_util.hpp"
 
 #include <filesystem>
@@ -113,6 +115,10 @@ std::vector<Case> cases() {
   return v;
 }
 
+bool is_iges(const std::string& path) {
+  return path.size() > 4 && path.compare(path.size() - 4, 4, ".igs") == 0;
+}
+
 TopoDS_Shape read_occt(const std::string& path, bool iges) {
   Message::DefaultMessenger()->ChangePrinters().Clear();
   if (iges) {
@@ -127,57 +133,92 @@ TopoDS_Shape read_occt(const std::string& path, bool iges) {
   return r.OneShape();
 }
 
-// Edges of `shape` bounding two of its faces (seams, bounding one face twice, not counted).
+// Edges of `shape` bounding two of its faces (seams, bounding one face twice, and collapsed
+// edges at poles, not counted).
 int shared_edges(const TopoDS_Shape& shape) {
   TopTools_IndexedDataMapOfShapeListOfShape map;
   TopExp::MapShapesAndUniqueAncestors(shape, TopAbs_EDGE, TopAbs_FACE, map);
   int n = 0;
-  for (int i = 1; i <= map.Extent(); ++i) n += map(i).Extent() == 2;
+  for (int i = 1; i <= map.Extent(); ++i)
+    n += map(i).Extent() == 2 && !BRep_Tool::Degenerated(TopoDS::Edge(map.FindKey(i)));
   return n;
+}
+
+// Writes `shell` to `path` and checks the file: the importers read every face back by its name,
+// its surface bit for bit, its orientation kept; OpenCASCADE's own reading finds one valid shell
+// whose shared edges are the shell's.
+void check_shell_file(const ShellData& shell, const std::string& name, const std::string& path) {
+  INFO(path);
+  exporters::MoldWriteOptions wo;
+  wo.name = name;
+  const Status st = exporters::write_shell(shell, path, wo);
+  INFO((st.ok() ? std::string() : st.error().message));
+  REQUIRE(st.ok());
+  auto file = importers::open_mold(path);
+  REQUIRE(file.ok());
+  const Mold& m = (*file)->mold();
+  REQUIRE(m.faces.size() == shell.faces.size());
+  std::map<std::string, int> by_name;
+  for (const auto& f : m.faces) by_name[f.name] = f.index;
+  for (size_t i = 0; i < shell.faces.size(); ++i) {
+    const FaceData& f = shell.faces[i];
+    const std::string face_name = f.name.empty() ? "face " + std::to_string(i) : f.name;
+    INFO("face " << face_name);
+    REQUIRE(by_name.count(face_name) == 1);
+    auto back = (*file)->convert_face(by_name[face_name]);
+    REQUIRE(back.ok());
+    CHECK(back->reversed == f.reversed);
+    const NurbsSurfaceData& a = back->surface;
+    const NurbsSurfaceData& b = f.surface;
+    CHECK(a.degree_u == b.degree_u);
+    CHECK(a.degree_v == b.degree_v);
+    CHECK(a.knots_u == b.knots_u);
+    CHECK(a.knots_v == b.knots_v);
+    CHECK(a.weights == b.weights);
+    REQUIRE(a.poles.size() == b.poles.size());
+    for (size_t k = 0; k < a.poles.size(); ++k) CHECK(a.poles[k] == b.poles[k]);
+  }
+  const TopoDS_Shape shape = read_occt(path, is_iges(path));
+  int shells = 0;
+  for (TopExp_Explorer ex(shape, TopAbs_SHELL); ex.More(); ex.Next()) ++shells;
+  CHECK(shells == 1);
+  CHECK(shared_edges(shape) == shell.edge_count);
+  CHECK(BRepCheck_Analyzer(shape).IsValid());
 }
 
 }  // namespace
 
 TEST_CASE("samples: a shell written as one file reads back face by face, bit for bit") {
   Scratch tmp("shells");
-  for (const auto& c : cases()) {
-    for (const char* ext : {"step", "igs"}) {
-      const std::string path = tmp.file(c.name + "." + ext);
-      INFO(path);
+  for (const auto& c : cases())
+    for (const char* ext : {".step", ".igs"})
+      check_shell_file(c.shell, c.name, tmp.file(c.name + ext));
+}
+
+TEST_CASE("samples: every built-in sample shell reads back face by face (STEP and IGES)") {
+  Scratch tmp("sample_shells");
+  for (const auto& s : sample_shells()) {
+    auto spec = parse_builtin_spec(s.spec).value();
+    const ShellData shell = builtin_shell(spec.first, spec.second).value();
+    for (const char* ext : {".step", ".igs"})
+      check_shell_file(shell, s.file, tmp.file(s.file + ext));
+  }
+}
+
+TEST_CASE("samples: the committed sample shells are what the mold writer writes today") {
+  Scratch tmp("sample_shells_bytes");
+  for (const auto& s : sample_shells()) {
+    auto spec = parse_builtin_spec(s.spec).value();
+    const ShellData shell = builtin_shell(spec.first, spec.second).value();
+    for (const char* ext : {".step", ".igs"}) {
+      const std::string name = s.file + ext;
+      INFO(name << " (regenerate with scripts/make-sample-molds)");
       exporters::MoldWriteOptions wo;
-      wo.name = c.name;
-      const Status st = exporters::write_shell(c.shell, path, wo);
-      INFO((st.ok() ? std::string() : st.error().message));
-      REQUIRE(st.ok());
-      auto file = importers::open_mold(path);
-      REQUIRE(file.ok());
-      const Mold& m = (*file)->mold();
-      REQUIRE(m.faces.size() == c.shell.faces.size());
-      std::map<std::string, int> by_name;
-      for (const auto& f : m.faces) by_name[f.name] = f.index;
-      for (const auto& f : c.shell.faces) {
-        INFO("face " << f.name);
-        REQUIRE(by_name.count(f.name) == 1);
-        auto back = (*file)->convert_face(by_name[f.name]);
-        REQUIRE(back.ok());
-        CHECK(back->reversed == f.reversed);
-        const NurbsSurfaceData& a = back->surface;
-        const NurbsSurfaceData& b = f.surface;
-        CHECK(a.degree_u == b.degree_u);
-        CHECK(a.degree_v == b.degree_v);
-        CHECK(a.knots_u == b.knots_u);
-        CHECK(a.knots_v == b.knots_v);
-        CHECK(a.weights == b.weights);
-        REQUIRE(a.poles.size() == b.poles.size());
-        for (size_t k = 0; k < a.poles.size(); ++k) CHECK(a.poles[k] == b.poles[k]);
-      }
-      // OpenCASCADE's reading: one valid shell, its shared edges the shell's.
-      const TopoDS_Shape shape = read_occt(path, std::string(ext) == "igs");
-      int shells = 0;
-      for (TopExp_Explorer ex(shape, TopAbs_SHELL); ex.More(); ex.Next()) ++shells;
-      CHECK(shells == 1);
-      CHECK(shared_edges(shape) == c.shell.edge_count);
-      CHECK(BRepCheck_Analyzer(shape).IsValid());
+      wo.name = s.file;
+      REQUIRE(exporters::write_shell(shell, tmp.file(name), wo).ok());
+      const std::string committed = std::string(PLYFIT_SOURCE_DIR) + "/samples/molds/" + name;
+      REQUIRE(std::filesystem::exists(committed));
+      CHECK(slurp(tmp.file(name)) == slurp(committed));
     }
   }
 }
