@@ -3,10 +3,13 @@
 // subcommand; shared timing helpers and the table type live here. Time figures are medians
 // of repeated runs; comparisons are ratios measured in the same run.
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <memory>
 #include <string>
@@ -23,6 +26,24 @@ inline std::string capture(const std::string& cmd) {
   while (std::fgets(buf.data(), buf.size(), p.get())) out += buf.data();
   while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
   return out;
+}
+
+/// The plyfit executable the benchmarks run: $PLYFIT_BIN, else the build's, else `plyfit`.
+inline std::string plyfit_binary() {
+  if (const char* env = std::getenv("PLYFIT_BIN")) return env;
+#ifdef PLYFIT_BIN
+  return PLYFIT_BIN;
+#else
+  return "plyfit";
+#endif
+}
+
+/// User + system CPU seconds of all waited-for child processes so far.
+inline double children_cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_CHILDREN, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
 /// A plyfit-bench subcommand; `run` gets the arguments after its name and returns the exit
