@@ -17,7 +17,8 @@ SolveResult Scanner::solve_two(const DrapeNode& q, const DrapeNode& a, ThreadDir
     const int k = ply_.sweep_for_side(ply_.side(q.ply));
     c2 = cross2(e2, ply_.spec().sweeps[k]);
   }
-  TwoSphereStep step{a.point, a.at(), ra, b.point, b.at(), rb, c2 > 0 ? 1.0 : -1.0, std::nullopt};
+  TwoSphereStep step{a.point,      a.at(),      ra, b.point, b.at(), rb, c2 > 0 ? 1.0 : -1.0,
+                     std::nullopt, std::nullopt};
   // Initial guess.
   const DrapeNode* ap = mapped_nb(a, da);  // a's predecessor on q's thread
   const DrapeNode* bp = mapped_nb(b, db);
@@ -30,6 +31,8 @@ SolveResult Scanner::solve_two(const DrapeNode& q, const DrapeNode& a, ThreadDir
   // Guesses combine parameters, so they are made only from nodes of one chart (face); across
   // a shared edge the solver starts from its planar two-circle solution instead.
   if (ap && bp && !one_chart({&a, ap, &b, bp})) ap = bp = nullptr;
+  const DrapeNode* corner = c;  // kept across charts: the branch and fold tests need no (u, v)
+  if (corner) step.corner = corner->point;
   if (c && !one_chart({&a, &b, c})) c = nullptr;
   auto paper = [&] {
     step.guess = two_sphere_guess(s_, a.at(), ap->at(), a.point, ap->point, ra, b.at(), bp->at(),
@@ -60,10 +63,10 @@ SolveResult Scanner::solve_two(const DrapeNode& q, const DrapeNode& a, ThreadDir
   // exists: the cloth stops there as at the shear limit.
   // (Sides compared by the parts of q - a and c - a across the line: a cell is not bent
   // by 90 degrees, and no surface evaluation is needed.)
-  if (c && (r.status == SolveStatus::kConverged || r.status == SolveStatus::kShearLimit) &&
+  if (corner && (r.status == SolveStatus::kConverged || r.status == SolveStatus::kShearLimit) &&
       r.point.allFinite()) {
     const Vec3 e = (b.point - a.point).normalized();
-    Vec3 u = r.point - a.point, w = c->point - a.point;
+    Vec3 u = r.point - a.point, w = corner->point - a.point;
     u -= u.dot(e) * e;
     w -= w.dot(e) * e;
     if (u.dot(w) >= 0.0) {

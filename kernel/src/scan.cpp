@@ -167,7 +167,16 @@ bool Scanner::folds_back(std::uint32_t k) const {
   for (int d = 0; d < 4; ++d) {
     const DrapeNode* a = mapped_nb(q, static_cast<ThreadDir>(d));
     const DrapeNode* a2 = a ? mapped_nb(*a, static_cast<ThreadDir>(d)) : nullptr;
-    if (a2 && (a->point - q.point).dot(a2->point - a->point) < 0.0) return true;
+    if (!a2) continue;
+    const Vec3 l1 = a2->point - a->point, l2 = a->point - q.point;
+    if (l1.dot(l2) >= 0.0) continue;
+    // Past a crease (a shell's G0 shared edge, a thin flange's rim) the surface itself turns:
+    // a thread turning by no more than 90 degrees beyond the turn of the surface's normal
+    // between its ends follows the surface.
+    const SurfaceNormal n1 = s_.normal(a2->at()), n2 = s_.normal(q.at());
+    const double turn = std::atan2(l1.cross(l2).norm(), l1.dot(l2));
+    const double bend = std::atan2(n1.n.cross(n2.n).norm(), n1.n.dot(n2.n));
+    if (!n1.ok || !n2.ok || turn > bend + 0.5 * kPi) return true;
   }
   return false;
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace plyfit {
 
@@ -33,6 +34,15 @@ constexpr double kTangentPlaneSin = 1e-6;
 // A solution off its face is solved again on a face within this fraction of d of it (3D),
 // from the point's projection there (DrapeSurface::settle).
 constexpr double kSettleReachRel = 0.1;
+// The two-sphere fallback across creases samples this many points on each quarter of the
+// spheres' circle of intersection and bisects the sign change for at most this many steps;
+// a circle smaller than kCircleMinRel of the radii (the spheres just touch) is not tried.
+constexpr int kCircleSamples = 8;
+constexpr int kCircleIterations = 100;
+constexpr double kCircleMinRel = 1e-6;
+// Two solutions of one plane-sphere step are distinct when they lie further apart than this
+// fraction of the radius (the forward and backward ones lie about two radii apart).
+constexpr double kDistinctSolutionRel = 0.5;
 // A Newton step proposing to leave the domain margin this many times in a row, from an
 // iterate already past the domain edge, ends the solve with "left the face".
 constexpr int kOutsideStrikes = 2;
@@ -267,6 +277,52 @@ void setup_margins(Ctx& c, const SurfaceLocation& from, const SurfaceLocation& g
   c.max_step = kStepCapSteps * step;
 }
 
+// The point of the surface nearest q, by Gauss-Newton on |S(u, v) - q|^2 from `at` through
+// DrapeSurface::locate (so across a shell's shared edges), staying on the surface (contains):
+// at a crease or a free edge it stops on the edge, which is then the nearest point.
+struct Foot {
+  SurfaceLocation at;
+  Vec3 p = Vec3::Zero();
+  Vec3 n = Vec3::UnitZ();
+  bool ok = false;
+};
+Foot foot_near(const DrapeSurface& s, const SolverSettings& st, const Vec3& q, SurfaceLocation at,
+               int& evaluations) {
+  Foot out;
+  SurfaceEval1 e = s.eval1(at);
+  ++evaluations;
+  if (!e.ok) return out;
+  double phi = (e.p - q).squaredNorm();
+  for (int it = 0; it < st.tol.newton_max_iterations; ++it) {
+    const Vec3 r = e.p - q;
+    Eigen::Matrix2d A;
+    A << e.du.dot(e.du), e.du.dot(e.dv), e.du.dot(e.dv), e.dv.dot(e.dv);
+    A(0, 0) += kLmDampingRel * A(0, 0);  // Marquardt: poles make A singular
+    A(1, 1) += kLmDampingRel * A(1, 1);
+    Vec2 step = -A.ldlt().solve(Vec2(e.du.dot(r), e.dv.dot(r)));
+    if (!step.allFinite()) break;
+    bool accepted = false;
+    for (int h = 0; h <= st.tol.line_search_max_halvings; ++h, step *= 0.5) {
+      const SurfaceLocation cand = s.locate(at, at.uv + step);
+      if (!s.contains(cand)) continue;
+      const SurfaceEval1 e2 = s.eval1(cand);
+      ++evaluations;
+      if (!e2.ok || !((e2.p - q).squaredNorm() < phi)) continue;
+      at = cand;
+      e = e2;
+      phi = (e.p - q).squaredNorm();
+      accepted = true;
+      break;
+    }
+    if (!accepted) break;
+  }
+  out.at = s.wrap(at);
+  out.p = e.p;
+  out.n = face_normal(s, at, e);
+  out.ok = true;
+  return out;
+}
+
 }  // namespace
 
 const char* to_string(SolveStatus s) {
@@ -406,11 +462,25 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
     f << pn.dot(r), (r.squaredNorm() - rad * rad) / (2 * rad);
     J << pn.dot(e.du), pn.dot(e.dv), r.dot(e.du) / rad, r.dot(e.dv) / rad;
   };
+  // True if the converged solution is not the backward one: the backward solution is the one
+  // Newton reaches from the first-order guess behind x0 (at -t). Only asked where the solution
+  // lies behind x0's tangent plane section, which the forward one does past a crease sharper
+  // than 90 degrees (a path over a thin flange's edge).
+  auto distinct_from_backward = [&]() {
+    Ctx b(s, st);
+    b.eps = c.eps;
+    const SurfaceLocation g = s.locate(ud.from_at, ud.from_at.uv - rad * ud.dir_uv);
+    setup_margins(b, ud.from_at, g);
+    const bool ok = newton(b, g, resid);
+    c.res.evaluations += b.res.evaluations;
+    return ok && (b.res.point - x0).dot(t) < 0.0 &&
+           (b.res.point - c.res.point).norm() > kDistinctSolutionRel * rad;
+  };
   // One Newton solve for radius `rad` from `guess`; true if it converged forward.
   auto solve_from = [&](const SurfaceLocation& guess) {
     setup_margins(c, ud.from_at, guess);
     if (!newton(c, guess, resid)) return false;
-    if ((c.res.point - x0).dot(t) > 0.0) return true;
+    if ((c.res.point - x0).dot(t) > 0.0 || distinct_from_backward()) return true;
     c.res.status = SolveStatus::kFailed;
     c.res.reason = "converged backwards";
     return false;
@@ -579,6 +649,18 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
     f << (da.squaredNorm() - ra * ra) / (2 * ra), (db.squaredNorm() - rb * rb) / (2 * rb);
     J << da.dot(e.du) / ra, da.dot(e.dv) / ra, db.dot(e.du) / rb, db.dot(e.dv) / rb;
   };
+  // The requested branch: across the line a-b from the cell's fourth corner where a, b and p
+  // are not on one face and the corner is known; else on the `side` about the normal at p.
+  const Vec3 e_ab = (b - a) / L;
+  auto across_from_corner = [&](const SurfaceLocation& p_at) {
+    return step.corner && (step.a_at.face != step.b_at.face || p_at.face != step.a_at.face);
+  };
+  auto perpendicular = [&](Vec3 v) { return Vec3(v - v.dot(e_ab) * e_ab); };
+  auto on_branch = [&](const Vec3& p, const Vec3& n, const SurfaceLocation& p_at) {
+    if (across_from_corner(p_at))
+      return perpendicular(p - a).dot(perpendicular(*step.corner - a)) < 0.0;
+    return n.dot((b - a).cross(p - a)) * want > 0.0;
+  };
   // Newton from g; true when it converged on the requested branch (c.res classified).
   auto attempt = [&](const SurfaceLocation& g) {
     setup_margins(c, step.a_at, g);
@@ -586,12 +668,124 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
     c.margin = std::max(c.margin, st.tol.extension_steps * mb);
     c.max_step = std::max(c.max_step, kStepCapSteps * mb);
     if (!newton(c, g, resid)) return false;
-    const Vec3 n = face_normal(s, c.res.at, c.last);
-    if (n.dot((b - a).cross(c.res.point - a)) * want <= 0.0) {
+    if (!on_branch(c.res.point, face_normal(s, c.res.at, c.last), c.res.at)) {
       c.res.status = SolveStatus::kFailed;
       c.res.reason = "only the folded branch was found";
       return false;
     }
+    const Vec3 pa = a - c.res.point, pb = b - c.res.point;
+    c.res.thread_angle = std::atan2(pa.cross(pb).norm(), pa.dot(pb));
+    classify_converged(c, resid);
+    if (c.res.status == SolveStatus::kConverged && st.gamma_min > 0.0 &&
+        (c.res.thread_angle < st.gamma_min || c.res.thread_angle > kPi - st.gamma_min)) {
+      c.res.status = SolveStatus::kShearLimit;
+      c.res.reason = "thread angle beyond the shear limit";
+    }
+    return true;
+  };
+  // The circle of intersection of the two spheres, bisected for its crossing of the surface
+  // on the requested side (step 4 below); true when it converged there (c.res classified).
+  auto attempt_circle = [&]() {
+    const SurfaceEval1 ea = s.eval1(step.a_at), eb = s.eval1(step.b_at);
+    c.res.evaluations += 2;
+    if (!ea.ok || !eb.ok) return false;
+    const Vec3 e = (b - a) / L;
+    Vec3 n = face_normal(s, step.a_at, ea) + face_normal(s, step.b_at, eb);
+    n -= n.dot(e) * e;
+    const double x = (L * L + ra * ra - rb * rb) / (2 * L);
+    const double h = std::sqrt(std::max(ra * ra - x * x, 0.0));
+    if (!(n.norm() > 0.0) || !(h > kCircleMinRel * std::min(ra, rb))) return false;
+    n.normalize();
+    const Vec3 m = a + x * e;
+    Vec3 w1 = want * n.cross(e);
+    if (step.corner && step.a_at.face != step.b_at.face) {
+      // Across a crease the normals are no guide: the side away from the corner.
+      const Vec3 away = -perpendicular(*step.corner - a);
+      if (away.norm() > 0.0) {
+        w1 = away.normalized();
+        n = e.cross(w1);
+      }
+    }
+    auto on_circle = [&](double th) {
+      return Vec3(m + h * (std::cos(th) * w1 + std::sin(th) * n));
+    };
+    SurfaceLocation seed = step.a_at;
+    auto signed_distance = [&](double th, Foot& f) {
+      const Vec3 q = on_circle(th);
+      // Nearest of the feet from the last foot and from a and b (a knife edge has a local
+      // nearest point on each of its faces).
+      f = foot_near(s, st, q, seed, c.res.evaluations);
+      for (const SurfaceLocation* from : {&step.a_at, &step.b_at}) {
+        if (*from == seed) continue;
+        const Foot g = foot_near(s, st, q, *from, c.res.evaluations);
+        if (g.ok && (!f.ok || (g.p - q).norm() < (f.p - q).norm())) f = g;
+      }
+      if (!f.ok) return std::numeric_limits<double>::quiet_NaN();
+      seed = f.at;
+      return (q - f.p).dot(f.n);
+    };
+    // The half circle from below the surface (-pi/2) to above it (pi/2), sampled from its
+    // middle (the planar solution) outwards for the sign change nearest the middle.
+    // Sampled from the middle (the planar solution) outwards on both sides, for the sign
+    // change nearest the middle.
+    Foot f0, f1;
+    const double fmid = signed_distance(0.0, f0);
+    if (!(fmid == fmid)) return false;
+    double lo = 0.0, hi = 0.0, flo = fmid, fhi = fmid;
+    bool bracket = std::abs(fmid) < 0.5 * c.eps;  // the planar solution is on the surface
+    double prev_th[2] = {0.0, 0.0}, prev_f[2] = {fmid, fmid};
+    for (int k = 1; k <= kCircleSamples && !bracket; ++k)
+      for (int side = 0; side < 2 && !bracket; ++side) {
+        const double th = (side ? -1.0 : 1.0) * 0.5 * kPi * k / kCircleSamples;
+        const double f = signed_distance(th, f1);
+        if (!(f == f)) return false;
+        if ((f > 0.0) != (prev_f[side] > 0.0)) {
+          lo = prev_th[side];
+          flo = prev_f[side];
+          hi = th;
+          fhi = f;
+          bracket = true;
+        }
+        prev_th[side] = th;
+        prev_f[side] = f;
+      }
+    if (!bracket) return false;
+    // Illinois (regula falsi) on [lo, hi], bounded.
+    Foot f = f0;
+    double th = lo;
+    int side = 0;
+    for (int it = 0; it < kCircleIterations && hi != lo; ++it) {
+      th = (lo * fhi - hi * flo) / (fhi - flo);
+      const double fth = signed_distance(th, f);
+      if (!(fth == fth)) return false;
+      if (std::abs(fth) < 0.5 * c.eps) break;
+      if ((fth > 0.0) == (flo > 0.0)) {
+        lo = th;
+        flo = fth;
+        if (side == -1) fhi *= 0.5;
+        side = -1;
+      } else {
+        hi = th;
+        fhi = fth;
+        if (side == 1) flo *= 0.5;
+        side = 1;
+      }
+    }
+    if (!f.ok) return false;
+    // Polished by Newton from there if it can; else the circle's point is the solution if it
+    // meets eq. (9)'s tolerance.
+    if (attempt(f.at)) return true;
+    const SurfaceEval1 ef = s.eval1(f.at);
+    ++c.res.evaluations;
+    if (!ef.ok) return false;
+    Vec2 r;
+    Eigen::Matrix2d J;
+    resid(ef, r, J);
+    if (!(r.cwiseAbs().sum() < c.eps)) return false;
+    c.res.at = f.at;
+    c.res.point = ef.p;
+    c.res.residual = r.cwiseAbs().sum();
+    c.last = ef;
     const Vec3 pa = a - c.res.point, pb = b - c.res.point;
     c.res.thread_angle = std::atan2(pa.cross(pb).norm(), pa.dot(pb));
     classify_converged(c, resid);
@@ -644,6 +838,11 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
       if (attempt(q.at)) return c.res;
     }
   }
+  // 4. Across a crease (a shell's G0 shared edge) Newton on either face may stall at the edge
+  //    (the residual has a kink there). The spheres' circle of intersection, on the requested
+  //    side of the line a-b, crosses the surface where its signed distance to it changes
+  //    sign: found by bisection on the circle's angle.
+  if (c.res.status != SolveStatus::kLeftFace && attempt_circle()) return c.res;
   // Near the shear limit the spheres meet almost tangentially and Newton may stall:
   // eq. (12) on the last iterate tells the shear limit from a plain failure.
   if (c.res.status == SolveStatus::kFailed && st.gamma_min > 0.0 && c.res.point.allFinite()) {

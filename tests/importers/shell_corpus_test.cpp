@@ -1,8 +1,11 @@
 // Sewing faces of the shared CAD files (../shared/cad) into shells: the deflector's 18 faces
 // (occ22470.igs, a closed shell), the 4 parametric-spline patches of surf114.igs and the 4
-// panels of trj7_c2-td-203.stp (neither shares a border), and the cornetta's 110 faces.
+// panels of trj7_c2-td-203.stp (neither shares a border), and the cornetta's 110 faces; and
+// drapes over them.
 
 #include <plyfit/importers/importers.hpp>
+#include <plyfit/kernel/drape.hpp>
+#include <plyfit/kernel/shell.hpp>
 
 #include <BRepAdaptor_Curve.hxx>
 #include <ShapeAnalysis_FreeBounds.hxx>
@@ -12,6 +15,7 @@
 
 #include "corpus.hpp"
 #include "importers/shell_checks.hpp"
+#include "support/net_checks.hpp"
 
 using namespace plyfit;
 using namespace plyfit::test;
@@ -165,4 +169,88 @@ TEST_CASE("importers: the cornetta's 110 faces sew into one shell like the file'
                     << " of the allowed");
   check_faces_like_convert_face(*f.file, *shell, faces, f.ref, {}, 300);
   check_kernel_shell(*shell, kUnchecked, kUnchecked);
+}
+
+namespace {
+
+constexpr double kPiC = 3.14159265358979323846;
+
+Shell sewn_shell(const std::string& name) {
+  auto data = importers::load_shell(shared_cad(name), {});
+  REQUIRE(data.ok());
+  auto sh = Shell::create(std::move(data).value());
+  INFO(name << ": " << (sh.ok() ? "" : sh.error().message));
+  REQUIRE(sh.ok());
+  return std::move(sh).value();
+}
+
+// A bounded ply W x H started at its middle, base path along ply y, swept both ways.
+DrapeProblem centred_problem(double d, double W, double H, const Vec3& start, const Vec3& normal) {
+  DrapeProblem pb;
+  pb.ply.d_weft = pb.ply.d_warp = d;
+  pb.ply.rect = Vec2(W, H);
+  pb.ply.start = Vec2(W / 2, H / 2);
+  pb.ply.base_dir = Vec2(0, 1);
+  pb.ply.sweeps = {Vec2(1, 0), Vec2(-1, 0)};
+  pb.start = start;
+  pb.base_normal = normal;
+  pb.sweeps = {normal, -normal};
+  return pb;
+}
+
+}  // namespace
+
+TEST_CASE("importers: a ply drapes over the deflector's 18 sewn faces, across its creases") {
+  // A ply 100 along its base path (up the outer wall, face 10, from the point and normal
+  // `plyfit info --face 10` gives) and 200 across it, swept both ways along the wall: the
+  // cloth wraps the ends of the deflector, over creases of up to 151 degrees (the rim lip).
+  const Shell sh = sewn_shell("occ22470.igs");
+  REQUIRE(sh.face_count() == 18);
+  const Vec3 start(100.09345, 79.1264305, 55.1308847);
+  const Vec3 normal(0.977279697, -0.211953753, 0.0);
+  DrapeProblem pb = centred_problem(2.0, 100, 200, start, normal);
+  pb.ply.base_dir = Vec2(1, 0);
+  pb.ply.sweeps = {Vec2(0, 1), Vec2(0, -1)};
+  auto r = drape(sh, pb);
+  REQUIRE(r.ok());
+  CHECK(r->metrics.nodes.failed == 0);
+  CHECK(r->metrics.nodes.overlap == 0);
+  CHECK(support::seam_gaps(*r) == 0);
+  CHECK(r->metrics.crease_angle_max > 150.0 * kPiC / 180.0);
+  CHECK(r->metrics.edge_length_max_rel < 1e-9);
+  CHECK(r->metrics.surface_distance_max < 1e-9 * sh.size());
+  int faces = 0;
+  for (const auto& f : r->metrics.faces) faces += f.mapped > 0;
+  CHECK(faces >= 5);
+  CHECK(r->metrics.nodes.mapped > 5000);
+}
+
+TEST_CASE("importers: faces that share no edge drape as the one face the start is on") {
+  // surf114's four patches and trj7's four panels sew into separate shells: a drape over all
+  // of them stays on the face it starts on and is that face's drape, node for node (the
+  // sample scenes surf114-blob and trj7-panel).
+  struct Case {
+    const char* file;
+    int face;
+    double d, W, H, lock_deg;
+    Vec3 start;
+  };
+  for (const Case& c : {Case{"surf114.igs", 3, 2.0, 80, 80, 50, Vec3(-32, 19, 100)},
+                        Case{"trj7_c2-td-203.stp", 2, 5.0, 300, 300, 90, Vec3(150, 600, 230)}}) {
+    INFO(c.file);
+    const Shell sh = sewn_shell(c.file);
+    auto one = importers::load_face(shared_cad(c.file), c.face);
+    REQUIRE(one.ok());
+    const DrapeProblem pb = centred_problem(c.d, c.W, c.H, c.start, Vec3(1, 0, 0));
+    DrapeOptions opt;
+    opt.lock_angle = c.lock_deg * kPiC / 180.0;
+    auto a = drape(sh, pb, opt);
+    auto b = drape(*one, pb, opt);
+    REQUIRE(a.ok());
+    REQUIRE(b.ok());
+    CHECK(support::seam_gaps(*a) == 0);
+    CHECK(support::same_net(*a, *b, 1e-9 * c.d) > 100);
+    REQUIRE(a->metrics.faces.size() == 4);  // the shell's faces are the file's, in order
+    for (int k = 0; k < 4; ++k) CHECK((a->metrics.faces[k].mapped > 0) == (k == c.face));
+  }
 }

@@ -3,6 +3,8 @@
 
 #include <plyfit/kernel/drape.hpp>
 
+#include <catch2/catch.hpp>
+
 #include <cstddef>
 
 namespace plyfit::support {
@@ -24,6 +26,25 @@ inline std::size_t seam_gaps(const DrapeResult& r) {
     }
   }
   return gaps;
+}
+
+// Two nets with the same nodes: every node reached by one is reached by the other with the
+// same status, and mapped nodes lie within tol of each other. Returns the mapped count.
+inline std::size_t same_net(const DrapeResult& a, const DrapeResult& b, double tol) {
+  std::size_t mapped = 0;
+  CHECK(a.nodes.size() == b.nodes.size());
+  for (const DrapeNode& n : a.nodes) {
+    const DrapeNode* m = b.find(n.id);
+    INFO("node (" << n.id.i << ", " << n.id.j << ") " << to_string(n.status));
+    REQUIRE(m);
+    CHECK(m->status == n.status);
+    if (n.mapped() && m->mapped()) {
+      ++mapped;
+      const double e = (n.point - m->point).norm();
+      if (e > tol) FAIL_CHECK("mapped nodes " << e << " apart");
+    }
+  }
+  return mapped;
 }
 
 }  // namespace plyfit::support

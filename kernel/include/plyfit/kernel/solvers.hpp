@@ -84,6 +84,10 @@ struct TwoSphereStep {
   /// DrapeSurface::locate; if absent, the planar two-circle solution in the tangent plane is
   /// used.
   std::optional<Vec2> guess;
+  /// The cell's fourth corner (mapped), if known: the solution lies across the line a-b from
+  /// it. Where a, b and the solution are not all on one face (a crease between them makes
+  /// the normals disagree), this, not the normal, tells the branch.
+  std::optional<Vec3> corner = std::nullopt;
 };
 SolveResult solve_two_spheres(const DrapeSurface& surface, const TwoSphereStep& step,
                               const SolverSettings& settings);
