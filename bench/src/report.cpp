@@ -147,6 +147,9 @@ int run_report(const std::vector<std::string>& args) {
   bool hard_ok = true;
   const Table hard = hard_case_table(runs, &hard_ok);
   ok = ok && hard_ok;
+  double shell_ratio = 0.0;
+  const Table shells = shell_drape_table(runs, &shell_ratio, &hard_ok);
+  ok = ok && hard_ok;
   std::fprintf(stderr, "report: 7/7 batch, optimize and profile\n");
   bool batch_available = false, profile_available = false;
   double batch_speedup = 0.0;
@@ -234,6 +237,7 @@ int run_report(const std::vector<std::string>& args) {
       {"table:kernel", kernel.markdown()},
       {"table:solvers", solvers.markdown()},
       {"table:hard", hard.markdown()},
+      {"table:shells", shells.markdown()},
       {"table:batch", batch.header.empty() ? batch.caption + "\n" : batch.markdown()},
       {"table:profile", profile.header.empty() ? profile.caption + "\n" : profile.markdown()},
       {"table:optimize", optimize.header.empty() ? optimize.caption + "\n" : optimize.markdown()},
@@ -249,6 +253,7 @@ int run_report(const std::vector<std::string>& args) {
       {"kernel", &kernel},
       {"solvers", &solvers},
       {"hard_cases", &hard},
+      {"shells", &shells},
       {"batch", &batch},
       {"optimize", &optimize},
       {"profile", &profile}};

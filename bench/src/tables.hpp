@@ -81,4 +81,9 @@ Table profile_table(bool* available);
 /// Writes an SVG plot of drape time against link-length error (one series per face).
 std::string time_error_svg(const std::vector<TolerancePoint>& points, double default_tol);
 
+/// Drapes over built-in shells of N faces against the same surface as one face: ns per
+/// mapped node on both and their ratio (issue 12's target <= 1.2); the largest ratio in
+/// *worst_ratio; *ok false if a case could not be built or draped.
+Table shell_drape_table(int runs, double* worst_ratio, bool* ok);
+
 }  // namespace plyfit::bench
