@@ -11,8 +11,6 @@ Scanner::Scanner(const DrapeSurface& s, Ply& ply, const DrapeOptions& opt, Drape
     : s_(s), ply_(ply), opt_(opt), res_(res) {
   st_.spacing = ply.d();
   st_.tol = opt.tol;
-  poles_ = find_poles(s);  // once: the solvers look for them near domain edges
-  st_.poles = &poles_;
   res_.gamma_min_limit = std::max(0.0, kPi / 2 - opt.lock_angle);
   st_.gamma_min = std::max(res_.gamma_min_limit, opt.tol.fold_angle);
   far_ = kFarFromPathCells * std::hypot(ply.spec().d_weft, ply.spec().d_warp);

@@ -108,7 +108,6 @@ class Scanner {
   const DrapeOptions& opt_;
   DrapeResult& res_;
   SolverSettings st_;
-  std::vector<Pole> poles_;  // the surface's poles, st_.poles
   std::priority_queue<FrontierEntry, std::vector<FrontierEntry>, FrontierLater> heap_;
   std::unordered_map<std::uint32_t, std::uint32_t> path_pos_;  // node -> position on the path
   double far_ = 0.0;  // distance from the path line beyond which far_from_path() holds

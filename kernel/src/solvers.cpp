@@ -1,5 +1,7 @@
 #include <plyfit/kernel/solvers.hpp>
 
+#include "poles.hpp"
+
 #include <Eigen/LU>
 
 #include <algorithm>
@@ -16,12 +18,6 @@ constexpr double kPi = 3.14159265358979323846;
 // step is then a Levenberg-Marquardt step with damping kLmDampingRel * diag(J^T J).
 constexpr double kSingularRel = 1e-10;
 constexpr double kLmDampingRel = 1e-8;
-// At a pole, a step must make a cosine above this with some direction the face offers (the
-// fan of the collapsed edge's derivatives); otherwise it leaves the face at once.
-constexpr double kMinFanCos = 1e-6;
-// Samples and golden-section refinements when searching a collapsed edge for a direction.
-constexpr int kEdgeSamples = 64;
-constexpr int kEdgeRefinements = 30;
 // Newton steps are capped at this many initial-step lengths in (u, v).
 constexpr double kStepCapSteps = 10.0;
 // The first-order model of a plane-sphere step is trusted when the surface point at the
@@ -38,14 +34,6 @@ constexpr double kSettleReachRel = 0.1;
 // A Newton step proposing to leave the domain margin this many times in a row, from an
 // iterate already past the domain edge, ends the solve with "left the face".
 constexpr int kOutsideStrikes = 2;
-// A domain edge is collapsed (a pole) when its ends and middle lie within this fraction of the
-// surface size of one another in 3D (Face::boundary()'s test of collapsed edges).
-constexpr double kCollapsedEdgeRel = 1e-9;
-// Poles within this many step lengths (the sphere radius of the solve) of a point are searched
-// for its location when a solve converged past a domain edge or failed near them.
-constexpr double kPoleReachSteps = 4.0;
-// Gauss-Newton iterations that locate a point near a pole on the face.
-constexpr int kPoleLocateIterations = 30;
 
 Vec3 face_normal(const DrapeSurface& s, const SurfaceLocation& at, const SurfaceEval1& e) {
   // The limit normal at poles, else the normalised cross product with the face orientation.
@@ -225,28 +213,34 @@ double residual_tolerance(const DrapeSurface& s, const SolverSettings& st, const
                   st.tol.roundoff_rel * (where.cwiseAbs().maxCoeff() + s.size() + radius));
 }
 
-// Finishes a converged solve: in-face test (one contains() query). A solution a hair past
-// a domain edge (a path along the edge, or a pole reached from the extension beyond it) is
-// on the face if the same point is reached with the parameters clamped to the domain.
+// A solve that converged off its face: solved again from the location where the surface
+// holds its point (DrapeSurface::settle: past a pole of the face, the face itself; on a
+// shell, a neighbour face). c.res changes only if that solve converges on the surface; the
+// iterations and evaluations count either way. Called right after Newton converged, before
+// any test that uses the normal there (past a pole the extended face's orientation flips).
 template <class Resid>
-void classify_converged(Ctx& c, Resid&& resid) {
+void settle(Ctx& c, Resid&& resid) {
+  if (c.s.contains(c.res.at)) return;
+  const SurfaceLocation other = c.s.settle(c.res.at, c.res.point, kSettleReachRel * c.st.spacing);
+  if (other == c.res.at) return;
+  const SolveResult before = c.res;
+  const SurfaceEval1 last = c.last;
+  if (newton(c, other, resid) && c.s.contains(c.res.at)) return;
+  const int iterations = c.res.iterations, evaluations = c.res.evaluations;
+  c.res = before;
+  c.last = last;
+  c.res.iterations = iterations;
+  c.res.evaluations = evaluations;
+}
+
+// Finishes a converged solve (settled already, see settle()): in-face test (one contains()
+// query). A solution a hair past a domain edge (a path along the edge, or a pole reached from
+// the extension beyond it) is on the face if the same point is reached with the parameters
+// clamped to the domain.
+void classify_converged(Ctx& c) {
   if (c.s.contains(c.res.at)) {
     c.res.status = SolveStatus::kConverged;
     return;
-  }
-  // Off its face but on another face of the surface (a shell's neighbour past a pole, or one
-  // the iterate reached without crossing a shared edge): solved again there, from the point's
-  // projection.
-  const SurfaceLocation other = c.s.settle(c.res.at, c.res.point, kSettleReachRel * c.st.spacing);
-  if (other != c.res.at) {
-    const SolveResult before = c.res;
-    const SurfaceEval1 last = c.last;
-    if (newton(c, other, resid) && c.s.contains(c.res.at)) {
-      c.res.status = SolveStatus::kConverged;
-      return;
-    }
-    c.res = before;
-    c.last = last;
   }
   const auto& d = c.s.domain(c.res.at);
   const Vec2& uv = c.res.at.uv;
@@ -277,32 +271,6 @@ void setup_margins(Ctx& c, const SurfaceLocation& from, const SurfaceLocation& g
   c.max_step = kStepCapSteps * step;
 }
 
-bool in_domain(const DrapeSurface& s, const SurfaceLocation& at);
-std::optional<SurfaceLocation> through_pole(const DrapeSurface& s, const SolverSettings& st,
-                                            const Vec3& p, double reach, int& evaluations);
-
-// After Newton converged at a location past its face's domain edge: if a pole lies within
-// `reach`, the point may lie on the face itself (the surface extended past a collapsed edge
-// continues it across the pole, as a sphere's does), and Newton runs again from its location
-// there. c.res changes only if that solve converges in the domain.
-template <class Resid>
-void settle_past_pole(Ctx& c, double reach, Resid&& resid) {
-  if (in_domain(c.s, c.res.at)) return;
-  int evaluations = 0;
-  const auto loc = through_pole(c.s, c.st, c.res.point, reach, evaluations);
-  c.res.evaluations += evaluations;
-  if (!loc) return;
-  const SolveResult keep = c.res;
-  const SurfaceEval1 keep_last = c.last;
-  if (newton(c, *loc, resid) && in_domain(c.s, c.res.at)) return;
-  const int iterations = c.res.iterations;
-  evaluations = c.res.evaluations;
-  c.res = keep;
-  c.last = keep_last;
-  c.res.iterations = iterations;
-  c.res.evaluations = evaluations;
-}
-
 }  // namespace
 
 const char* to_string(SolveStatus s) {
@@ -325,60 +293,6 @@ Vec3 rotate_about(const Vec3& v, const Vec3& axis, double angle) {
 }
 
 namespace {
-
-// The free parameter of a collapsed edge (a pole) whose inward derivative best points along
-// `dir`, with the cosine between the two (-2 where nothing could be evaluated).
-struct FanFit {
-  double t = 0.0;
-  double cos = -2.0;
-};
-
-// The fan of a pole: the derivative across its edge, S_u (u fixed) or S_v, turned inward,
-// sampled along the edge (kEdgeSamples) and refined by golden section (kEdgeRefinements).
-FanFit fan_fit(const DrapeSurface& surface, const Pole& e, const Vec3& dir) {
-  const double dn = dir.norm();
-  auto score = [&](double t) {
-    const SurfaceEval1 eq = surface.eval1(e.on_edge(t));
-    const Vec3& g = e.u_fixed ? eq.du : eq.dv;
-    const double gn = g.norm();
-    return (eq.ok && gn > 0.0 && dn > 0.0) ? e.inward * g.dot(dir) / (gn * dn) : -2.0;
-  };
-  const double lo = e.lo, hi = e.hi;
-  double best_t = lo, best = -3.0;
-  for (int k = 0; k <= kEdgeSamples; ++k) {
-    const double t = lo + (hi - lo) * k / kEdgeSamples;
-    const double sc = score(t);
-    if (sc > best) {
-      best = sc;
-      best_t = t;
-    }
-  }
-  // Golden-section refinement in the bracket around the best sample.
-  double a = std::max(lo, best_t - (hi - lo) / kEdgeSamples);
-  double b = std::min(hi, best_t + (hi - lo) / kEdgeSamples);
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double x1 = b - g * (b - a), x2 = a + g * (b - a);
-  double f1 = score(x1), f2 = score(x2);
-  for (int k = 0; k < kEdgeRefinements; ++k) {
-    if (f1 > f2) {
-      b = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = b - g * (b - a);
-      f1 = score(x1);
-    } else {
-      a = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = a + g * (b - a);
-      f2 = score(x2);
-    }
-  }
-  FanFit out;
-  out.t = (f1 > best || f2 > best) ? (f1 > f2 ? x1 : x2) : best_t;
-  out.cos = std::max({best, f1, f2});
-  return out;
-}
 
 // uv_direction with the evaluation e and the face normal n at uv already known.
 UvDirection uv_direction_at(const DrapeSurface& surface, const SurfaceLocation& at,
@@ -406,8 +320,8 @@ UvDirection uv_direction_at(const DrapeSurface& surface, const SurfaceLocation& 
   // The edge is left towards the interior: at the domain end the derivative flips sign.
   edge.inward = v_collapsed ? ((uv.x() <= 0.5 * (d.u0 + d.u1)) ? 1.0 : -1.0)
                             : ((uv.y() <= 0.5 * (d.v0 + d.v1)) ? 1.0 : -1.0);
-  const FanFit fit = fan_fit(surface, edge, dt);
-  if (fit.cos <= kMinFanCos) {
+  const detail::FanFit fit = detail::fan_fit(surface, edge, dt);
+  if (fit.cos <= detail::kMinFanCos) {
     out.leaves_face = true;
     return out;
   }
@@ -422,109 +336,7 @@ UvDirection uv_direction_at(const DrapeSurface& surface, const SurfaceLocation& 
   return out;
 }
 
-// True when the location (wrapped across closed seams) lies in its face's parameter domain.
-bool in_domain(const DrapeSurface& s, const SurfaceLocation& at) {
-  const SurfaceLocation w = s.wrap(at);
-  return s.domain(w).contains(w.uv.x(), w.uv.y());
-}
-
-// The location of 3D point p on the surface, found through a pole within `reach` of p: on the
-// face of the pole whose fan holds the direction from the pole to p best, the first-order
-// polar guess (along that fan direction, |p - pole| / |derivative| into the domain) refined by
-// Gauss-Newton on |S - p|^2 within the domain. Near a pole (u, v) is polar, and Newton on it
-// can cross the pole onto the surface extended past the collapsed edge (the mirror image of
-// the face there), or stall; this is the point's location on the face itself. Nullopt when
-// no pole lies within reach or no fan points towards p. The caller checks how close S(result)
-// is to p.
-std::optional<SurfaceLocation> through_pole(const DrapeSurface& s, const SolverSettings& st,
-                                            const Vec3& p, double reach, int& evaluations) {
-  std::vector<Pole> own;
-  if (!st.poles) own = find_poles(s);
-  const std::vector<Pole>& poles = st.poles ? *st.poles : own;
-  const Pole* best = nullptr;
-  FanFit fit;
-  for (const Pole& e : poles) {
-    const Vec3 w = p - e.point;
-    if (w.norm() > reach) continue;
-    // At the pole itself (to rounding) any point of the edge is p.
-    if (w.norm() <= st.tol.roundoff_rel * (e.point.cwiseAbs().maxCoeff() + s.size())) return e.at;
-    const FanFit f = fan_fit(s, e, w);
-    evaluations += 2 * (kEdgeSamples + kEdgeRefinements);
-    if (f.cos > fit.cos) {
-      fit = f;
-      best = &e;
-    }
-  }
-  if (!best || fit.cos <= kMinFanCos) return std::nullopt;
-  const Pole& e = *best;
-  SurfaceLocation at = e.on_edge(fit.t);
-  SurfaceEval1 ev = s.eval1(at);
-  ++evaluations;
-  const double gn = (e.u_fixed ? ev.du : ev.dv).norm();
-  if (!ev.ok || !(gn > 0.0)) return std::nullopt;
-  const double step = e.inward * (p - e.point).norm() / gn;
-  at = at.with_uv(at.uv + (e.u_fixed ? Vec2(step, 0.0) : Vec2(0.0, step)));
-  const ParamDomain& d = s.domain(at);
-  auto clamp_in = [&](const Vec2& uv) {
-    return s.wrap(at.with_uv(uv.cwiseMax(Vec2(d.u0, d.v0)).cwiseMin(Vec2(d.u1, d.v1))));
-  };
-  at = clamp_in(at.uv);
-  ev = s.eval1(at);
-  ++evaluations;
-  for (int it = 0; it < kPoleLocateIterations && ev.ok; ++it) {
-    const Vec3 r = ev.p - p;
-    const double rn = r.norm();
-    if (rn == 0.0) break;
-    Eigen::Matrix2d G;
-    G << ev.du.dot(ev.du), ev.du.dot(ev.dv), ev.du.dot(ev.dv), ev.dv.dot(ev.dv);
-    G(0, 0) = G(0, 0) * (1.0 + kSingularRel) + 1e-300;
-    G(1, 1) = G(1, 1) * (1.0 + kSingularRel) + 1e-300;
-    Vec2 dx = -(G.inverse() * Vec2(ev.du.dot(r), ev.dv.dot(r)));
-    if (!dx.allFinite()) break;
-    bool taken = false;
-    for (int h = 0; h <= st.tol.line_search_max_halvings; ++h, dx *= 0.5) {
-      const SurfaceLocation cand = clamp_in(at.uv + dx);
-      const SurfaceEval1 ec = s.eval1(cand);
-      ++evaluations;
-      if (ec.ok && (ec.p - p).norm() < rn) {
-        at = cand;
-        ev = ec;
-        taken = true;
-        break;
-      }
-    }
-    if (!taken) break;
-  }
-  return at;
-}
-
 }  // namespace
-
-std::vector<Pole> find_poles(const DrapeSurface& s) {
-  std::vector<Pole> out;
-  const double tol = kCollapsedEdgeRel * s.size();
-  for (std::int32_t f = 0; f < s.face_count(); ++f) {
-    const SurfaceLocation chart(Vec2::Zero(), f);
-    const ParamDomain& d = s.domain(chart);
-    for (int k = 0; k < 4; ++k) {
-      Pole p;
-      p.u_fixed = k < 2;
-      const bool end = k % 2 == 1;
-      const double fixed = p.u_fixed ? (end ? d.u1 : d.u0) : (end ? d.v1 : d.v0);
-      p.lo = p.u_fixed ? d.v0 : d.u0;
-      p.hi = p.u_fixed ? d.v1 : d.u1;
-      p.inward = end ? -1.0 : 1.0;
-      const double mid = 0.5 * (p.lo + p.hi);
-      p.at = chart.with_uv(p.u_fixed ? Vec2(fixed, mid) : Vec2(mid, fixed));
-      const SurfaceEval1 a = s.eval1(p.on_edge(p.lo)), m = s.eval1(p.at),
-                         b = s.eval1(p.on_edge(p.hi));
-      if (!a.ok || !m.ok || !b.ok || (a.p - m.p).norm() + (b.p - m.p).norm() > tol) continue;
-      p.point = m.p;
-      out.push_back(p);
-    }
-  }
-  return out;
-}
 
 UvDirection uv_direction(const DrapeSurface& surface, const SurfaceLocation& at, const Vec3& dir) {
   const SurfaceEval1 e = surface.eval1(at);
@@ -569,7 +381,7 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
   auto solve_from = [&](const SurfaceLocation& guess) {
     setup_margins(c, ud.from_at, guess);
     if (!newton(c, guess, resid)) return false;
-    settle_past_pole(c, kPoleReachSteps * rho, resid);
+    settle(c, resid);
     if ((c.res.point - x0).dot(t) > 0.0) return true;
     c.res.status = SolveStatus::kFailed;
     c.res.reason = "converged backwards";
@@ -578,18 +390,8 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
   // Direct attempt from the first-order guess (eqs. 7-8).
   const SurfaceLocation guess = s.locate(ud.from_at, ud.from_at.uv + rho * ud.dir_uv);
   if (solve_from(guess)) {
-    classify_converged(c, resid);
+    classify_converged(c);
     return c.res;
-  }
-  // Near a pole, from the location of the first-order target found through the pole's fan.
-  {
-    int evaluations = 0;
-    const auto loc = through_pole(s, st, x0 + rho * t, kPoleReachSteps * rho, evaluations);
-    c.res.evaluations += evaluations;
-    if (loc && solve_from(*loc)) {
-      classify_converged(c);
-      return c.res;
-    }
   }
   // Leaving the face is the answer when the first-order model is trustworthy: the surface
   // point at the guess is close to the intended 3D point.
@@ -615,7 +417,7 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
       }
     }
     if (ok) {
-      classify_converged(c, resid);
+      classify_converged(c);
       return c.res;
     }
     // A sub-step that fails where the curve, at the last sub-step or continued from it, is
@@ -756,7 +558,7 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
     c.margin = std::max(c.margin, st.tol.extension_steps * mb);
     c.max_step = std::max(c.max_step, kStepCapSteps * mb);
     if (!newton(c, g, resid)) return false;
-    settle_past_pole(c, kPoleReachSteps * std::max(ra, rb), resid);
+    settle(c, resid);
     const Vec3 n = face_normal(s, c.res.at, c.last);
     if (n.dot((b - a).cross(c.res.point - a)) * want <= 0.0) {
       c.res.status = SolveStatus::kFailed;
@@ -765,7 +567,7 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
     }
     const Vec3 pa = a - c.res.point, pb = b - c.res.point;
     c.res.thread_angle = std::atan2(pa.cross(pb).norm(), pa.dot(pb));
-    classify_converged(c, resid);
+    classify_converged(c);
     if (c.res.status == SolveStatus::kConverged && st.gamma_min > 0.0 &&
         (c.res.thread_angle < st.gamma_min || c.res.thread_angle > kPi - st.gamma_min)) {
       c.res.status = SolveStatus::kShearLimit;
@@ -782,11 +584,6 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
   const SurfaceEval1 ea = s.eval1(step.a_at);
   ++c.res.evaluations;
   if (planar_target(step.a_at, ea, p3, n3)) {
-    // Near a pole, from the planar solution's location found through the pole's fan.
-    int evaluations = 0;
-    const auto loc = through_pole(s, st, p3, kPoleReachSteps * std::max(ra, rb), evaluations);
-    c.res.evaluations += evaluations;
-    if (loc && attempt(*loc)) return c.res;
     Vec2 dir;
     if (metric_direction(ea, p3 - a, dir)) {
       const SurfaceLocation g = s.locate(step.a_at, step.a_at.uv + dir * (p3 - a).norm());

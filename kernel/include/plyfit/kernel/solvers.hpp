@@ -15,29 +15,8 @@
 
 #include <cstdint>
 #include <optional>
-#include <vector>
 
 namespace plyfit {
-
-/// A pole of a drape surface: an edge of one face's parameter domain that the surface
-/// collapses to one 3D point (a sphere's pole, a cone's apex, any NURBS whose first or last
-/// row of poles coincides). Near it (u, v) is polar: the solvers find points there through
-/// the fan of derivatives along the edge (see find_poles).
-struct Pole {
-  SurfaceLocation at;         ///< a location on the edge (its free parameter mid-range)
-  bool u_fixed = true;        ///< the edge is u = at.uv.x() (v runs along it), else v = at.uv.y()
-  double lo = 0.0, hi = 1.0;  ///< range of the free parameter along the edge
-  double inward = 1.0;        ///< sign of a step of the fixed parameter into the domain
-  Vec3 point = Vec3::Zero();  ///< the edge's one 3D point
-  /// The location on the edge at free parameter t.
-  SurfaceLocation on_edge(double t) const {
-    return at.with_uv(u_fixed ? Vec2(at.uv.x(), t) : Vec2(t, at.uv.y()));
-  }
-};
-
-/// The poles of every face of `surface`: domain edges whose ends and middle coincide in 3D
-/// within 1e-9 of the surface's size (as Face::boundary() marks collapsed edges).
-std::vector<Pole> find_poles(const DrapeSurface& surface);
 
 /// Outcome of one mapping solve.
 enum class SolveStatus : std::uint8_t {
@@ -72,9 +51,6 @@ struct SolverSettings {
   double spacing = 1.0;    ///< d, the scale of every tolerance
   double gamma_min = 0.0;  ///< minimum thread angle, radians (eq. 12); 0 disables the test
   Tolerances tol;
-  /// The surface's poles (find_poles), computed once by a caller that solves many nodes;
-  /// null: the solvers find them when a solve needs them (a step near a domain edge).
-  const std::vector<Pole>* poles = nullptr;
 };
 
 /// Solver 1 (eqs. 1-9): the next base-path point, on the base plane through `from` with
