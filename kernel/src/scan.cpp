@@ -117,12 +117,8 @@ void Scanner::resolve(std::uint32_t idx, const SolveResult& r) {
 // records it.
 bool Scanner::overlaps(std::uint32_t k) {
   const DrapeNode& n = node(k);
-  const double sep = kOverlapSeparation * ply_.d();
-  const bool near = grid_.any_near(n.point, [&](std::uint32_t q) {
-    const DrapeNode& m = node(q);
-    return (m.point - n.point).norm() < cell_ && (m.ply - n.ply).norm() >= sep;
-  });
-  if (!near) grid_.insert(n.point, k);
+  const bool near = grid_.any_far_near(n.point, n.ply, kOverlapSeparation * ply_.d());
+  if (!near) grid_.insert(n.point, n.ply);
   return near;
 }
 
