@@ -132,14 +132,15 @@ void Scanner::push_neighbours(std::uint32_t idx) {
   for (int d = 0; d < 4; ++d) {
     if (node(idx).nb[d] >= 0) continue;  // already reached (pending or resolved)
     const auto q = neighbour_id(node(idx).id, static_cast<ThreadDir>(d));
-    // Auxiliary path nodes are mapped by the base path only.
-    if (!q || q->is_path_only()) continue;
+    if (!q || q->is_path_only()) continue;  // path nodes are mapped by the base path
     const Vec2 qp = ply_.pos(q->i, q->j);
-    // A crossing of the path line the base path did not reach (it stopped at a hole in the
-    // face: the nodes beyond are reached by the sweeps, which join there) is solved from
-    // the sweep that reaches it first; the other sweep's links to it are checked.
     const int side = ply_.side(qp);
-    if (side != 0 && ply_.sweep_for_side(side) < 0) continue;  // that half-plane is not swept
+    // On the path: mapped (or not) by the base path. (Beyond a hole the path stops at, the
+    // line stays unmapped: a slit; solving it from the sweep that reaches it first lets one
+    // sweep's cloth cross the line and meet the other's sheared on a curved face, see
+    // tests/kernel/holes_test.cpp.)
+    if (side == 0) continue;
+    if (ply_.sweep_for_side(side) < 0) continue;  // that half-plane is not swept
     if (res_.nodes.size() >= opt_.max_nodes) {
       truncated_ = true;
       continue;
