@@ -632,8 +632,11 @@ Result<ReportFace> hemisphere_face() {
                     }};
 }
 
-Table overlap_table(int runs, const std::vector<int>& sizes, bool* ok) {
+}  // namespace
+
+Table overlap_table(int runs, std::vector<int> sizes, bool* ok) {
   Table t;
+  if (sizes.empty()) sizes.assign(std::begin(kOverlapSizes), std::end(kOverlapSizes));
   runs = std::max(runs, kMinRuns);
   t.caption =
       fmt("Cost of the overlap test (every mapped node tested for landing on cloth already laid, "
@@ -700,8 +703,6 @@ Table overlap_table(int runs, const std::vector<int>& sizes, bool* ok) {
   return t;
 }
 
-}  // namespace
-
 // ---------------------------------------------------------------------------------------
 // Subcommands
 
@@ -744,10 +745,9 @@ int run_hard(const std::vector<std::string>& args) {
 }
 
 int run_overlap(const std::vector<std::string>& args) {
-  std::vector<int> sizes(std::begin(kOverlapSizes), std::end(kOverlapSizes));
+  std::vector<int> sizes;
   const std::string list = option_value(args, "--sizes", "");
   if (!list.empty()) {
-    sizes.clear();
     std::stringstream ss(list);
     std::string item;
     while (std::getline(ss, item, ',')) sizes.push_back(std::stoi(item));

@@ -147,6 +147,8 @@ int run_report(const std::vector<std::string>& args) {
   bool hard_ok = true;
   const Table hard = hard_case_table(runs, &hard_ok);
   ok = ok && hard_ok;
+  const Table overlap = overlap_table(runs, {}, &hard_ok);
+  ok = ok && hard_ok;
   std::fprintf(stderr, "report: 7/7 batch, optimize and profile\n");
   bool batch_available = false, profile_available = false;
   double batch_speedup = 0.0;
@@ -234,6 +236,7 @@ int run_report(const std::vector<std::string>& args) {
       {"table:kernel", kernel.markdown()},
       {"table:solvers", solvers.markdown()},
       {"table:hard", hard.markdown()},
+      {"table:overlap", overlap.markdown()},
       {"table:batch", batch.header.empty() ? batch.caption + "\n" : batch.markdown()},
       {"table:profile", profile.header.empty() ? profile.caption + "\n" : profile.markdown()},
       {"table:optimize", optimize.header.empty() ? optimize.caption + "\n" : optimize.markdown()},
