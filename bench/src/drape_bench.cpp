@@ -612,6 +612,98 @@ Table hard_case_table(int runs, bool* ok) {
 }
 
 // ---------------------------------------------------------------------------------------
+// Overlap test and closed faces (issues 13 and 14)
+
+namespace {
+
+// Ply sizes (nodes per side) of the overlap table.
+constexpr int kOverlapSizes[] = {300, 1000};
+
+// The closed hemisphere (R kSphereRadius) with the octant's problem swept both ways: the
+// cloth goes round the axis from the meridian y = 0 and meets itself.
+Result<ReportFace> hemisphere_face() {
+  auto h = builtin_face("hemisphere", {{"R", kSphereRadius}});
+  if (!h) return h.error();
+  return ReportFace{"closed hemisphere (R 20)", *h, [](double d) -> Result<DrapeProblem> {
+                      const double R = kSphereRadius, c = std::sqrt(0.5);
+                      return problem(d, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)},
+                                     Vec3(R * c, 0, R * c), Vec3(0, 1, 0),
+                                     {Vec3(0, 1, 0), Vec3(0, -1, 0)});
+                    }};
+}
+
+}  // namespace
+
+Table overlap_table(int runs, std::vector<int> sizes, bool* ok) {
+  Table t;
+  if (sizes.empty()) sizes.assign(std::begin(kOverlapSizes), std::end(kOverlapSizes));
+  runs = std::max(runs, kMinRuns);
+  t.caption =
+      fmt("Cost of the overlap test (every mapped node tested for landing on cloth already laid, "
+          "DrapeOptions::overlap_test) and closed against open faces: drape() wall time per mapped "
+          "node with the test and without it, runs alternating between the two in one process, "
+          "median of %d each; cost = with / without - 1. The closed hemisphere's ns/node is "
+          "compared with the sphere octant's (the same rational sphere, open) at the same size.",
+          runs);
+  t.header = {"face", "size",     "nodes", "overlaps", "ns/node with", "ns/node without",
+              "cost", "vs octant"};
+  t.right = {false, true, true, true, true, true, true, true};
+  auto faces = report_faces();
+  auto hemi = hemisphere_face();
+  if (!faces || !hemi) {
+    print_error("overlap", faces ? hemi.error() : faces.error());
+    if (ok) *ok = false;
+    return t;
+  }
+  faces->push_back(*hemi);
+  for (int size : sizes) {
+    double octant_ns = 0.0;
+    for (const ReportFace& rf : *faces) {
+      const double d = spacing_for_nodes(*rf.face, static_cast<double>(size) * size);
+      auto pb = rf.problem(d);
+      if (!pb) {
+        print_error(rf.name, pb.error());
+        if (ok) *ok = false;
+        continue;
+      }
+      DrapeOptions with, without;
+      without.overlap_test = false;
+      std::vector<double> tw, to;
+      DrapeResult first;
+      bool failed = false;
+      for (int k = 0; k < runs && !failed; ++k) {
+        for (int b = 0; b < 2; ++b) {
+          auto r = run_drape(*rf.face, *pb, b ? without : with);
+          if (!r) {
+            print_error(rf.name, r.error());
+            failed = true;
+            break;
+          }
+          (b ? to : tw).push_back(r->seconds);
+          if (k == 0 && b == 0) first = std::move(r->result);
+        }
+      }
+      if (failed) {
+        if (ok) *ok = false;
+        continue;
+      }
+      const double n = static_cast<double>(net_nodes(first));
+      const double ns_with = median(tw) * 1e9 / n, ns_without = median(to) * 1e9 / n;
+      const bool octant = rf.name.find("octant") != std::string::npos;
+      const bool closed = rf.face->closes_on_itself();
+      if (octant) octant_ns = ns_with;
+      t.add({rf.name, fmt("%d^2", size), fmt("%.0f", n),
+             fmt("%llu", (unsigned long long)first.metrics.nodes.overlap), fmt("%.0f", ns_with),
+             fmt("%.0f", ns_without), fmt("%+.1f %%", (ns_with / ns_without - 1) * 100),
+             closed && octant_ns > 0 ? fmt("%.2fx", ns_with / octant_ns) : std::string("-")});
+      std::fprintf(stderr, "overlap: %s %d^2: %.0f / %.0f ns/node\n", rf.name.c_str(), size,
+                   ns_with, ns_without);
+    }
+  }
+  return t;
+}
+
+// ---------------------------------------------------------------------------------------
 // Subcommands
 
 namespace {
@@ -652,6 +744,26 @@ int run_hard(const std::vector<std::string>& args) {
   return ok ? 0 : 1;
 }
 
+int run_overlap(const std::vector<std::string>& args) {
+  std::vector<int> sizes;
+  const std::string list = option_value(args, "--sizes", "");
+  if (!list.empty()) {
+    std::stringstream ss(list);
+    std::string item;
+    while (std::getline(ss, item, ',')) sizes.push_back(std::stoi(item));
+  }
+  bool ok = true;
+  const Table t =
+      overlap_table(std::stoi(option_value(args, "--runs", std::to_string(kMinRuns))), sizes, &ok);
+  std::printf("%s", t.markdown().c_str());
+  return ok ? 0 : 1;
+}
+
+const BenchmarkRegistrar kOverlap{
+    {"overlap",
+     "cost of the overlap test (with and without, alternating) and closed against open faces "
+     "[--sizes 300,1000 --runs R]",
+     run_overlap}};
 const BenchmarkRegistrar kThroughput{
     {"throughput",
      "drape time, nodes/s and peak memory per node for 100^2 .. 2000^2 nodes on three faces "

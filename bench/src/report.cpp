@@ -149,6 +149,7 @@ int run_report(const std::vector<std::string>& args) {
   ok = ok && hard_ok;
   double shell_ratio = 0.0;
   const Table shells = shell_drape_table(runs, &shell_ratio, &hard_ok);
+  const Table overlap = overlap_table(runs, {}, &hard_ok);
   ok = ok && hard_ok;
   std::fprintf(stderr, "report: 7/7 batch, optimize and profile\n");
   bool batch_available = false, profile_available = false;
@@ -238,6 +239,7 @@ int run_report(const std::vector<std::string>& args) {
       {"table:solvers", solvers.markdown()},
       {"table:hard", hard.markdown()},
       {"table:shells", shells.markdown()},
+      {"table:overlap", overlap.markdown()},
       {"table:batch", batch.header.empty() ? batch.caption + "\n" : batch.markdown()},
       {"table:profile", profile.header.empty() ? profile.caption + "\n" : profile.markdown()},
       {"table:optimize", optimize.header.empty() ? optimize.caption + "\n" : optimize.markdown()},

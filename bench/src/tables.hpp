@@ -58,6 +58,10 @@ ConvergenceReport convergence_report();
 
 /// Table 5: hard cases, one full drape each.
 Table hard_case_table(int runs, bool* ok);
+/// Cost of the overlap test (drapes with and without it, alternating) on the throughput
+/// faces and the closed hemisphere at ply sizes `sizes` (nodes per side; empty: 300 and
+/// 1000); the hemisphere's time per node against the sphere octant's.
+Table overlap_table(int runs, std::vector<int> sizes, bool* ok);
 
 /// Batch throughput: `plyfit batch -j1` against `-j2` (and more, up to the cores); the
 /// speed-up of the most jobs against -j1 in `speedup` (0 if not measured).

@@ -1,5 +1,7 @@
 #include <plyfit/kernel/face.hpp>
 
+#include "poles.hpp"
+
 #include <Eigen/LU>
 
 #include <algorithm>
@@ -95,7 +97,23 @@ Result<Face> Face::create(FaceData data, const Tolerances& tol) {
   f.size_ = std::max(f.bbox_.diagonal(), f.surface_->control_bbox().diagonal() * 1e-6);
   if (!(f.size_ > 0.0)) return Error{"the face has zero size"};
   f.area_ = data.area > 0.0 ? data.area : f.compute_area();
+  f.poles_ = detail::find_poles(f);
   return f;
+}
+
+SurfaceLocation Face::settle(const SurfaceLocation& at, const Vec3& p, double reach) const {
+  if (poles_.empty() || contains(at.uv)) return at;
+  const Vec2 w = wrap(at.uv);
+  for (const Pole& e : poles_) {
+    // Only past this pole's collapsed edge: where Newton crossed the pole.
+    const double past = e.u_fixed ? w.x() - e.at.uv.x() : w.y() - e.at.uv.y();
+    if (past * e.inward >= 0.0) continue;
+    const auto loc = detail::locate_through_pole(*this, e, p, tol_);
+    if (!loc || !contains(loc->uv)) continue;
+    const SurfaceEval1 ev = eval1(*loc);
+    if (ev.ok && (ev.p - p).norm() <= reach) return {loc->uv, at.face};
+  }
+  return at;
 }
 
 std::vector<std::vector<Vec2>> Face::boundary_loops() const {

@@ -19,38 +19,45 @@ inline std::uint64_t mix(std::uint64_t k) {  // splitmix64 finaliser
 }
 
 // Spatial hash of mapped nodes for the overlap test "is there a recorded node within
-// `radius` (3D)?": cells of edge 2 radius, so that the test's ball meets at most 2 x 2 x 2
-// cells; open addressing on the cell (collisions of the 64-bit cell hash only merge cells,
-// which adds candidates), the nodes of a cell chained in one vector (no allocation per node
-// beyond the vectors' growth).
+// `radius` (3D) of p but at least `sep` from it on the ply?": cells of edge kCellRadii *
+// radius, so that the test's ball meets one cell per axis or two (2^3 at most, about 3.4 on
+// average: only the cells the ball's box meets are visited); open addressing on the cell
+// (collisions of the 64-bit cell hash only merge cells, which adds candidates), the entries
+// of a cell chained in one vector that holds each node's point and ply position, so that the
+// test reads no node and its recent entries lie together in memory (the test runs on every
+// mapped node: scattered reads are what it costs).
 class OverlapGrid {
  public:
+  // Cell edge over the test radius (>= 2: the ball meets at most two cells per axis). Larger
+  // cells mean fewer cells visited, more entries per cell.
+  static constexpr double kCellRadii = 4.0;
   void init(double radius, std::size_t expected) {
-    inv_cell_ = 1.0 / (2.0 * radius);
+    radius_ = radius;
+    inv_cell_ = 1.0 / (kCellRadii * radius);
     entries_.reserve(expected);
     std::size_t n = 16;
-    while (n < 2 * expected) n *= 2;
+    while (n < expected) n *= 2;
     slots_.assign(n, Slot{0, kNone});
   }
-  // Calls f(node) for every recorded node in the cells the ball of the test about p meets,
-  // until f returns true; true if it did.
-  template <class F>
-  bool any_near(const Vec3& p, F&& f) const {
-    std::int64_t c[3][2];
+  // True if a recorded node lies within `radius` of p (3D) and at least `sep` from ply point
+  // `ply` (2D).
+  bool any_far_near(const Vec3& p, const Vec2& ply, double sep) const {
+    std::int64_t lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
-      const double x = p[a] * inv_cell_, fl = std::floor(x);
-      c[a][0] = static_cast<std::int64_t>(fl);
-      c[a][1] = c[a][0] + (x - fl < 0.5 ? -1 : 1);
+      lo[a] = static_cast<std::int64_t>(std::floor((p[a] - radius_) * inv_cell_));
+      hi[a] = static_cast<std::int64_t>(std::floor((p[a] + radius_) * inv_cell_));
     }
-    for (int i = 0; i < 2; ++i)
-      for (int j = 0; j < 2; ++j)
-        for (int k = 0; k < 2; ++k)
-          for (std::uint32_t e = head(key(c[0][i], c[1][j], c[2][k])); e != kNone;
-               e = entries_[e].next)
-            if (f(entries_[e].node)) return true;
+    const double r2 = radius_ * radius_, s2 = sep * sep;
+    for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
+      for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
+        for (std::int64_t k = lo[2]; k <= hi[2]; ++k)
+          for (std::uint32_t e = head(key(i, j, k)); e != kNone; e = entries_[e].next) {
+            const Entry& m = entries_[e];
+            if ((m.p - p).squaredNorm() < r2 && (m.ply - ply).squaredNorm() >= s2) return true;
+          }
     return false;
   }
-  void insert(const Vec3& p, std::uint32_t node) {
+  void insert(const Vec3& p, const Vec2& ply) {
     const std::uint64_t k = key(static_cast<std::int64_t>(std::floor(p.x() * inv_cell_)),
                                 static_cast<std::int64_t>(std::floor(p.y() * inv_cell_)),
                                 static_cast<std::int64_t>(std::floor(p.z() * inv_cell_)));
@@ -60,7 +67,7 @@ class OverlapGrid {
       s.key = k;
       ++count_;
     }
-    entries_.push_back({node, s.head});
+    entries_.push_back({p, ply, s.head});
     s.head = static_cast<std::uint32_t>(entries_.size() - 1);
   }
 
@@ -71,7 +78,9 @@ class OverlapGrid {
     std::uint32_t head;  // first entry of the cell, kNone for an empty slot
   };
   struct Entry {
-    std::uint32_t node, next;
+    Vec3 p;
+    Vec2 ply;
+    std::uint32_t next;
   };
   static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
     return mix(static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ULL ^
@@ -97,7 +106,7 @@ class OverlapGrid {
     for (const Slot& o : old)
       if (o.head != kNone) find(o.key) = o;
   }
-  double inv_cell_ = 1.0;
+  double radius_ = 1.0, inv_cell_ = 1.0;
   std::vector<Slot> slots_;
   std::size_t count_ = 0;
   std::vector<Entry> entries_;

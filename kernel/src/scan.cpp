@@ -14,11 +14,9 @@ Scanner::Scanner(const DrapeSurface& s, Ply& ply, const DrapeOptions& opt, Drape
   res_.gamma_min_limit = std::max(0.0, kPi / 2 - opt.lock_angle);
   st_.gamma_min = std::max(res_.gamma_min_limit, opt.tol.fold_angle);
   far_ = kFarFromPathCells * std::hypot(ply.spec().d_weft, ply.spec().d_warp);
-  closed_ = s.closes_on_itself();
   one_face_ = s.face_count() == 1;
   cell_ = kOverlapRel * ply.d();
-  // Open surfaces record only the base path and steep nodes; closed ones every mapped node.
-  grid_.init(cell_, closed_ ? res_.nodes.capacity() : 64);
+  grid_.init(cell_, res_.nodes.capacity());  // every mapped node is recorded
 }
 
 void Scanner::run(const Vec3& t3) {
@@ -119,12 +117,8 @@ void Scanner::resolve(std::uint32_t idx, const SolveResult& r) {
 // records it.
 bool Scanner::overlaps(std::uint32_t k) {
   const DrapeNode& n = node(k);
-  const double sep = kOverlapSeparation * ply_.d();
-  const bool near = grid_.any_near(n.point, [&](std::uint32_t q) {
-    const DrapeNode& m = node(q);
-    return (m.point - n.point).norm() < cell_ && (m.ply - n.ply).norm() >= sep;
-  });
-  if (!near) grid_.insert(n.point, k);
+  const bool near = grid_.any_far_near(n.point, n.ply, kOverlapSeparation * ply_.d());
+  if (!near) grid_.insert(n.point, n.ply);
   return near;
 }
 
@@ -141,7 +135,11 @@ void Scanner::push_neighbours(std::uint32_t idx) {
     if (!q || q->is_path_only()) continue;  // path nodes are mapped by the base path
     const Vec2 qp = ply_.pos(q->i, q->j);
     const int side = ply_.side(qp);
-    if (side == 0) continue;                      // on the path: mapped (or not) by the base path
+    // On the path: mapped (or not) by the base path. (Beyond a hole the path stops at, the
+    // line stays unmapped: a slit; solving it from the sweep that reaches it first lets one
+    // sweep's cloth cross the line and meet the other's sheared on a curved face, see
+    // tests/kernel/holes_test.cpp.)
+    if (side == 0) continue;
     if (ply_.sweep_for_side(side) < 0) continue;  // that half-plane is not swept
     if (res_.nodes.size() >= opt_.max_nodes) {
       truncated_ = true;
@@ -177,31 +175,6 @@ bool Scanner::folds_back(std::uint32_t k) const {
     const double turn = std::atan2(l1.cross(l2).norm(), l1.dot(l2));
     const double bend = std::atan2(n1.n.cross(n2.n).norm(), n1.n.dot(n2.n));
     if (!n1.ok || !n2.ok || turn > bend + 0.5 * kPi) return true;
-  }
-  return false;
-}
-
-// True if node k (just mapped) is sheared past kOverlapCheckShear between any of its weft
-// and warp links. On an open face only such nodes are recorded and tested for overlap:
-// a net sheared nearly flat can lie on itself (a ribbon of cells folded flat along the
-// ply's diagonal, revisiting the same stretch of the face without end) while every link
-// and every solve's thread angle passes; a net sheared less cannot, and is not recorded,
-// which keeps the test's cost off ordinary drapes.
-bool Scanner::steep(std::uint32_t k) const {
-  const DrapeNode& q = res_.nodes[k];
-  // The angle g between links a and b is below pi/2 - shear or above pi/2 + shear when
-  // |cos g| > sin(shear): (a.b)^2 > sin^2(shear) |a|^2 |b|^2, no trigonometry.
-  const double s2 = std::sin(kOverlapCheckShear) * std::sin(kOverlapCheckShear);
-  for (int dw = 0; dw < 2; ++dw) {
-    const DrapeNode* w = mapped_nb(q, static_cast<ThreadDir>(dw));
-    if (!w) continue;
-    for (int dv = 2; dv < 4; ++dv) {
-      const DrapeNode* v = mapped_nb(q, static_cast<ThreadDir>(dv));
-      if (!v) continue;
-      const Vec3 a = w->point - q.point, b = v->point - q.point;
-      const double ab = a.dot(b);
-      if (ab * ab > s2 * a.squaredNorm() * b.squaredNorm()) return true;
-    }
   }
   return false;
 }
@@ -289,9 +262,9 @@ void Scanner::scan() {
       r.reason = "no known neighbour";
     }
     resolve(qi, r);
-    // On a closed face the cloth can come round onto itself; on any face, a net sheared
-    // nearly flat can lie on itself or fold its threads back (steep(), folds_back()).
-    if (node(qi).mapped() && (((closed_ || steep(qi)) && overlaps(qi)) || folds_back(qi)))
+    // The cloth can come round onto itself (a closed face, a face that wraps over itself, a
+    // net sheared nearly flat), or fold its threads back (folds_back()).
+    if (node(qi).mapped() && ((opt_.overlap_test && overlaps(qi)) || folds_back(qi)))
       node(qi).status = NodeStatus::kOverlap;
     if (node(qi).mapped()) push_neighbours(qi);
   }

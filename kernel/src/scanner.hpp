@@ -27,8 +27,6 @@ inline constexpr double kOverlapSeparation = 2.0;
 // than this (relative to d) is not mapped: two fronts met around a hole in the net and
 // disagree. Fronts that agree do so to the solver's tolerance.
 inline constexpr double kFrontMismatchRel = 1e-9;
-// On an open face, nodes sheared past this (radians: 60 degrees) are tested for overlap.
-inline constexpr double kOverlapCheckShear = 1.0471975511965976;
 // How often (resolved nodes) the scan checks for cancellation and reports progress.
 inline constexpr std::uint32_t kCancelEvery = 4096;
 inline constexpr std::uint32_t kProgressEvery = 65536;
@@ -89,7 +87,6 @@ class Scanner {
   bool cancelled_now();
   void push_neighbours(std::uint32_t idx);
   bool folds_back(std::uint32_t k) const;
-  bool steep(std::uint32_t k) const;
   bool behind_lock(const DrapeNode& q) const;
   void scan();
 
@@ -117,7 +114,6 @@ class Scanner {
   std::uint32_t order_ = 0;
   std::uint64_t path_off_ply_ = 0;
   bool truncated_ = false, cancelled_ = false;
-  bool closed_ = false;   // the surface can close on itself (DrapeSurface::closes_on_itself)
   bool one_face_ = true;  // every location is in one chart: guesses need no chart checks
   double cell_ = 1.0;     // overlap radius
   OverlapGrid grid_;

@@ -543,12 +543,12 @@ Result<Shell> Shell::create(ShellData data, const Tolerances& tol) {
       add_neighbour(E.face[u], E.face[1 - u], pts.back());
     }
   {
-    struct Pole {
+    struct SharedPole {
       std::int32_t face;
       Vec2 uv;
       Vec3 p;
     };
-    std::vector<Pole> poles;
+    std::vector<SharedPole> poles;
     for (std::size_t k = 0; k < n; ++k)
       for (const auto& sg : sh.topo_->faces[k].segs)
         if (sg.kind == BoundaryLoop::kCollapsed) {
@@ -556,8 +556,8 @@ Result<Shell> Shell::create(ShellData data, const Tolerances& tol) {
           poles.push_back({static_cast<std::int32_t>(k), mid, sh.faces_[k]->eval1(mid).p});
         }
     const double merge = sh.gap_ + tol.roundoff_rel * sh.size_;
-    for (const Pole& a : poles)
-      for (const Pole& b : poles)
+    for (const SharedPole& a : poles)
+      for (const SharedPole& b : poles)
         if (a.face != b.face && (a.p - b.p).norm() <= merge) {
           add_neighbour(a.face, b.face, b.uv);
           sh.topo_->faces[static_cast<std::size_t>(a.face)].pole = true;
@@ -616,6 +616,9 @@ bool Shell::near_shared_edge(std::int32_t face, const Vec2& uv, int* segment) co
 
 SurfaceLocation Shell::settle(const SurfaceLocation& at, const Vec3& p, double reach) const {
   if (contains(at)) return at;
+  // Past a pole of at's own face: the face itself holds p there.
+  const SurfaceLocation own = faces_[static_cast<std::size_t>(at.face)]->settle(at, p, reach);
+  if (own != at && contains(own)) return own;
   // The neighbour that holds p nearest: a projection from each of its seeds.
   SurfaceLocation best = at;
   double best_d = reach;

@@ -1,10 +1,14 @@
 #include <plyfit/kernel/solvers.hpp>
 
+#include "poles.hpp"
+
 #include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <vector>
 
 namespace plyfit {
 
@@ -15,12 +19,6 @@ constexpr double kPi = 3.14159265358979323846;
 // step is then a Levenberg-Marquardt step with damping kLmDampingRel * diag(J^T J).
 constexpr double kSingularRel = 1e-10;
 constexpr double kLmDampingRel = 1e-8;
-// At a pole, a step must make a cosine above this with some direction the face offers (the
-// fan of the collapsed edge's derivatives); otherwise it leaves the face at once.
-constexpr double kMinFanCos = 1e-6;
-// Samples and golden-section refinements when searching a collapsed edge for a direction.
-constexpr int kEdgeSamples = 64;
-constexpr int kEdgeRefinements = 30;
 // Newton steps are capped at this many initial-step lengths in (u, v).
 constexpr double kStepCapSteps = 10.0;
 // The first-order model of a plane-sphere step is trusted when the surface point at the
@@ -225,28 +223,34 @@ double residual_tolerance(const DrapeSurface& s, const SolverSettings& st, const
                   st.tol.roundoff_rel * (where.cwiseAbs().maxCoeff() + s.size() + radius));
 }
 
-// Finishes a converged solve: in-face test (one contains() query). A solution a hair past
-// a domain edge (a path along the edge, or a pole reached from the extension beyond it) is
-// on the face if the same point is reached with the parameters clamped to the domain.
+// A solve that converged off its face: solved again from the location where the surface
+// holds its point (DrapeSurface::settle: past a pole of the face, the face itself; on a
+// shell, a neighbour face). c.res changes only if that solve converges on the surface; the
+// iterations and evaluations count either way. Called right after Newton converged, before
+// any test that uses the normal there (past a pole the extended face's orientation flips).
 template <class Resid>
-void classify_converged(Ctx& c, Resid&& resid) {
+void settle(Ctx& c, Resid&& resid) {
+  if (c.s.contains(c.res.at)) return;
+  const SurfaceLocation other = c.s.settle(c.res.at, c.res.point, kSettleReachRel * c.st.spacing);
+  if (other == c.res.at) return;
+  const SolveResult before = c.res;
+  const SurfaceEval1 last = c.last;
+  if (newton(c, other, resid) && c.s.contains(c.res.at)) return;
+  const int iterations = c.res.iterations, evaluations = c.res.evaluations;
+  c.res = before;
+  c.last = last;
+  c.res.iterations = iterations;
+  c.res.evaluations = evaluations;
+}
+
+// Finishes a converged solve (settled already, see settle()): in-face test (one contains()
+// query). A solution a hair past a domain edge (a path along the edge, or a pole reached from
+// the extension beyond it) is on the face if the same point is reached with the parameters
+// clamped to the domain.
+void classify_converged(Ctx& c) {
   if (c.s.contains(c.res.at)) {
     c.res.status = SolveStatus::kConverged;
     return;
-  }
-  // Off its face but on another face of the surface (a shell's neighbour past a pole, or one
-  // the iterate reached without crossing a shared edge): solved again there, from the point's
-  // projection.
-  const SurfaceLocation other = c.s.settle(c.res.at, c.res.point, kSettleReachRel * c.st.spacing);
-  if (other != c.res.at) {
-    const SolveResult before = c.res;
-    const SurfaceEval1 last = c.last;
-    if (newton(c, other, resid) && c.s.contains(c.res.at)) {
-      c.res.status = SolveStatus::kConverged;
-      return;
-    }
-    c.res = before;
-    c.last = last;
   }
   const auto& d = c.s.domain(c.res.at);
   const Vec2& uv = c.res.at.uv;
@@ -364,53 +368,20 @@ UvDirection uv_direction_at(const DrapeSurface& surface, const SurfaceLocation& 
   // parameter whose remaining derivative points best along dir.
   const bool v_collapsed = e.dv.norm() * sp.x() <= e.du.norm() * sp.y();
   const auto& d = surface.domain(at);
-  const double lo = v_collapsed ? d.v0 : d.u0, hi = v_collapsed ? d.v1 : d.u1;
-  auto score = [&](double t) {
-    const SurfaceLocation q = at.with_uv(v_collapsed ? Vec2(uv.x(), t) : Vec2(t, uv.y()));
-    const SurfaceEval1 eq = surface.eval1(q);
-    const Vec3 g = v_collapsed ? eq.du : eq.dv;
-    // The edge is left towards the interior: at the domain end the derivative flips sign.
-    const double inward = v_collapsed ? ((uv.x() <= 0.5 * (d.u0 + d.u1)) ? 1.0 : -1.0)
-                                      : ((uv.y() <= 0.5 * (d.v0 + d.v1)) ? 1.0 : -1.0);
-    const double gn = g.norm();
-    return (eq.ok && gn > 0.0) ? inward * g.dot(dt) / (gn * dt.norm()) : -2.0;
-  };
-  double best_t = lo, best = -3.0;
-  for (int k = 0; k <= kEdgeSamples; ++k) {
-    const double t = lo + (hi - lo) * k / kEdgeSamples;
-    const double sc = score(t);
-    if (sc > best) {
-      best = sc;
-      best_t = t;
-    }
-  }
-  // Golden-section refinement in the bracket around the best sample.
-  double a = std::max(lo, best_t - (hi - lo) / kEdgeSamples);
-  double b = std::min(hi, best_t + (hi - lo) / kEdgeSamples);
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double x1 = b - g * (b - a), x2 = a + g * (b - a);
-  double f1 = score(x1), f2 = score(x2);
-  for (int k = 0; k < kEdgeRefinements; ++k) {
-    if (f1 > f2) {
-      b = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = b - g * (b - a);
-      f1 = score(x1);
-    } else {
-      a = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = a + g * (b - a);
-      f2 = score(x2);
-    }
-  }
-  const double t = (f1 > best || f2 > best) ? (f1 > f2 ? x1 : x2) : best_t;
-  if (std::max({best, f1, f2}) <= kMinFanCos) {
+  Pole edge;
+  edge.at = at;
+  edge.u_fixed = v_collapsed;
+  edge.lo = v_collapsed ? d.v0 : d.u0;
+  edge.hi = v_collapsed ? d.v1 : d.u1;
+  // The edge is left towards the interior: at the domain end the derivative flips sign.
+  edge.inward = v_collapsed ? ((uv.x() <= 0.5 * (d.u0 + d.u1)) ? 1.0 : -1.0)
+                            : ((uv.y() <= 0.5 * (d.v0 + d.v1)) ? 1.0 : -1.0);
+  const detail::FanFit fit = detail::fan_fit(surface, edge, dt);
+  if (fit.cos <= detail::kMinFanCos) {
     out.leaves_face = true;
     return out;
   }
-  out.from_at = at.with_uv(v_collapsed ? Vec2(uv.x(), t) : Vec2(t, uv.y()));
+  out.from_at = edge.on_edge(fit.t);
   const SurfaceEval1 ef = surface.eval1(out.from_at);
   const Vec3 gvec = v_collapsed ? ef.du : ef.dv;
   const double gn = gvec.norm();
@@ -480,6 +451,7 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
   auto solve_from = [&](const SurfaceLocation& guess) {
     setup_margins(c, ud.from_at, guess);
     if (!newton(c, guess, resid)) return false;
+    settle(c, resid);
     if ((c.res.point - x0).dot(t) > 0.0 || distinct_from_backward()) return true;
     c.res.status = SolveStatus::kFailed;
     c.res.reason = "converged backwards";
@@ -488,7 +460,7 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
   // Direct attempt from the first-order guess (eqs. 7-8).
   const SurfaceLocation guess = s.locate(ud.from_at, ud.from_at.uv + rho * ud.dir_uv);
   if (solve_from(guess)) {
-    classify_converged(c, resid);
+    classify_converged(c);
     return c.res;
   }
   // Leaving the face is the answer when the first-order model is trustworthy: the surface
@@ -515,7 +487,7 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
       }
     }
     if (ok) {
-      classify_converged(c, resid);
+      classify_converged(c);
       return c.res;
     }
     // A sub-step that fails where the curve, at the last sub-step or continued from it, is
@@ -668,6 +640,7 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
     c.margin = std::max(c.margin, st.tol.extension_steps * mb);
     c.max_step = std::max(c.max_step, kStepCapSteps * mb);
     if (!newton(c, g, resid)) return false;
+    settle(c, resid);
     if (!on_branch(c.res.point, face_normal(s, c.res.at, c.last), c.res.at)) {
       c.res.status = SolveStatus::kFailed;
       c.res.reason = "only the folded branch was found";
@@ -675,7 +648,7 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
     }
     const Vec3 pa = a - c.res.point, pb = b - c.res.point;
     c.res.thread_angle = std::atan2(pa.cross(pb).norm(), pa.dot(pb));
-    classify_converged(c, resid);
+    classify_converged(c);
     if (c.res.status == SolveStatus::kConverged && st.gamma_min > 0.0 &&
         (c.res.thread_angle < st.gamma_min || c.res.thread_angle > kPi - st.gamma_min)) {
       c.res.status = SolveStatus::kShearLimit;
@@ -788,7 +761,7 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
     c.last = ef;
     const Vec3 pa = a - c.res.point, pb = b - c.res.point;
     c.res.thread_angle = std::atan2(pa.cross(pb).norm(), pa.dot(pb));
-    classify_converged(c, resid);
+    classify_converged(c);
     if (c.res.status == SolveStatus::kConverged && st.gamma_min > 0.0 &&
         (c.res.thread_angle < st.gamma_min || c.res.thread_angle > kPi - st.gamma_min)) {
       c.res.status = SolveStatus::kShearLimit;

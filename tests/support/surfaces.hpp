@@ -3,6 +3,8 @@
 
 #include <plyfit/kernel/nurbs_surface.hpp>
 
+#include <cmath>
+
 namespace plyfit::support {
 
 /// A flat 20 x 20 patch [-10, 10]^2 at z = 0 with a wild parametrisation: bicubic, 7 x 7
@@ -41,6 +43,31 @@ inline NurbsSurfaceData roof(double s) {
   for (Vec3 p : {Vec3(-2, 0, 0), Vec3(-1, 0, 0.5), Vec3(0, 0, 1), Vec3(1, 0, 0.5), Vec3(2, 0, 0)}) {
     d.poles.push_back(s * (p + Vec3(0, -3, 0)));
     d.poles.push_back(s * (p + Vec3(0, 3, 0)));
+  }
+  return d;
+}
+
+/// A non-rational bicubic quarter dome with a pole: every pole of the first row (u = 0) is the
+/// apex (0, 0, h), so that edge collapses to one point; the second row lies in the plane z = h,
+/// so the apex is a smooth point with the tangent plane z = h (its fan of u-derivatives spans
+/// 90 degrees). The outer row has radius `size`. `transpose`: u and v swap roles (the collapsed
+/// edge is v = 0); `at_end`: the rows are reversed (the collapsed edge is u = 1, or v = 1).
+inline NurbsSurfaceData quarter_dome(double size, double h, bool transpose, bool at_end) {
+  constexpr double kQuarter = 1.5707963267948966;
+  NurbsSurfaceData d;
+  d.degree_u = d.degree_v = 3;
+  d.count_u = d.count_v = 4;
+  d.knots_u = d.knots_v = {0, 0, 0, 0, 1, 1, 1, 1};
+  d.poles.resize(16);
+  for (int i = 0; i < 4; ++i) {
+    const double rho = size * i / 3.0;
+    const double z = i <= 1 ? h : h - 0.3 * size * (i / 3.0) * (i / 3.0);
+    for (int j = 0; j < 4; ++j) {
+      const double t = kQuarter * j / 3.0;
+      const int row = at_end ? 3 - i : i;
+      d.pole(transpose ? j : row, transpose ? row : j) =
+          Vec3(rho * std::cos(t), rho * std::sin(t), z);
+    }
   }
   return d;
 }

@@ -141,6 +141,9 @@ struct DrapeOptions {
   double lock_angle = 1.5707963267948966;
   GuessRule guess = GuessRule::kExtrapolated;
   Tolerances tol;
+  /// Test every mapped node for landing on cloth already laid (status kOverlap). false skips
+  /// the test (the cloth may then lie on itself unflagged): only to measure its cost.
+  bool overlap_test = true;
   /// Stop (status partial) once this many nodes have been reached.
   std::uint64_t max_nodes = 50'000'000;
   /// Set by another thread to stop the drape (status partial, "cancelled").

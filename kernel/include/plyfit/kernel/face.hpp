@@ -31,6 +31,22 @@ struct SurfaceLocation {
   bool operator!=(const SurfaceLocation& o) const { return !(*this == o); }
 };
 
+/// A pole of a drape surface: an edge of one face's parameter domain that the surface
+/// collapses to one 3D point (a sphere's pole, a cone's apex, any NURBS whose first or last
+/// row of poles coincides). Near it (u, v) is polar: the solvers find points there through
+/// the fan of derivatives along the edge (Face::poles).
+struct Pole {
+  SurfaceLocation at;         ///< a location on the edge (its free parameter mid-range)
+  bool u_fixed = true;        ///< the edge is u = at.uv.x() (v runs along it), else v = at.uv.y()
+  double lo = 0.0, hi = 1.0;  ///< range of the free parameter along the edge
+  double inward = 1.0;        ///< sign of a step of the fixed parameter into the domain
+  Vec3 point = Vec3::Zero();  ///< the edge's one 3D point
+  /// The location on the edge at free parameter t.
+  SurfaceLocation on_edge(double t) const {
+    return at.with_uv(u_fixed ? Vec2(at.uv.x(), t) : Vec2(t, at.uv.y()));
+  }
+};
+
 /// Nearest point of a surface to a query point.
 struct Projection {
   SurfaceLocation at;
@@ -113,10 +129,11 @@ class DrapeSurface {
   virtual BBox3 bbox() const = 0;
   /// Area of face k (0 <= k < face_count()).
   virtual double face_area(std::int32_t k) const = 0;
-  /// The location of point p, which a solve reached at `at` off at's face, on another face
-  /// that holds it within `reach` (3D): a shell's neighbour past a pole the faces share, or
-  /// one reached without crossing their shared edge; `at` itself where no other face holds p
-  /// (one face: always).
+  /// The location of point p, which a solve reached at `at` off at's face, on the surface
+  /// where it holds p within `reach` (3D): on at's face itself when `at` lies past one of its
+  /// poles (the surface extended past a collapsed edge, as a sphere's, continues it across
+  /// the pole), on a shell's neighbour past a pole the faces share, or on one reached without
+  /// crossing their shared edge; `at` itself where no such location is found.
   virtual SurfaceLocation settle(const SurfaceLocation& at, const Vec3& p, double reach) const {
     (void)p;
     (void)reach;
@@ -241,6 +258,9 @@ class Face final : public DrapeSurface {
   double face_area(std::int32_t) const override { return area_; }
   std::int32_t face_count() const override { return 1; }
   std::vector<BoundaryLoop> boundary() const override;
+  SurfaceLocation settle(const SurfaceLocation& at, const Vec3& p, double reach) const override;
+  /// The face's poles: domain edges its surface collapses to one point (found once).
+  const std::vector<Pole>& poles() const { return poles_; }
 
  private:
   Face() = default;
@@ -258,6 +278,7 @@ class Face final : public DrapeSurface {
   BBox3 bbox_;
   double size_ = 1.0;
   Tolerances tol_;
+  std::vector<Pole> poles_;
   // Trim segments sorted into horizontal slabs for the crossing-number test.
   struct Seg {
     Vec2 a, b;
