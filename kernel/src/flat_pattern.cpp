@@ -11,6 +11,7 @@
 #include <optional>
 #include <set>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace plyfit {
 
@@ -137,15 +138,50 @@ class Builder {
 
   FlatPattern run() {
     solve_virtual_corners();
+    // Whole cells inside the face (one part, four corners on the surface, no boundary
+    // crossing on their edges) are not clipped: of their edges only those towards a cell that
+    // is not whole go to the union; the others cancel there against the whole neighbour's,
+    // so the outline is the same, vertex for vertex (issue 14: the boundary cells alone).
+    struct Whole {
+      std::int32_t i, j;
+      int v[4];
+    };
+    std::vector<Whole> whole;
+    std::unordered_set<std::uint64_t> whole_keys;
     for_each_touched_cell(
         r_,
         [&](std::int32_t i, std::int32_t j) {
-          for (const auto& part : cell_parts(ply_, i, j)) add_part(part);
+          const auto parts = cell_parts(ply_, i, j);
+          if (parts.size() == 1 && parts[0].size() == 4) {
+            Whole w{i, j, {}};
+            bool in = true;
+            for (int k = 0; k < 4; ++k) {
+              w.v[k] = node_vertex(parts[0][static_cast<std::size_t>(k)]);
+              const Vertex& x = verts_[static_cast<std::size_t>(w.v[k])];
+              in = in && x.in && x.has_uv;
+            }
+            bool crossed = false;
+            for (int k = 0; in && k < 4; ++k)
+              crossed = !crossings(w.v[k], w.v[(k + 1) % 4]).empty() || crossed;
+            if (in && !crossed) {
+              whole.push_back(w);
+              whole_keys.insert(NodeId::regular(i, j).key());
+              return;
+            }
+          }
+          for (const auto& part : parts) add_part(part);
         },
         1);
+    // Edge k of a whole cell (from corner k to k + 1, counter-clockwise: (i, j), (i + 1, j),
+    // (i + 1, j + 1), (i, j + 1)) borders the cell offset by kSide[k].
+    static constexpr int kSide[4][2] = {{0, -1}, {1, 0}, {0, 1}, {-1, 0}};
+    for (const Whole& w : whole)
+      for (int k = 0; k < 4; ++k)
+        if (!whole_keys.count(NodeId::regular(w.i + kSide[k][0], w.j + kSide[k][1]).key()))
+          edges_.push_back({w.v[k], w.v[(k + 1) % 4]});
     FlatPattern fp;
-    fp.outline = assemble(exact_);
-    fp.staircase = assemble(stair_);
+    fp.outline = assemble(exact_, edges_);
+    fp.staircase = assemble(stair_, edges_);
     for (const auto& l : fp.outline) {
       fp.area += l.hole ? -l.area : l.area;
       fp.perimeter += l.perimeter;
@@ -1126,21 +1162,22 @@ class Builder {
 
   // Boundary of the union of counter-clockwise polygons: edges shared by two polygons (in
   // opposite directions) cancel; the rest chain into loops, outer ones counter-clockwise.
-  std::vector<OutlineLoop> assemble(const std::vector<Polygon>& polys) const {
+  std::vector<OutlineLoop> assemble(const std::vector<Polygon>& polys,
+                                    const std::vector<std::pair<int, int>>& extra) const {
     const double merge = st_.tol.outline_merge_rel * ply_.d();
     std::map<std::pair<int, int>, int> edges;  // ordered: deterministic output
-    for (const auto& p : polys) {
-      for (std::size_t k = 0; k < p.size(); ++k) {
-        const int a = p[k], b = p[(k + 1) % p.size()];
-        if (a == b) continue;
-        auto rev = edges.find({b, a});
-        if (rev != edges.end()) {
-          if (--rev->second == 0) edges.erase(rev);
-        } else {
-          ++edges[{a, b}];
-        }
+    auto add = [&](int a, int b) {
+      if (a == b) return;
+      auto rev = edges.find({b, a});
+      if (rev != edges.end()) {
+        if (--rev->second == 0) edges.erase(rev);
+      } else {
+        ++edges[{a, b}];
       }
-    }
+    };
+    for (const auto& p : polys)
+      for (std::size_t k = 0; k < p.size(); ++k) add(p[k], p[(k + 1) % p.size()]);
+    for (const auto& [a, b] : extra) add(a, b);
     std::multimap<int, int> out;  // from -> to
     for (const auto& [e, c] : edges)
       for (int k = 0; k < c; ++k) out.emplace(e.first, e.second);
@@ -1233,6 +1270,9 @@ class Builder {
   double grid_cell_ = 1.0;
   std::unordered_map<std::uint64_t, std::vector<int>> piece_grid_;
   std::vector<Polygon> exact_, stair_;
+  // Edges of whole cells towards cells that are not whole: in both the outline and the
+  // staircase.
+  std::vector<std::pair<int, int>> edges_;
 };
 
 }  // namespace
