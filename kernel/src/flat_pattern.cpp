@@ -147,38 +147,54 @@ class Builder {
       int v[4];
     };
     std::vector<Whole> whole;
-    std::unordered_set<std::uint64_t> whole_keys;
+    std::vector<char> whole_at(r_.nodes.size(), 0);  // by the drape index of corner (i, j)
+    // Cells farther than this from the base path's line are never split by it (their parts
+    // are the four corners: see visit_mapped_cells).
+    const double dx = ply_.spec().d_weft, dy = ply_.spec().d_warp;
+    const Vec2 o = ply_.spec().start, dir = ply_.base_dir();
+    const double strip = 2.5 * std::hypot(dx, dy);
+    std::vector<NodeId> ring(4);
     for_each_touched_cell(
         r_,
         [&](std::int32_t i, std::int32_t j) {
-          const auto parts = cell_parts(ply_, i, j);
-          if (parts.size() == 1 && parts[0].size() == 4) {
+          const NodeId corner[4] = {NodeId::regular(i, j), NodeId::regular(i + 1, j),
+                                    NodeId::regular(i + 1, j + 1), NodeId::regular(i, j + 1)};
+          const DrapeNode* n0 = r_.find(corner[0]);
+          bool mapped = n0 && n0->mapped();
+          for (int k = 1; mapped && k < 4; ++k) {
+            const DrapeNode* n = r_.find(corner[k]);
+            mapped = n && n->mapped();
+          }
+          const Vec2 c((i + 0.5) * dx, (j + 0.5) * dy);
+          if (mapped && std::abs(cross2(dir, c - o)) > strip) {
             Whole w{i, j, {}};
             bool in = true;
             for (int k = 0; k < 4; ++k) {
-              w.v[k] = node_vertex(parts[0][static_cast<std::size_t>(k)]);
+              w.v[k] = node_vertex(corner[k]);
               const Vertex& x = verts_[static_cast<std::size_t>(w.v[k])];
               in = in && x.in && x.has_uv;
             }
-            bool crossed = false;
-            for (int k = 0; in && k < 4; ++k)
-              crossed = !crossings(w.v[k], w.v[(k + 1) % 4]).empty() || crossed;
-            if (in && !crossed) {
+            if (in && !cell_crossed(w.v)) {
               whole.push_back(w);
-              whole_keys.insert(NodeId::regular(i, j).key());
+              whole_at[static_cast<std::size_t>(n0 - r_.nodes.data())] = 1;
               return;
             }
+            ring.assign(corner, corner + 4);
+            add_part(ring);
+            return;
           }
-          for (const auto& part : parts) add_part(part);
+          for (const auto& part : cell_parts(ply_, i, j)) add_part(part);
         },
         1);
     // Edge k of a whole cell (from corner k to k + 1, counter-clockwise: (i, j), (i + 1, j),
     // (i + 1, j + 1), (i, j + 1)) borders the cell offset by kSide[k].
     static constexpr int kSide[4][2] = {{0, -1}, {1, 0}, {0, 1}, {-1, 0}};
     for (const Whole& w : whole)
-      for (int k = 0; k < 4; ++k)
-        if (!whole_keys.count(NodeId::regular(w.i + kSide[k][0], w.j + kSide[k][1]).key()))
+      for (int k = 0; k < 4; ++k) {
+        const auto nb = r_.index.find(NodeId::regular(w.i + kSide[k][0], w.j + kSide[k][1]));
+        if (nb < 0 || !whole_at[static_cast<std::size_t>(nb)])
           edges_.push_back({w.v[k], w.v[(k + 1) % 4]});
+      }
     FlatPattern fp;
     fp.outline = assemble(exact_, edges_);
     fp.staircase = assemble(stair_, edges_);
@@ -804,6 +820,32 @@ class Builder {
     Vec3 off = e.p - 0.5 * (P.p3 + Q.p3);
     off -= n.n * n.n.dot(off);
     return off.norm() > kBentEdge * dmax_;
+  }
+
+  // True when an edge of the cell with corners v[0..3] (all on the surface) may cross the
+  // boundary: its crossings, computed (and kept) when the cell's box in (u, v) meets a
+  // boundary segment, or near a pole, or across faces; false at once otherwise (the edges'
+  // own queries, within that box, would find none).
+  bool cell_crossed(const int* v) {
+    const Vertex& c0 = verts_[static_cast<std::size_t>(v[0])];
+    bool quick = true;
+    Vec2 lo = c0.at.uv, hi = c0.at.uv;
+    for (int k = 0; quick && k < 4; ++k) {
+      const Vertex& x = verts_[static_cast<std::size_t>(v[k])];
+      quick = !x.pole && s_.same_chart(c0.at, x.at) && !near_pole(x.p3);
+      const Vec2 p = c0.at.uv + s_.delta(c0.at, x.at);
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    if (quick) {
+      bool any = false;
+      index_.near(c0.at.face, lo, hi,
+                  [&](const Vec2&, const Vec2&, const BoundaryIndex::Ref&) { any = true; });
+      if (!any) return false;
+    }
+    bool crossed = false;
+    for (int k = 0; k < 4; ++k) crossed = !crossings(v[k], v[(k + 1) % 4]).empty() || crossed;
+    return crossed;
   }
 
   // Sets the boundary segment and parameter of a crossing found by bisection: the nearest
