@@ -389,7 +389,11 @@ class Builder {
       v.at = p->at;
       v.p3 = p->point;
       v.in = p->in;
-      const SurfaceEval1 e = s_.eval1(v.at);
+      // A pole is a collapsed edge of the boundary (find_poles): nodes away from those are
+      // none (no evaluation).
+      SurfaceEval1 e;
+      e.ok = false;
+      if (near_pole(v.p3)) e = s_.eval1(v.at);
       v.pole = e.ok && s_.degenerate(v.at, e);
       if (v.pole) {  // the collapsed direction is the one whose derivative vanishes
         const Vec2 sp = s_.speeds(v.at);
