@@ -70,7 +70,8 @@ std::string report_json(const ExportContext& ctx) {
   face["area"] = ctx.face.area();
   face["bbox"] = {{"min", vec(ctx.face.bbox().min)}, {"max", vec(ctx.face.bbox().max)}};
   j["mold"] = {{"unit", ctx.run.mold_unit}, {"face", face}, {"warnings", ctx.run.warnings}};
-  j["start"] = {{"point", vec(r.start_point)}, {"uv", vec(r.start_uv)}, {"moved", r.start_moved}};
+  j["start"] = {
+      {"point", vec(r.start_point)}, {"uv", vec(r.start_at.uv)}, {"moved", r.start_moved}};
   j["base_tangent"] = vec(r.base_tangent);
   j["nodes"] = {{"mapped", m.nodes.mapped},           {"auxiliary", m.nodes.auxiliary},
                 {"outside", m.nodes.outside},         {"off_ply", m.nodes.off_ply},

@@ -23,6 +23,9 @@ constexpr double kProjectDampingStart = 1e-6;
 constexpr double kProjectDampingUp = 8.0;
 constexpr double kProjectDampingDown = 0.25;
 constexpr double kProjectMaxDamping = 1e16;
+// A boundary segment shorter than this in 3D, relative to the face size, is a collapsed edge
+// (a pole): no boundary of the face.
+constexpr double kCollapsedRel = 1e-9;
 
 // Distinct knot values inside the domain: the breakpoints of the polynomial pieces.
 std::vector<double> breakpoints(const std::vector<double>& knots, double a, double b) {
@@ -73,6 +76,37 @@ std::vector<std::vector<Vec2>> Face::boundary_loops() const {
     return out;
   }
   for (const auto& l : loops_) out.push_back(l.points);
+  return out;
+}
+
+std::vector<BoundaryLoop> Face::boundary() const {
+  std::vector<BoundaryLoop> out;
+  const auto& d = domain();
+  // On-seam test: rounding of the domain's bounds.
+  const double eu = d.width_u() * tol_.param_rel, ev = d.width_v() * tol_.param_rel;
+  auto on = [](double x, double y, double e) { return std::abs(x - y) <= e; };
+  for (const auto& loop : boundary_loops()) {
+    BoundaryLoop b;
+    const size_t n = loop.size();
+    for (size_t k = 0; k < n; ++k) {
+      const Vec2 a = loop[k], c = loop[(k + 1) % n];
+      b.points.emplace_back(a);
+      BoundaryLoop::Kind kind = BoundaryLoop::kEdge;
+      if ((closed_u_ && ((on(a.x(), d.u0, eu) && on(c.x(), d.u0, eu)) ||
+                         (on(a.x(), d.u1, eu) && on(c.x(), d.u1, eu)))) ||
+          (closed_v_ && ((on(a.y(), d.v0, ev) && on(c.y(), d.v0, ev)) ||
+                         (on(a.y(), d.v1, ev) && on(c.y(), d.v1, ev))))) {
+        kind = BoundaryLoop::kSeam;
+      } else {
+        const SurfaceEval1 ea = eval1(a), em = eval1(0.5 * (a + c)), ec = eval1(c);
+        const double len = (em.p - ea.p).norm() + (ec.p - em.p).norm();
+        if (ea.ok && em.ok && ec.ok && len <= kCollapsedRel * size_)
+          kind = BoundaryLoop::kCollapsed;
+      }
+      b.kinds.push_back(kind);
+    }
+    out.push_back(std::move(b));
+  }
   return out;
 }
 
@@ -155,18 +189,18 @@ Vec2 Face::delta(const Vec2& from, const Vec2& to) const {
   return d;
 }
 
-SurfaceEval1 Face::eval1(const Vec2& uv) const {
-  const Vec2 w = wrap(uv);
+SurfaceEval1 Face::eval1(const SurfaceLocation& at) const {
+  const Vec2 w = wrap(at.uv);
   return surface_->eval1(w.x(), w.y());
 }
 
-SurfaceEval2 Face::eval2(const Vec2& uv) const {
-  const Vec2 w = wrap(uv);
+SurfaceEval2 Face::eval2(const SurfaceLocation& at) const {
+  const Vec2 w = wrap(at.uv);
   return surface_->eval2(w.x(), w.y());
 }
 
-SurfaceNormal Face::normal(const Vec2& uv) const {
-  const Vec2 w = wrap(uv);
+SurfaceNormal Face::normal(const SurfaceLocation& at) const {
+  const Vec2 w = wrap(at.uv);
   SurfaceNormal n = surface_->normal(w.x(), w.y());
   if (reversed_) n.n = -n.n;
   return n;
@@ -256,78 +290,87 @@ Projection Face::project(const Vec3& p) const {
   std::partial_sort(order.begin(), order.begin() + nseed, order.end(), [&](size_t a, size_t b) {
     return (samples[a].second - p).squaredNorm() < (samples[b].second - p).squaredNorm();
   });
-  const auto& d = domain();
-  const Eigen::Array2d width(d.width_u(), d.width_v());
   for (size_t si = 0; si < nseed; ++si) {
-    Vec2 uv = samples[order[si]].first;
-    double dist = (samples[order[si]].second - p).norm();
-    // Levenberg-Marquardt on |S(u, v) - p|^2 with Marquardt scaling: the full Hessian where
-    // it is positive definite, Gauss-Newton elsewhere; damping grows when a step is refused
-    // (longer distance or off the face) and shrinks when one is taken.
-    double lambda = 0.0;
-    for (int it = 0; it < kProjectMaxIterations; ++it) {
-      const SurfaceEval2 e = eval2(uv);
-      if (!e.ok) break;
-      const Vec3 r = e.p - p;
-      const Vec2 g(e.du.dot(r), e.dv.dot(r));
-      Eigen::Matrix2d A;
-      A << e.du.dot(e.du), e.du.dot(e.dv), e.du.dot(e.dv), e.dv.dot(e.dv);
-      Eigen::Matrix2d H = A;
-      H(0, 0) += r.dot(e.duu);
-      H(0, 1) += r.dot(e.duv);
-      H(1, 0) += r.dot(e.duv);
-      H(1, 1) += r.dot(e.dvv);
-      if (!(H.determinant() > 0.0 && H(0, 0) > 0.0)) H = A;
-      const Vec2 D(std::max(A(0, 0), 1e-300), std::max(A(1, 1), 1e-300));
-      bool taken = false, converged = false;
-      while (lambda < kProjectMaxDamping) {
-        // Solve in Jacobi-scaled variables: |Su| and |Sv| may differ by many orders.
-        const Vec2 sc(1.0 / std::sqrt(D.x()), 1.0 / std::sqrt(D.y()));
-        Eigen::Matrix2d M = sc.asDiagonal() * H * sc.asDiagonal();
-        M(0, 0) += lambda;
-        M(1, 1) += lambda;
-        const Vec2 step = -(sc.asDiagonal() * M.fullPivLu().solve(sc.asDiagonal() * g)).eval();
-        if (!step.allFinite()) break;
-        Vec2 cand = uv + step;
-        if (!closed_u_) cand.x() = std::clamp(cand.x(), d.u0, d.u1);
-        if (!closed_v_) cand.y() = std::clamp(cand.y(), d.v0, d.v1);
-        cand = wrap(cand);
-        const bool tiny = (delta(uv, cand).cwiseAbs().array() <= tol_.param_rel * width).all();
-        if (tiny) {
-          converged = true;
-          break;
-        }
-        if (contains(cand)) {
-          const SurfaceEval1 c = eval1(cand);
-          const double cd = (c.p - p).norm();
-          // Near the minimum a step of length h changes the distance by O(h^2), below its
-          // rounding: there, a step that keeps the distance and shrinks the (scaled)
-          // gradient is progress too.
-          const Vec3 rc = c.p - p;
-          const double gc =
-              std::hypot(c.du.dot(rc) / std::sqrt(D.x()), c.dv.dot(rc) / std::sqrt(D.y()));
-          const double g0 = std::hypot(g.x() / std::sqrt(D.x()), g.y() / std::sqrt(D.y()));
-          const bool flat = cd <= dist + tol_.roundoff_rel * (p.norm() + dist + size_);
-          if (c.ok && (cd < dist || (flat && gc < g0))) {
-            uv = cand;
-            dist = cd;
-            taken = true;
-            lambda *= kProjectDampingDown;
-            break;
-          }
-        }
-        lambda = lambda == 0.0 ? kProjectDampingStart : lambda * kProjectDampingUp;
-      }
-      if (!taken || converged) break;
-    }
-    if (!best.ok || dist < best.distance) {
-      best.uv = uv;
-      best.point = eval1(uv).p;
-      best.distance = dist;
-      best.ok = true;
-    }
+    const Projection q = project_from(p, samples[order[si]].first, true);
+    if (q.ok && (!best.ok || q.distance < best.distance)) best = q;
   }
   return best;
+}
+
+Projection Face::project_from(const Vec3& p, const Vec2& seed, bool on_face) const {
+  Projection out;
+  const auto& d = domain();
+  const Eigen::Array2d width(d.width_u(), d.width_v());
+  Vec2 uv = wrap(seed);
+  if (!closed_u_) uv.x() = std::clamp(uv.x(), d.u0, d.u1);
+  if (!closed_v_) uv.y() = std::clamp(uv.y(), d.v0, d.v1);
+  const SurfaceEval1 e0 = eval1(uv);
+  if (!e0.ok) return out;
+  double dist = (e0.p - p).norm();
+  // Levenberg-Marquardt on |S(u, v) - p|^2 with Marquardt scaling: the full Hessian where
+  // it is positive definite, Gauss-Newton elsewhere; damping grows when a step is refused
+  // (longer distance or off the face) and shrinks when one is taken.
+  double lambda = 0.0;
+  for (int it = 0; it < kProjectMaxIterations; ++it) {
+    const SurfaceEval2 e = eval2(uv);
+    if (!e.ok) break;
+    const Vec3 r = e.p - p;
+    const Vec2 g(e.du.dot(r), e.dv.dot(r));
+    Eigen::Matrix2d A;
+    A << e.du.dot(e.du), e.du.dot(e.dv), e.du.dot(e.dv), e.dv.dot(e.dv);
+    Eigen::Matrix2d H = A;
+    H(0, 0) += r.dot(e.duu);
+    H(0, 1) += r.dot(e.duv);
+    H(1, 0) += r.dot(e.duv);
+    H(1, 1) += r.dot(e.dvv);
+    if (!(H.determinant() > 0.0 && H(0, 0) > 0.0)) H = A;
+    const Vec2 D(std::max(A(0, 0), 1e-300), std::max(A(1, 1), 1e-300));
+    bool taken = false, converged = false;
+    while (lambda < kProjectMaxDamping) {
+      // Solve in Jacobi-scaled variables: |Su| and |Sv| may differ by many orders.
+      const Vec2 sc(1.0 / std::sqrt(D.x()), 1.0 / std::sqrt(D.y()));
+      Eigen::Matrix2d M = sc.asDiagonal() * H * sc.asDiagonal();
+      M(0, 0) += lambda;
+      M(1, 1) += lambda;
+      const Vec2 step = -(sc.asDiagonal() * M.fullPivLu().solve(sc.asDiagonal() * g)).eval();
+      if (!step.allFinite()) break;
+      Vec2 cand = uv + step;
+      if (!closed_u_) cand.x() = std::clamp(cand.x(), d.u0, d.u1);
+      if (!closed_v_) cand.y() = std::clamp(cand.y(), d.v0, d.v1);
+      cand = wrap(cand);
+      const bool tiny = (delta(uv, cand).cwiseAbs().array() <= tol_.param_rel * width).all();
+      if (tiny) {
+        converged = true;
+        break;
+      }
+      if (!on_face || contains(cand)) {
+        const SurfaceEval1 c = eval1(cand);
+        const double cd = (c.p - p).norm();
+        // Near the minimum a step of length h changes the distance by O(h^2), below its
+        // rounding: there, a step that keeps the distance and shrinks the (scaled)
+        // gradient is progress too.
+        const Vec3 rc = c.p - p;
+        const double gc =
+            std::hypot(c.du.dot(rc) / std::sqrt(D.x()), c.dv.dot(rc) / std::sqrt(D.y()));
+        const double g0 = std::hypot(g.x() / std::sqrt(D.x()), g.y() / std::sqrt(D.y()));
+        const bool flat = cd <= dist + tol_.roundoff_rel * (p.norm() + dist + size_);
+        if (c.ok && (cd < dist || (flat && gc < g0))) {
+          uv = cand;
+          dist = cd;
+          taken = true;
+          lambda *= kProjectDampingDown;
+          break;
+        }
+      }
+      lambda = lambda == 0.0 ? kProjectDampingStart : lambda * kProjectDampingUp;
+    }
+    if (!taken || converged) break;
+  }
+  out.at = SurfaceLocation(uv);
+  out.point = eval1(uv).p;
+  out.distance = dist;
+  out.ok = true;
+  return out;
 }
 
 }  // namespace plyfit

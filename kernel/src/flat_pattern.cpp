@@ -15,9 +15,6 @@ namespace plyfit {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-// A boundary segment shorter than this in 3D, relative to the face size, is a collapsed
-// edge (a pole).
-constexpr double kCollapsedRel = 1e-9;
 // Bisection steps for a boundary crossing along a cell edge (2^-60 of the edge), used where
 // the segment intersections disagree with contains() (a node on the boundary itself).
 constexpr int kCrossingBisections = 60;
@@ -29,26 +26,26 @@ constexpr double kVirtualExtensionSteps = 4.0;
 // Cells of the grid index over boundary segments, per direction (at most).
 constexpr int kGridMax = 256;
 
-// Per boundary-loop vertex: does it lie on a collapsed edge (a segment of no 3D length, as
-// a pole's domain edge)? Such edges are no boundary of the face: crossings with them are
-// artefacts of the parametrisation and their vertices are no corners.
-std::vector<std::vector<bool>> collapsed_vertices(const DrapeSurface& s,
-                                                  const std::vector<std::vector<Vec2>>& loops,
-                                                  std::vector<std::vector<bool>>& segments) {
+// The boundary loops' (u, v) points, and per vertex: does it lie on a collapsed edge (a
+// segment of no 3D length, as a pole's domain edge)? Such edges are no boundary of the face:
+// crossings with them are artefacts of the parametrisation and their vertices are no corners.
+std::vector<std::vector<Vec2>> loop_points(const std::vector<BoundaryLoop>& boundary) {
+  std::vector<std::vector<Vec2>> out;
+  for (const auto& b : boundary) {
+    std::vector<Vec2> L;
+    for (const auto& p : b.points) L.push_back(p.uv);
+    out.push_back(std::move(L));
+  }
+  return out;
+}
+std::vector<std::vector<bool>> collapsed_vertices(const std::vector<BoundaryLoop>& boundary) {
   std::vector<std::vector<bool>> out;
-  segments.clear();
-  for (const auto& L : loops) {
-    const std::size_t n = L.size();
-    std::vector<bool> v(n, false), g(n, false);
-    for (std::size_t k = 0; k < n; ++k) {
-      const Vec2 a = L[k], b = L[(k + 1) % n];
-      const SurfaceEval1 ea = s.eval1(a), em = s.eval1(0.5 * (a + b)), eb = s.eval1(b);
-      const double len = (em.p - ea.p).norm() + (eb.p - em.p).norm();
-      if (ea.ok && em.ok && eb.ok && len <= kCollapsedRel * s.size())
-        g[k] = v[k] = v[(k + 1) % n] = true;
-    }
+  for (const auto& b : boundary) {
+    const std::size_t n = b.points.size();
+    std::vector<bool> v(n, false);
+    for (std::size_t k = 0; k < n; ++k)
+      if (b.kinds[k] == BoundaryLoop::kCollapsed) v[k] = v[(k + 1) % n] = true;
     out.push_back(std::move(v));
-    segments.push_back(std::move(g));
   }
   return out;
 }
@@ -74,24 +71,15 @@ class BoundaryIndex {
     int loop, index;  // position in the boundary loops
   };
 
-  BoundaryIndex(const DrapeSurface& s, const std::vector<std::vector<Vec2>>& loops,
-                const std::vector<std::vector<bool>>& collapsed) {
-    const auto& d = s.domain();
-    const bool cu = s.wrap(Vec2(d.u1 + 0.5 * d.width_u(), d.v0)).x() <= d.u1;
-    const bool cv = s.wrap(Vec2(d.u0, d.v1 + 0.5 * d.width_v())).y() <= d.v1;
-    const double eu = d.width_u() * 1e-12, ev = d.width_v() * 1e-12;  // on-seam test, rounding
-    for (int l = 0; l < static_cast<int>(loops.size()); ++l) {
-      const auto& L = loops[l];
+  BoundaryIndex(const DrapeSurface& s, const std::vector<BoundaryLoop>& boundary) {
+    const auto& d = s.domain(SurfaceLocation());
+    const bool cu = s.wrap(Vec2(d.u1 + 0.5 * d.width_u(), d.v0)).uv.x() <= d.u1;
+    const bool cv = s.wrap(Vec2(d.u0, d.v1 + 0.5 * d.width_v())).uv.y() <= d.v1;
+    for (int l = 0; l < static_cast<int>(boundary.size()); ++l) {
+      const auto& L = boundary[l].points;
       for (int k = 0; k < static_cast<int>(L.size()); ++k) {
-        if (collapsed[l][k]) continue;
-        const Vec2 a = L[k], b = L[(k + 1) % L.size()];
-        auto on = [](double x, double y, double e) { return std::abs(x - y) <= e; };
-        if (cu && ((on(a.x(), d.u0, eu) && on(b.x(), d.u0, eu)) ||
-                   (on(a.x(), d.u1, eu) && on(b.x(), d.u1, eu))))
-          continue;
-        if (cv && ((on(a.y(), d.v0, ev) && on(b.y(), d.v0, ev)) ||
-                   (on(a.y(), d.v1, ev) && on(b.y(), d.v1, ev))))
-          continue;
+        if (boundary[l].kinds[k] != BoundaryLoop::kEdge) continue;
+        const Vec2 a = L[k].uv, b = L[(k + 1) % L.size()].uv;
         for (int su = cu ? -1 : 0; su <= (cu ? 1 : 0); ++su)
           for (int sv = cv ? -1 : 0; sv <= (cv ? 1 : 0); ++sv) {
             const Vec2 sh(su * d.width_u(), sv * d.width_v());
@@ -167,9 +155,10 @@ class Builder {
       : s_(s),
         r_(r),
         ply_(*r.ply),
-        loops_(s.boundary_loops()),
-        collapsed_(collapsed_vertices(s, loops_, collapsed_segments_)),
-        index_(s, loops_, collapsed_segments_),
+        boundary_(s.boundary()),
+        loops_(loop_points(boundary_)),
+        collapsed_(collapsed_vertices(boundary_)),
+        index_(s, boundary_),
         drape_vertices_(r.nodes.size(), -1) {
     st_.spacing = ply_.d();
     st_.gamma_min = 0.0;
@@ -309,7 +298,7 @@ class Builder {
   // another reason).
   bool accept_virtual(const NodeId& id, const SolveResult& res) {
     if (!(res.status == SolveStatus::kLeftFace && res.extended)) return false;
-    virtual_[id.key()] = Position{res.uv, res.point, false};
+    virtual_[id.key()] = Position{res.at.uv, res.point, false};
     return true;
   }
 
@@ -374,9 +363,9 @@ class Builder {
       v.uv = p->uv;
       v.in = p->in;
       const SurfaceEval1 e = s_.eval1(v.uv);
-      v.pole = e.ok && s_.degenerate(e);
+      v.pole = e.ok && s_.degenerate(v.uv, e);
       if (v.pole) {  // the collapsed direction is the one whose derivative vanishes
-        const Vec2 sp = s_.speeds();
+        const Vec2 sp = s_.speeds(v.uv);
         v.free = e.dv.norm() * sp.x() <= e.du.norm() * sp.y() ? 1 : 0;
       }
     }
@@ -421,7 +410,7 @@ class Builder {
       for (double t : ts) {
         Vertex x;
         x.p2 = P.p2 + t * (Q.p2 - P.p2);
-        x.uv = s_.wrap(pu + t * (qu - pu));
+        x.uv = s_.wrap(pu + t * (qu - pu)).uv;
         x.has_uv = x.in = true;
         verts_.push_back(x);
         ids.push_back(static_cast<int>(verts_.size()) - 1);
@@ -593,7 +582,7 @@ class Builder {
     std::vector<int> out;
     for (const Vec2& p : best) {
       Vertex v;
-      v.uv = s_.wrap(p);
+      v.uv = s_.wrap(p).uv;
       v.has_uv = v.in = true;
       v.p2 = to_ply(poly, uvw, p);
       verts_.push_back(v);
@@ -687,9 +676,9 @@ class Builder {
   const DrapeSurface& s_;
   const DrapeResult& r_;
   const Ply& ply_;
+  std::vector<BoundaryLoop> boundary_;
   std::vector<std::vector<Vec2>> loops_;
-  std::vector<std::vector<bool>> collapsed_segments_;  // per loop segment: collapsed
-  std::vector<std::vector<bool>> collapsed_;           // per loop vertex: on a collapsed edge
+  std::vector<std::vector<bool>> collapsed_;  // per loop vertex: on a collapsed edge
   BoundaryIndex index_;
   SolverSettings st_;
   std::vector<Vertex> verts_;

@@ -34,10 +34,10 @@ constexpr double kTangentPlaneSin = 1e-6;
 // iterate already past the domain edge, ends the solve with "left the face".
 constexpr int kOutsideStrikes = 2;
 
-Vec3 face_normal(const DrapeSurface& s, const Vec2& uv, const SurfaceEval1& e) {
+Vec3 face_normal(const DrapeSurface& s, const SurfaceLocation& at, const SurfaceEval1& e) {
   // The limit normal at poles, else the normalised cross product with the face orientation.
-  if (s.degenerate(e)) return s.normal(uv).n;
-  return s.orientation() * e.du.cross(e.dv).normalized();
+  if (s.degenerate(at, e)) return s.normal(at).n;
+  return s.orientation(at) * e.du.cross(e.dv).normalized();
 }
 
 // Least-squares (u, v) direction a with J a = dir_t, scaled to |J a| = 1.
@@ -58,24 +58,26 @@ bool metric_direction(const SurfaceEval1& e, const Vec3& dir, Vec2& a) {
 }
 
 // Parameter-space lengths are measured in "scaled" units, (du * speed_u, dv * speed_v),
-// speed = the surface's characteristic |dS/du|, |dS/dv|: about model units, and invariant
+// speed = the face's characteristic |dS/du|, |dS/dv|: about model units, and invariant
 // to reparametrising u or v by a constant factor.
 struct Ctx {
-  Ctx(const DrapeSurface& surface, const SolverSettings& settings)
-      : s(surface), st(settings), speeds(surface.speeds()) {}
+  Ctx(const DrapeSurface& surface, const SolverSettings& settings) : s(surface), st(settings) {}
   const DrapeSurface& s;
   const SolverSettings& st;
-  Vec2 speeds;
-  double eps = 0.0;            // residual tolerance (model units)
-  Vec2 anchor = Vec2::Zero();  // (u, v) of the known point the step starts from
-  double margin = 0.0;         // allowed excursion past the domain, scaled units
-  double max_step = 0.0;       // Newton step cap, scaled units
+  double eps = 0.0;        // residual tolerance (model units)
+  SurfaceLocation anchor;  // the known point the step starts from
+  double margin = 0.0;     // allowed excursion past the domain, scaled units
+  double max_step = 0.0;   // Newton step cap, scaled units
   SolveResult res;
   SurfaceEval1 last;  // evaluation at the last Newton iterate (the solution if converged)
-  double scaled_norm(const Vec2& duv) const { return duv.cwiseProduct(speeds).norm(); }
-  bool within_margin(const Vec2& uv) const {
-    const Vec2 w = s.wrap(uv);  // closed directions come back inside; open ones unchanged
-    return s.domain().contains(w.x(), w.y(), margin / speeds.x(), margin / speeds.y());
+  // Length of a parameter step of face `face`.
+  double scaled_norm(const SurfaceLocation& chart, const Vec2& duv) const {
+    return duv.cwiseProduct(s.speeds(chart)).norm();
+  }
+  bool within_margin(const SurfaceLocation& at) const {
+    const SurfaceLocation w = s.wrap(at);  // closed directions come back inside
+    const Vec2 sp = s.speeds(w);
+    return s.domain(w).contains(w.uv.x(), w.uv.y(), margin / sp.x(), margin / sp.y());
   }
 };
 
@@ -83,15 +85,15 @@ struct Ctx {
 // Returns true on convergence (|f1| + |f2| < eps); fills ctx.res with the point, counts and,
 // on failure, status and reason.
 template <class Resid>
-bool newton(Ctx& c, Vec2 uv, Resid&& resid) {
+bool newton(Ctx& c, SurfaceLocation at, Resid&& resid) {
   const int max_it = c.st.tol.newton_max_iterations;
-  SurfaceEval1 e = c.s.eval1(uv);
+  SurfaceEval1 e = c.s.eval1(at);
   ++c.res.evaluations;
   // A guess where the surface is undefined or beyond the margin is pulled back towards the
   // known point.
-  for (int h = 0; h < c.st.tol.line_search_max_halvings && (!e.ok || !c.within_margin(uv)); ++h) {
-    uv = c.anchor + 0.5 * c.s.delta(c.anchor, uv);
-    e = c.s.eval1(uv);
+  for (int h = 0; h < c.st.tol.line_search_max_halvings && (!e.ok || !c.within_margin(at)); ++h) {
+    at = c.s.locate(c.anchor, c.anchor.uv + 0.5 * c.s.delta(c.anchor, at));
+    e = c.s.eval1(at);
     ++c.res.evaluations;
   }
   if (!e.ok) {
@@ -107,7 +109,7 @@ bool newton(Ctx& c, Vec2 uv, Resid&& resid) {
   for (int it = 0;; ++it) {
     if (!(r == r) || !f.allFinite()) break;  // defensive: never iterate on NaN
     if (r < c.eps) {
-      c.res.uv = c.s.wrap(uv);
+      c.res.at = c.s.wrap(at);
       c.res.point = e.p;
       c.res.residual = r;
       c.res.iterations += it;
@@ -118,7 +120,7 @@ bool newton(Ctx& c, Vec2 uv, Resid&& resid) {
       c.res.iterations += it;
       c.res.status = SolveStatus::kFailed;
       c.res.reason = "no convergence within the iteration cap";
-      c.res.uv = c.s.wrap(uv);
+      c.res.at = c.s.wrap(at);
       c.res.point = e.p;
       c.res.residual = r;
       return false;
@@ -144,18 +146,18 @@ bool newton(Ctx& c, Vec2 uv, Resid&& resid) {
       c.res.reason = "degenerate Jacobian";
       return false;
     }
-    const double sn = c.scaled_norm(step);
+    const double sn = c.scaled_norm(at, step);
     if (sn > c.max_step) step *= c.max_step / sn;
-    if (!c.within_margin(uv + step)) {
+    if (!c.within_margin(c.s.locate(at, at.uv + step))) {
       // Only an iterate already past the domain edge, still pushed further out, has left;
       // an overshoot from inside is nonlinearity, and the line search shortens it.
-      const Vec2 w = c.s.wrap(uv);
-      const bool past_edge = !c.s.domain().contains(w.x(), w.y());
+      const SurfaceLocation w = c.s.wrap(at);
+      const bool past_edge = !c.s.domain(w).contains(w.uv.x(), w.uv.y());
       if (++outside_strikes >= kOutsideStrikes && past_edge) {
         c.res.iterations += it + 1;
         c.res.status = SolveStatus::kLeftFace;
         c.res.reason = "iterate";
-        c.res.uv = c.s.wrap(uv);
+        c.res.at = c.s.wrap(at);
         c.res.point = e.p;
         c.res.residual = r;
         return false;
@@ -167,7 +169,7 @@ bool newton(Ctx& c, Vec2 uv, Resid&& resid) {
     const double phi = f.squaredNorm();
     bool accepted = false;
     for (int h = 0; h <= c.st.tol.line_search_max_halvings; ++h, step *= 0.5) {
-      const Vec2 cand = uv + step;
+      const SurfaceLocation cand = c.s.locate(at, at.uv + step);
       if (!c.within_margin(cand)) continue;
       const SurfaceEval1 e2 = c.s.eval1(cand);
       ++c.res.evaluations;
@@ -176,7 +178,7 @@ bool newton(Ctx& c, Vec2 uv, Resid&& resid) {
       Eigen::Matrix2d J2;
       resid(e2, f2, J2);
       if (f2.squaredNorm() < phi) {
-        uv = cand;
+        at = cand;
         e = e2;
         f = f2;
         J = J2;
@@ -189,7 +191,7 @@ bool newton(Ctx& c, Vec2 uv, Resid&& resid) {
       c.res.iterations += it + 1;
       c.res.status = SolveStatus::kFailed;
       c.res.reason = "no intersection (the residual stopped decreasing)";
-      c.res.uv = c.s.wrap(uv);
+      c.res.at = c.s.wrap(at);
       c.res.point = e.p;
       c.res.residual = r;
       return false;
@@ -214,17 +216,19 @@ double residual_tolerance(const DrapeSurface& s, const SolverSettings& st, const
 // a domain edge (a path along the edge, or a pole reached from the extension beyond it) is
 // on the face if the same point is reached with the parameters clamped to the domain.
 void classify_converged(Ctx& c) {
-  if (c.s.contains(c.res.uv)) {
+  if (c.s.contains(c.res.at)) {
     c.res.status = SolveStatus::kConverged;
     return;
   }
-  const auto& d = c.s.domain();
-  const Vec2 clamped(std::clamp(c.res.uv.x(), d.u0, d.u1), std::clamp(c.res.uv.y(), d.v0, d.v1));
-  if (clamped != c.res.uv && c.s.contains(clamped)) {
+  const auto& d = c.s.domain(c.res.at);
+  const Vec2& uv = c.res.at.uv;
+  const SurfaceLocation clamped =
+      c.res.at.with_uv(Vec2(std::clamp(uv.x(), d.u0, d.u1), std::clamp(uv.y(), d.v0, d.v1)));
+  if (clamped != c.res.at && c.s.contains(clamped)) {
     const SurfaceEval1 e = c.s.eval1(clamped);
     ++c.res.evaluations;
     if (e.ok && (e.p - c.res.point).norm() < c.eps) {
-      c.res.uv = clamped;
+      c.res.at = clamped;
       c.res.point = e.p;
       c.res.status = SolveStatus::kConverged;
       return;
@@ -238,9 +242,9 @@ void classify_converged(Ctx& c) {
 }
 
 // Margin and step cap from the length of the first step (scaled units).
-void setup_margins(Ctx& c, const Vec2& from_uv, const Vec2& guess) {
-  c.anchor = from_uv;
-  const double step = std::max(c.scaled_norm(c.s.delta(from_uv, guess)), 1e-300);
+void setup_margins(Ctx& c, const SurfaceLocation& from, const SurfaceLocation& guess) {
+  c.anchor = from;
+  const double step = std::max(c.scaled_norm(from, c.s.delta(from, guess)), 1e-300);
   c.margin = c.st.tol.extension_steps * step;
   c.max_step = kStepCapSteps * step;
 }
@@ -269,25 +273,26 @@ Vec3 rotate_about(const Vec3& v, const Vec3& axis, double angle) {
 namespace {
 
 // uv_direction with the evaluation e and the face normal n at uv already known.
-UvDirection uv_direction_at(const DrapeSurface& surface, const Vec2& uv, const SurfaceEval1& e,
-                            const Vec3& n, const Vec3& dir) {
+UvDirection uv_direction_at(const DrapeSurface& surface, const SurfaceLocation& at,
+                            const SurfaceEval1& e, const Vec3& n, const Vec3& dir) {
   UvDirection out;
-  out.from_uv = uv;
+  out.from_at = at;
   if (!e.ok) return out;
   const Vec3 dt = dir - dir.dot(n) * n;
   if (!(dt.norm() > 0.0)) return out;
-  const Vec2 sp = surface.speeds();
-  if (!surface.degenerate(e)) {
+  const Vec2 sp = surface.speeds(at);
+  const Vec2& uv = at.uv;
+  if (!surface.degenerate(at, e)) {
     out.ok = metric_direction(e, dt, out.dir_uv);
     return out;
   }
   // A pole: one derivative vanishes along a collapsed edge. Slide along that edge to the
   // parameter whose remaining derivative points best along dir.
   const bool v_collapsed = e.dv.norm() * sp.x() <= e.du.norm() * sp.y();
-  const auto& d = surface.domain();
+  const auto& d = surface.domain(at);
   const double lo = v_collapsed ? d.v0 : d.u0, hi = v_collapsed ? d.v1 : d.u1;
   auto score = [&](double t) {
-    const Vec2 q = v_collapsed ? Vec2(uv.x(), t) : Vec2(t, uv.y());
+    const SurfaceLocation q = at.with_uv(v_collapsed ? Vec2(uv.x(), t) : Vec2(t, uv.y()));
     const SurfaceEval1 eq = surface.eval1(q);
     const Vec3 g = v_collapsed ? eq.du : eq.dv;
     // The edge is left towards the interior: at the domain end the derivative flips sign.
@@ -331,8 +336,8 @@ UvDirection uv_direction_at(const DrapeSurface& surface, const Vec2& uv, const S
     out.leaves_face = true;
     return out;
   }
-  out.from_uv = v_collapsed ? Vec2(uv.x(), t) : Vec2(t, uv.y());
-  const SurfaceEval1 ef = surface.eval1(out.from_uv);
+  out.from_at = at.with_uv(v_collapsed ? Vec2(uv.x(), t) : Vec2(t, uv.y()));
+  const SurfaceEval1 ef = surface.eval1(out.from_at);
   const Vec3 gvec = v_collapsed ? ef.du : ef.dv;
   const double gn = gvec.norm();
   if (!(gn > 0.0)) return out;
@@ -344,10 +349,10 @@ UvDirection uv_direction_at(const DrapeSurface& surface, const Vec2& uv, const S
 
 }  // namespace
 
-UvDirection uv_direction(const DrapeSurface& surface, const Vec2& uv, const Vec3& dir) {
-  const SurfaceEval1 e = surface.eval1(uv);
-  if (!e.ok) return {uv, Vec2::Zero(), false};
-  return uv_direction_at(surface, uv, e, face_normal(surface, uv, e), dir);
+UvDirection uv_direction(const DrapeSurface& surface, const SurfaceLocation& at, const Vec3& dir) {
+  const SurfaceEval1 e = surface.eval1(at);
+  if (!e.ok) return {at, Vec2::Zero(), false};
+  return uv_direction_at(surface, at, e, face_normal(surface, at, e), dir);
 }
 
 namespace {
@@ -355,11 +360,18 @@ namespace {
 // Plane through x0 with unit normal `pn`, sphere of radius `rho` about x0, surface; the
 // solution going forward along the unit tangent `t` (which lies in the plane). Solvers 1
 // and 3 are this problem with different planes.
-SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Vec2& uv0,
+// The point beyond `b` continuing the parameter step a -> b, in b's chart.
+SurfaceLocation continue_step(const DrapeSurface& s, const SurfaceLocation& a,
+                              const SurfaceLocation& b) {
+  if (s.same_chart(a, b)) return s.locate(b, b.uv + s.delta(a, b));
+  return s.locate(b, b.uv - s.delta(b, a));
+}
+
+SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const SurfaceLocation& at0,
                               const SurfaceEval1& e0, const Vec3& n0, const Vec3& pn, const Vec3& t,
                               double rho, const SolverSettings& st) {
   Ctx c(s, st);
-  const UvDirection ud = uv_direction_at(s, uv0, e0, n0, t);
+  const UvDirection ud = uv_direction_at(s, at0, e0, n0, t);
   if (ud.leaves_face) {
     c.res.status = SolveStatus::kLeftFace;
     c.res.reason = "the step leaves the face at a collapsed edge (pole)";
@@ -377,8 +389,8 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Vec2&
     J << pn.dot(e.du), pn.dot(e.dv), r.dot(e.du) / rad, r.dot(e.dv) / rad;
   };
   // One Newton solve for radius `rad` from `guess`; true if it converged forward.
-  auto solve_from = [&](const Vec2& guess) {
-    setup_margins(c, ud.from_uv, guess);
+  auto solve_from = [&](const SurfaceLocation& guess) {
+    setup_margins(c, ud.from_at, guess);
     if (!newton(c, guess, resid)) return false;
     if ((c.res.point - x0).dot(t) > 0.0) return true;
     c.res.status = SolveStatus::kFailed;
@@ -386,7 +398,7 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Vec2&
     return false;
   };
   // Direct attempt from the first-order guess (eqs. 7-8).
-  const Vec2 guess = ud.from_uv + rho * ud.dir_uv;
+  const SurfaceLocation guess = s.locate(ud.from_at, ud.from_at.uv + rho * ud.dir_uv);
   if (solve_from(guess)) {
     classify_converged(c);
     return c.res;
@@ -402,15 +414,16 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Vec2&
   // extrapolated from the previous two solutions.
   const SolveResult first = c.res;
   for (int K : kMarchSteps) {
-    Vec2 prev = ud.from_uv, prev2 = ud.from_uv, g = ud.from_uv;
+    SurfaceLocation prev = ud.from_at, prev2 = ud.from_at, g = ud.from_at;
     bool ok = true;
     for (int k = 1; k <= K && ok; ++k) {
       rad = rho * k / K;
-      g = k == 1 ? Vec2(ud.from_uv + rad * ud.dir_uv) : Vec2(prev + s.delta(prev2, prev));
+      g = k == 1 ? s.locate(ud.from_at, ud.from_at.uv + rad * ud.dir_uv)
+                 : continue_step(s, prev2, prev);
       ok = solve_from(g);
       if (ok) {
         prev2 = prev;
-        prev = c.res.uv;
+        prev = c.res.at;
       }
     }
     if (ok) {
@@ -421,7 +434,7 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Vec2&
     // already off the face ends the march: the node is outside. (Its iterate left the margin, or
     // Newton stalled on the surface extended past a domain edge, which need not go on.)
     // Otherwise try finer sub-steps.
-    if (!s.contains(g) || (prev != ud.from_uv && !s.contains(prev))) {
+    if (!s.contains(g) || (prev != ud.from_at && !s.contains(prev))) {
       c.res.status = SolveStatus::kLeftFace;
       c.res.extended = false;
       c.res.reason = "outside";
@@ -448,12 +461,12 @@ SolveResult solve_base_path(const DrapeSurface& s, const BasePathStep& step,
   // Tangent of the plane/surface intersection curve at x0, oriented forward: the exact
   // first-order direction of the path (eqs. 7-8 project the previous direction instead,
   // which is used where the plane is tangent to the surface).
-  const SurfaceEval1 e0 = s.eval1(step.from_uv);
+  const SurfaceEval1 e0 = s.eval1(step.from_at);
   if (!e0.ok) {
     bad.reason = "the known point is not on the surface";
     return bad;
   }
-  const Vec3 n0 = face_normal(s, step.from_uv, e0);
+  const Vec3 n0 = face_normal(s, step.from_at, e0);
   Vec3 t = n0.cross(pn);
   if (t.norm() > kTangentPlaneSin) {
     t.normalize();
@@ -461,7 +474,7 @@ SolveResult solve_base_path(const DrapeSurface& s, const BasePathStep& step,
   } else {
     t = (fwd - fwd.dot(pn) * pn).normalized();
   }
-  SolveResult r = plane_sphere_core(s, step.from, step.from_uv, e0, n0, pn, t, step.distance, st);
+  SolveResult r = plane_sphere_core(s, step.from, step.from_at, e0, n0, pn, t, step.distance, st);
   ++r.evaluations;
   return r;
 }
@@ -473,12 +486,12 @@ SolveResult solve_plane_sphere(const DrapeSurface& s, const PlaneSphereStep& ste
     bad.reason = "invalid plane-sphere step";
     return bad;
   }
-  const SurfaceEval1 e0 = s.eval1(step.center_uv);
+  const SurfaceEval1 e0 = s.eval1(step.center_at);
   if (!e0.ok) {
     bad.reason = "the known point is not on the surface";
     return bad;
   }
-  const Vec3 n = face_normal(s, step.center_uv, e0);
+  const Vec3 n = face_normal(s, step.center_at, e0);
   Vec3 t = step.direction - step.direction.dot(n) * n;
   if (!(t.norm() > 0.0)) {
     bad.reason = "the step direction is normal to the surface";
@@ -486,20 +499,22 @@ SolveResult solve_plane_sphere(const DrapeSurface& s, const PlaneSphereStep& ste
   }
   t.normalize();
   SolveResult r =
-      plane_sphere_core(s, step.center, step.center_uv, e0, n, n.cross(t), t, step.radius, st);
+      plane_sphere_core(s, step.center, step.center_at, e0, n, n.cross(t), t, step.radius, st);
   ++r.evaluations;
   return r;
 }
 
-Vec2 two_sphere_guess(const DrapeSurface& s, const Vec2& a_uv, const Vec2& a_prev_uv, const Vec3& a,
-                      const Vec3& a_prev, double ra, const Vec2& b_uv, const Vec2& b_prev_uv,
+Vec2 two_sphere_guess(const DrapeSurface& s, const SurfaceLocation& a_at,
+                      const SurfaceLocation& a_prev_at, const Vec3& a, const Vec3& a_prev,
+                      double ra, const SurfaceLocation& b_at, const SurfaceLocation& b_prev_at,
                       const Vec3& b, const Vec3& b_prev, double rb) {
   // Eq. (10): each thread continued from its last node by its rest length, the (u, v)
   // gradient scaled by the (u, v) per 3D length ratio of the previous segment (eq. 8).
   const double la = (a - a_prev).norm(), lb = (b - b_prev).norm();
-  const Vec2 pa = a_uv + s.delta(a_prev_uv, a_uv) * (la > 0 ? ra / la : 0.0);
-  const Vec2 pb = b_uv + s.delta(b_prev_uv, b_uv) * (lb > 0 ? rb / lb : 0.0);
-  return pa + 0.5 * s.delta(pa, pb);  // eq. (11): the mean, taken the short way across seams
+  const Vec2 pa = a_at.uv + s.delta(a_prev_at, a_at) * (la > 0 ? ra / la : 0.0);
+  const Vec2 pb = b_at.uv + s.delta(b_prev_at, b_at) * (lb > 0 ? rb / lb : 0.0);
+  // Eq. (11): the mean, taken the short way across seams.
+  return pa + 0.5 * s.delta(a_at.with_uv(pa), a_at.with_uv(pb));
 }
 
 SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
@@ -525,9 +540,10 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
   const double want = step.side >= 0 ? 1.0 : -1.0;
   // Planar two-circle solution in the tangent plane at `from` (a or b), on the requested
   // side: a 3D target on the right branch by construction.
-  auto planar_target = [&](const Vec2& at_uv, const SurfaceEval1& ea, Vec3& p3, Vec3& n_out) {
+  auto planar_target = [&](const SurfaceLocation& at, const SurfaceEval1& ea, Vec3& p3,
+                           Vec3& n_out) {
     if (!ea.ok) return false;
-    const Vec3 n = face_normal(s, at_uv, ea);
+    const Vec3 n = face_normal(s, at, ea);
     Vec3 e = b - a;
     e -= e.dot(n) * n;
     const double le = e.norm();
@@ -546,13 +562,13 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
     J << da.dot(e.du) / ra, da.dot(e.dv) / ra, db.dot(e.du) / rb, db.dot(e.dv) / rb;
   };
   // Newton from g; true when it converged on the requested branch (c.res classified).
-  auto attempt = [&](const Vec2& g) {
-    setup_margins(c, step.a_uv, g);
-    const double mb = c.scaled_norm(s.delta(step.b_uv, g));
+  auto attempt = [&](const SurfaceLocation& g) {
+    setup_margins(c, step.a_at, g);
+    const double mb = c.scaled_norm(step.b_at, s.delta(step.b_at, g));
     c.margin = std::max(c.margin, st.tol.extension_steps * mb);
     c.max_step = std::max(c.max_step, kStepCapSteps * mb);
     if (!newton(c, g, resid)) return false;
-    const Vec3 n = face_normal(s, c.res.uv, c.last);
+    const Vec3 n = face_normal(s, c.res.at, c.last);
     if (n.dot((b - a).cross(c.res.point - a)) * want <= 0.0) {
       c.res.status = SolveStatus::kFailed;
       c.res.reason = "only the folded branch was found";
@@ -569,17 +585,17 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
     return true;
   };
   // 1. The caller's guess (eqs. 10-11).
-  if (step.guess && attempt(*step.guess)) return c.res;
+  if (step.guess && attempt(s.locate(step.a_at, *step.guess))) return c.res;
   // 2. The planar solution mapped to (u, v) to first order, if that model is trustworthy
   //    (the surface point at the guess near the planar target); a trusted model that leaves
   //    the face is the answer.
   Vec3 p3, n3;
-  const SurfaceEval1 ea = s.eval1(step.a_uv);
+  const SurfaceEval1 ea = s.eval1(step.a_at);
   ++c.res.evaluations;
-  if (planar_target(step.a_uv, ea, p3, n3)) {
+  if (planar_target(step.a_at, ea, p3, n3)) {
     Vec2 dir;
     if (metric_direction(ea, p3 - a, dir)) {
-      const Vec2 g = step.a_uv + dir * (p3 - a).norm();
+      const SurfaceLocation g = s.locate(step.a_at, step.a_at.uv + dir * (p3 - a).norm());
       const SurfaceEval1 eg = s.eval1(g);
       ++c.res.evaluations;
       const bool trusted = eg.ok && (eg.p - p3).norm() <= kTrustRatio * ra;
@@ -593,21 +609,21 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
     //    parametrisation is far from linear.
     for (int from_b = 0; from_b < 2; ++from_b) {
       const Vec3& o = from_b ? b : a;
-      const Vec2& o_uv = from_b ? step.b_uv : step.a_uv;
+      const SurfaceLocation& o_at = from_b ? step.b_at : step.a_at;
       const double r = from_b ? rb : ra;
-      const SurfaceEval1 eo = from_b ? s.eval1(o_uv) : ea;
+      const SurfaceEval1 eo = from_b ? s.eval1(o_at) : ea;
       if (!eo.ok) continue;
-      const Vec3 n = face_normal(s, o_uv, eo);
+      const Vec3 n = face_normal(s, o_at, eo);
       Vec3 t = p3 - o;
       t -= t.dot(n) * n;
       if (!(t.norm() > 0.0)) continue;
       t.normalize();
-      const SolveResult q = plane_sphere_core(s, o, o_uv, eo, n, n.cross(t), t, r, st);
+      const SolveResult q = plane_sphere_core(s, o, o_at, eo, n, n.cross(t), t, r, st);
       c.res.evaluations += q.evaluations;
       if (q.status != SolveStatus::kConverged &&
           !(q.status == SolveStatus::kLeftFace && q.extended))
         continue;
-      if (attempt(q.uv)) return c.res;
+      if (attempt(q.at)) return c.res;
     }
   }
   // Near the shear limit the spheres meet almost tangentially and Newton may stall:

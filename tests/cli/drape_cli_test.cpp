@@ -88,7 +88,7 @@ TEST_CASE("cli: plyfit drape works on a face of every shared CAD file") {
     REQUIRE(face.ok());
     const Projection pr = face->project(0.5 * (face->bbox().min + face->bbox().max));
     REQUIRE(pr.ok);
-    const Vec3 n = face->normal(pr.uv).n;
+    const Vec3 n = face->normal(pr.at).n;
     int axis = 0;
     for (int k = 1; k < 3; ++k)
       if (std::abs(n[k]) < std::abs(n[axis])) axis = k;

@@ -32,7 +32,7 @@ Face make_face(NurbsSurfaceData d, std::vector<TrimLoop> loops = {}) {
 // Independent checks of a returned point: on the surface at its (u, v), and the distance
 // constraints.
 void check_on_surface(const Face& f, const SolveResult& r) {
-  CHECK((f.eval1(r.uv).p - r.point).norm() <= 1e-12 * f.size());
+  CHECK((f.eval1(r.at.uv).p - r.point).norm() <= 1e-12 * f.size());
   CHECK(r.point.allFinite());
 }
 double sphere_error(const Vec3& p, const Vec3& c, double rho) {
@@ -48,14 +48,14 @@ TEST_CASE("solvers: exact answers on a plane") {
   const Projection o = f.project(Vec3(0, 0, 0));
   SECTION("base path") {
     const SolveResult r =
-        solve_base_path(f, {o.point, o.uv, Vec3(0, 1, 0), Vec3(1, 0, 0), 1.0}, st);
+        solve_base_path(f, {o.point, o.at.uv, Vec3(0, 1, 0), Vec3(1, 0, 0), 1.0}, st);
     REQUIRE(r.status == SolveStatus::kConverged);
     CHECK((r.point - Vec3(1, 0, 0)).norm() < kConstraintRel);
     check_on_surface(f, r);
   }
   SECTION("two spheres, both branches") {
     const Vec3 a(1, 0, 0), b(0, 1, 0);
-    const Vec2 ua = f.project(a).uv, ub = f.project(b).uv;
+    const Vec2 ua = f.project(a).at.uv, ub = f.project(b).at.uv;
     TwoSphereStep s{a, ua, 1.0, b, ub, 1.0, -1.0, std::nullopt};
     SolveResult r = solve_two_spheres(f, s, st);
     REQUIRE(r.status == SolveStatus::kConverged);
@@ -67,7 +67,7 @@ TEST_CASE("solvers: exact answers on a plane") {
     CHECK(r.point.norm() < kConstraintRel);
     // A guess on the folded branch is corrected by the restart.
     s.side = -1.0;
-    s.guess = f.project(Vec3(0.1, 0.1, 0)).uv;
+    s.guess = f.project(Vec3(0.1, 0.1, 0)).at.uv;
     r = solve_two_spheres(f, s, st);
     REQUIRE(r.status == SolveStatus::kConverged);
     CHECK((r.point - Vec3(1, 1, 0)).norm() < kConstraintRel);
@@ -76,7 +76,7 @@ TEST_CASE("solvers: exact answers on a plane") {
     for (double deg : {0.0, 30.0, 45.0, 135.0, 270.0}) {
       const double t = deg * kPi / 180;
       const Vec3 dir(std::cos(t), std::sin(t), 0);
-      const SolveResult r = solve_plane_sphere(f, {o.point, o.uv, 2.0, dir}, st);
+      const SolveResult r = solve_plane_sphere(f, {o.point, o.at.uv, 2.0, dir}, st);
       REQUIRE(r.status == SolveStatus::kConverged);
       CHECK((r.point - 2.0 * dir).norm() < 2 * kConstraintRel);
     }
@@ -106,7 +106,7 @@ TEST_CASE("solvers: the sphere octant's pole (paper cases (a) and (c) start ther
       check_on_surface(f, r);
       fwd = r.point - x0;
       x0 = r.point;
-      uv0 = r.uv;
+      uv0 = r.at.uv;
     }
   }
   SECTION("plane and sphere from the pole at 30 degrees") {
@@ -124,14 +124,14 @@ TEST_CASE("solvers: the sphere octant's pole (paper cases (a) and (c) start ther
     const Vec3 a(R * std::sin(phi), 0, R * std::cos(phi)),
         b(0, R * std::sin(phi), R * std::cos(phi));
     const SolveResult r = solve_two_spheres(
-        f, {a, f.project(a).uv, d, b, f.project(b).uv, d, -1.0, std::nullopt}, st);
+        f, {a, f.project(a).at.uv, d, b, f.project(b).at.uv, d, -1.0, std::nullopt}, st);
     REQUIRE(r.status == SolveStatus::kConverged);
     CHECK(sphere_error(r.point, a, d) < kConstraintRel * d);
     CHECK(sphere_error(r.point, b, d) < kConstraintRel * d);
     CHECK(r.point.x() > a.x() * 0.5);  // the side away from the pole
     // The other branch is the pole itself.
-    const SolveResult q =
-        solve_two_spheres(f, {a, f.project(a).uv, d, b, f.project(b).uv, d, 1.0, std::nullopt}, st);
+    const SolveResult q = solve_two_spheres(
+        f, {a, f.project(a).at.uv, d, b, f.project(b).at.uv, d, 1.0, std::nullopt}, st);
     REQUIRE(q.status == SolveStatus::kConverged);
     CHECK((q.point - pole).norm() < 10 * kConstraintRel * d);
     CHECK(q.point.allFinite());
@@ -146,7 +146,7 @@ TEST_CASE("solvers: near the shear limit, converge or say so, never a wrong poin
   for (double gap : {1e-1, 1e-3, 1e-6, 1e-9, 1e-12, 0.0, -1e-9, -1e-3}) {
     // |a - b| = 2 (1 - gap): the spheres meet in a circle of radius ~ sqrt(2 gap).
     const Vec3 b(2 * (1 - gap), 0, 0);
-    TwoSphereStep s{a, f.project(a).uv, 1.0, b, f.project(b).uv, 1.0, 1.0, std::nullopt};
+    TwoSphereStep s{a, f.project(a).at.uv, 1.0, b, f.project(b).at.uv, 1.0, 1.0, std::nullopt};
     st.gamma_min = 0.0;
     const SolveResult r = solve_two_spheres(f, s, st);
     INFO("gap " << gap << " status " << to_string(r.status) << " " << r.reason);
@@ -177,7 +177,7 @@ TEST_CASE("solvers: a step across a C0 crease") {
   SolverSettings st;
   st.spacing = 1.0;
   const Vec3 x0(-0.2, 0, 0.9);
-  const Vec2 uv0 = f.project(x0).uv;
+  const Vec2 uv0 = f.project(x0).at.uv;
   // Exact: x1 > 0 with (x1 + 0.2)^2 + (0.1 - x1 / 2)^2 = 1.
   const double A = 1.25, B = 0.4 - 0.1, C = 0.04 + 0.01 - 1.0;
   const double x1 = (-B + std::sqrt(B * B - 4 * A * C)) / (2 * A);
@@ -195,7 +195,7 @@ TEST_CASE("solvers: a step across a C0 crease") {
   const Vec3 n_guess(0.3, 0, 1);  // side from the truth
   const double side = n_guess.dot((b - a).cross(expect - a)) > 0 ? 1.0 : -1.0;
   const SolveResult t = solve_two_spheres(
-      f, {a, f.project(a).uv, ra, b, f.project(b).uv, rb, side, std::nullopt}, st);
+      f, {a, f.project(a).at.uv, ra, b, f.project(b).at.uv, rb, side, std::nullopt}, st);
   REQUIRE(t.status == SolveStatus::kConverged);
   CHECK((t.point - expect).norm() < 1e-9);
 }
@@ -214,13 +214,14 @@ TEST_CASE("solvers: strongly non-uniform parametrisation and extreme weights") {
     REQUIRE(p0.distance < 1e-9);
     const double t = rng.uniform(0, 2 * kPi);
     const Vec3 dir(std::cos(t), std::sin(t), 0);
-    const SolveResult r = solve_plane_sphere(f, {x0, p0.uv, 0.5, dir}, st);
+    const SolveResult r = solve_plane_sphere(f, {x0, p0.at.uv, 0.5, dir}, st);
     ++total;
     if (r.status == SolveStatus::kConverged) {
       ++converged;
       CHECK((r.point - (x0 + 0.5 * dir)).norm() < kConstraintRel * 0.5);
     }
-    const SolveResult b = solve_base_path(f, {x0, p0.uv, Vec3(-dir.y(), dir.x(), 0), dir, 0.5}, st);
+    const SolveResult b =
+        solve_base_path(f, {x0, p0.at.uv, Vec3(-dir.y(), dir.x(), 0), dir, 0.5}, st);
     ++total;
     if (b.status == SolveStatus::kConverged) {
       ++converged;
@@ -232,21 +233,21 @@ TEST_CASE("solvers: strongly non-uniform parametrisation and extreme weights") {
   int ok2 = 0, built = 0;
   for (int k = 0; k < 300; ++k) {
     const Projection pp = f.project(Vec3(rng.uniform(-7, 7), rng.uniform(-7, 7), 0));
-    const SurfaceEval1 ep = f.eval1(pp.uv);
+    const SurfaceEval1 ep = f.eval1(pp.at.uv);
     auto uvdir = [&](double t) {
       return Vec2(std::cos(t) / ep.du.norm(), std::sin(t) / ep.dv.norm());
     };
     const double t1 = rng.uniform(0, 2 * kPi), t2 = t1 + rng.uniform(0.6, 2.5);
     Vec2 ua, ub;
-    if (!point_at_distance(f, pp.uv, uvdir(t1), 0.5, ua) ||
-        !point_at_distance(f, pp.uv, uvdir(t2), 0.5, ub))
+    if (!point_at_distance(f, pp.at.uv, uvdir(t1), 0.5, ua) ||
+        !point_at_distance(f, pp.at.uv, uvdir(t2), 0.5, ub))
       continue;
     ++built;
     const Vec3 a = f.eval1(ua).p, b = f.eval1(ub).p;
     const double side = (b - a).cross(pp.point - a).z() > 0 ? 1.0 : -1.0;  // n = +z
     const SolveResult r = solve_two_spheres(f, {a, ua, 0.5, b, ub, 0.5, side, std::nullopt}, st);
     UNSCOPED_INFO("two-sphere " << to_string(r.status) << " " << r.reason << " it " << r.iterations
-                                << " p " << pp.point.transpose() << " uv " << pp.uv.transpose());
+                                << " p " << pp.point.transpose() << " uv " << pp.at.uv.transpose());
     if (r.status != SolveStatus::kConverged) continue;
     ++ok2;
     CHECK((r.point - pp.point).norm() < 1e-9);
@@ -289,10 +290,10 @@ TEST_CASE("solvers: curvature radius equal to d, and a saddle") {
     const Projection p0 = f.project(x0);
     // Chord 1 on a great circle of radius 1: 60 degrees.
     const SolveResult r =
-        solve_base_path(f, {p0.point, p0.uv, Vec3(0, 1, 0), Vec3(0, 0, 1), d}, st);
+        solve_base_path(f, {p0.point, p0.at.uv, Vec3(0, 1, 0), Vec3(0, 0, 1), d}, st);
     REQUIRE(r.status == SolveStatus::kConverged);
     CHECK((r.point - Vec3(std::cos(kPi / 3), 0, std::sin(kPi / 3))).norm() < 10 * kConstraintRel);
-    const SolveResult q = solve_plane_sphere(f, {p0.point, p0.uv, d, Vec3(0, 1, 1)}, st);
+    const SolveResult q = solve_plane_sphere(f, {p0.point, p0.at.uv, d, Vec3(0, 1, 1)}, st);
     REQUIRE(q.status == SolveStatus::kConverged);
     CHECK(sphere_error(q.point, x0, d) < kConstraintRel);
     CHECK(std::abs(q.point.norm() - R) < 1e-12);
@@ -333,7 +334,7 @@ TEST_CASE("solvers: steps from the middle of a large face converge at its roundi
   for (int k = 0; k < 72; ++k) {
     const double t = 2 * kPi * k / 72;
     const Vec3 dir(std::cos(t), std::sin(t), 0), bn(-std::sin(t), std::cos(t), 0);
-    const SolveResult r = solve_base_path(f, {p0.point, p0.uv, bn, dir, st.spacing}, st);
+    const SolveResult r = solve_base_path(f, {p0.point, p0.at.uv, bn, dir, st.spacing}, st);
     ++total;
     INFO("direction " << k << ": " << to_string(r.status) << " " << r.reason << " residual "
                       << r.residual);
@@ -352,7 +353,7 @@ TEST_CASE("solvers: a step past the domain edge or into a trim hole leaves the f
   SolverSettings st;
   st.spacing = 1.0;
   const Vec3 x0(9.5, 5, 0);
-  const Vec2 uv0 = f.project(x0).uv;
+  const Vec2 uv0 = f.project(x0).at.uv;
   // Half a step past the edge: converged on the extended surface, reported outside.
   SolveResult r = solve_base_path(f, {x0, uv0, Vec3(0, 1, 0), Vec3(1, 0, 0), 1.0}, st);
   CHECK(r.status == SolveStatus::kLeftFace);
@@ -363,7 +364,7 @@ TEST_CASE("solvers: a step past the domain edge or into a trim hole leaves the f
   r = solve_base_path(f, {x0, uv0, Vec3(0, 1, 0), Vec3(1, 0, 0), 8.0}, st);
   CHECK(r.status == SolveStatus::kLeftFace);
   CHECK(r.iterations <= 3);
-  CHECK(r.uv.x() <= f.domain().u1 + st.tol.extension_steps * 1.0);
+  CHECK(r.at.uv.x() <= f.domain().u1 + st.tol.extension_steps * 1.0);
   // A circular hole of radius 1 at (5, 5): a step into it.
   std::vector<Vec2> hole;
   for (int k = 0; k < 720; ++k) {
@@ -375,7 +376,7 @@ TEST_CASE("solvers: a step past the domain edge or into a trim hole leaves the f
                 {TrimLoop{{Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}}, TrimLoop{hole}});
   st.spacing = 1.0;
   const Vec3 y0(3.5, 5, 0);
-  const SolveResult h = solve_plane_sphere(g, {y0, g.project(y0).uv, 1.0, Vec3(1, 0, 0)}, st);
+  const SolveResult h = solve_plane_sphere(g, {y0, g.project(y0).at.uv, 1.0, Vec3(1, 0, 0)}, st);
   CHECK(h.status == SolveStatus::kLeftFace);
   CHECK(h.extended);
   CHECK((h.point - Vec3(4.5, 5, 0)).norm() < kConstraintRel);
@@ -421,7 +422,7 @@ TEST_CASE("solvers: random valid configurations are recovered, never folded", "[
                              with_guess ? std::optional<Vec2>(k.guess) : std::nullopt},
                             st);
       if (r2.status == SolveStatus::kConverged) {
-        const double sd = f.normal(r2.uv).n.dot((k.b - k.a).cross(r2.point - k.a));
+        const double sd = f.normal(r2.at.uv).n.dot((k.b - k.a).cross(r2.point - k.a));
         REQUIRE(sd * k.side > 0);  // never the folded branch
         CHECK(sphere_error(r2.point, k.a, c.d) < kConstraintRel * c.d);
         CHECK(sphere_error(r2.point, k.b, c.d) < kConstraintRel * c.d);

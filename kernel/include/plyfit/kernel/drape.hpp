@@ -47,7 +47,7 @@ struct DrapeNode {
   // Fields ordered so that Eigen's 16-byte alignment of Vec2 leaves no padding: 96 bytes.
   Vec3 point = Vec3::Zero();  ///< 3D position (mapped, or extended, else zero)
   double thread_angle = 0.0;  ///< gamma between weft and warp at a mapped regular node, radians
-  Vec2 uv = Vec2::Zero();     ///< surface parameters
+  Vec2 uv = Vec2::Zero();     ///< surface parameters on face `face`
   Vec2 ply = Vec2::Zero();    ///< ply coordinates
   /// Index in DrapeResult::nodes of the node across the thread link in each ThreadDir
   /// (+x, -x, +y, -y), or -1 if that node was never reached. A link split by the base path
@@ -57,8 +57,16 @@ struct DrapeNode {
   std::uint32_t order = 0;  ///< order in which the node was resolved
   NodeStatus status = NodeStatus::kPending;
   std::uint8_t flags = 0;
+  std::uint16_t face = 0;  ///< face (chart) of `uv`: see at()
   bool mapped() const { return status == NodeStatus::kMapped; }
   bool has(std::uint8_t f) const { return (flags & f) != 0; }
+  /// Where the node lies on the surface (mapped, or extended).
+  SurfaceLocation at() const { return {uv, face}; }
+  /// Sets uv and face.
+  void set_at(const SurfaceLocation& a) {
+    uv = a.uv;
+    face = static_cast<std::uint16_t>(a.face);
+  }
 };
 
 /// Map from NodeId to node index. Regular nodes live in a sparse grid of dense 32 x 32
@@ -186,7 +194,7 @@ struct DrapeResult {
   std::shared_ptr<const Ply> ply;
   DrapeMetrics metrics;
   Vec3 start_point = Vec3::Zero();  ///< the start on the face
-  Vec2 start_uv = Vec2::Zero();
+  SurfaceLocation start_at;
   double start_moved = 0.0;           ///< distance from the given 3D start to the face
   Vec3 base_normal = Vec3::UnitY();   ///< unit base-plane normal
   Vec3 base_tangent = Vec3::UnitX();  ///< 3D direction of the base path at the start

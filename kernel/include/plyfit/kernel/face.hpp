@@ -11,46 +11,99 @@
 
 namespace plyfit {
 
-/// Nearest point of a face to a query point.
-struct Projection {
+/// A point of a drape surface: the face it lies on and its parameters (u, v) there. The face
+/// is the chart the parameters belong to; a surface of one face has only face 0. The drape's
+/// scan and solvers hold locations and hand them back to the surface; they never look at the
+/// face themselves.
+struct SurfaceLocation {
   Vec2 uv = Vec2::Zero();
-  Vec3 point = Vec3::Zero();
-  double distance = 0.0;  ///< |point - query|
-  bool ok = false;        ///< false if no point of the face could be evaluated
+  std::int32_t face = 0;
+  SurfaceLocation() = default;
+  /// Parameters on face `f` (implicit from (u, v), any Eigen expression of them: a point of a
+  /// one-face surface).
+  template <typename Derived>
+  SurfaceLocation(const Eigen::MatrixBase<Derived>& p, std::int32_t f = 0)  // NOLINT
+      : uv(p), face(f) {}
+  /// Parameters `p` on the same face (chart).
+  SurfaceLocation with_uv(const Vec2& p) const { return {p, face}; }
+  bool operator==(const SurfaceLocation& o) const { return uv == o.uv && face == o.face; }
+  bool operator!=(const SurfaceLocation& o) const { return !(*this == o); }
 };
 
-/// What the drape needs from a mold: evaluation, the in/out test, seams, projection.
-/// Multi-face draping and other surface kinds implement this without touching the solvers.
+/// Nearest point of a surface to a query point.
+struct Projection {
+  SurfaceLocation at;
+  Vec3 point = Vec3::Zero();
+  double distance = 0.0;  ///< |point - query|
+  bool ok = false;        ///< false if no point of the surface could be evaluated
+};
+
+/// The free boundary of a surface as its faces' parameters see it: a closed polyline of
+/// locations that the drape cannot cross. Segment k joins points k and k + 1 (the last one
+/// back to point 0), on one face, or on two faces where the boundary passes from one face
+/// to the next at a corner of a shell. A segment that is no boundary is kept, marked, so
+/// that the loop stays closed: a collapsed edge (a pole: no 3D length) or the seam of a face
+/// closed on itself (contains() is true on both sides).
+struct BoundaryLoop {
+  enum Kind : std::uint8_t { kEdge = 0, kCollapsed = 1, kSeam = 2 };
+  std::vector<SurfaceLocation> points;
+  std::vector<Kind> kinds;  ///< per segment
+};
+
+/// What the drape needs from a mold: evaluation, the in/out test, moving across seams and
+/// (for a shell of several faces) shared edges, projection, the boundary. One face (Face) and
+/// a shell of faces (Shell) implement it; the scan and the solvers only see this.
 class DrapeSurface {
  public:
   virtual ~DrapeSurface() = default;
-  /// Point and first derivatives at uv (uv is wrapped across closed seams first).
-  virtual SurfaceEval1 eval1(const Vec2& uv) const = 0;
+  /// Point and first derivatives at a location (wrapped across closed seams first).
+  virtual SurfaceEval1 eval1(const SurfaceLocation& at) const = 0;
   /// Point and derivatives up to second order.
-  virtual SurfaceEval2 eval2(const Vec2& uv) const = 0;
-  /// Unit outward normal of the face (orientation applied), with its limit at poles.
-  virtual SurfaceNormal normal(const Vec2& uv) const = 0;
-  /// +1 when the face normal is Su x Sv, -1 when the face is reversed.
-  virtual double orientation() const = 0;
-  /// True when the derivatives in `e` span no tangent plane (a pole or collapsed edge).
-  virtual bool degenerate(const SurfaceEval1& e) const = 0;
-  /// True when uv (after wrapping) lies on the face: in the domain and inside the trims.
-  virtual bool contains(const Vec2& uv) const = 0;
-  /// Parameter domain of the underlying surface.
-  virtual const ParamDomain& domain() const = 0;
-  /// uv moved into the domain across closed seams (identity for open directions).
-  virtual Vec2 wrap(const Vec2& uv) const = 0;
-  /// to - from, taken the short way across closed seams.
-  virtual Vec2 delta(const Vec2& from, const Vec2& to) const = 0;
-  /// Nearest point of the face to p.
+  virtual SurfaceEval2 eval2(const SurfaceLocation& at) const = 0;
+  /// Unit outward normal (the face's orientation applied), with its limit at poles.
+  virtual SurfaceNormal normal(const SurfaceLocation& at) const = 0;
+  /// +1 when the outward normal at `at` is Su x Sv of its face, -1 when that face is reversed.
+  virtual double orientation(const SurfaceLocation& at) const = 0;
+  /// True when the derivatives in `e`, evaluated at `at`, span no tangent plane: a pole or
+  /// collapsed edge.
+  virtual bool degenerate(const SurfaceLocation& at, const SurfaceEval1& e) const = 0;
+  /// True when the location lies on the surface: in its face's domain and trims (on a shell,
+  /// also within the sewing gap of a shared edge).
+  virtual bool contains(const SurfaceLocation& at) const = 0;
+  /// Parameter domain of the surface of the face `at` lies on (its chart).
+  virtual const ParamDomain& domain(const SurfaceLocation& at) const = 0;
+  /// Characteristic parametric speeds |dS/du|, |dS/dv| of the face `at` lies on (for scaling
+  /// parameter tolerances).
+  virtual Vec2 speeds(const SurfaceLocation& at) const = 0;
+  /// The location with its parameters moved into the domain across closed seams.
+  virtual SurfaceLocation wrap(const SurfaceLocation& at) const = 0;
+  /// The point reached from `from` by going straight in its face's parameters to `uv`: on
+  /// one face, (uv, from.face) itself (wrapped or not); on a shell, where that path crosses a
+  /// shared edge it continues on the neighbouring face (the crossing point's 3D position
+  /// mapped to the neighbour's (u, v), the rest of the step carried over through the tangent
+  /// planes), never on this face's surface extended past the edge. A path across a free edge
+  /// stays on its face, past the edge.
+  virtual SurfaceLocation locate(const SurfaceLocation& from, const Vec2& uv) const = 0;
+  /// True when two locations' parameters can be combined directly (they are on one face).
+  virtual bool same_chart(const SurfaceLocation& a, const SurfaceLocation& b) const = 0;
+  /// The parameter step in `from`'s face that leads to `to`: on one face to - from, taken the
+  /// short way across closed seams; between two faces, to first order through the tangent
+  /// plane at `from` (3D difference of the points).
+  virtual Vec2 delta(const SurfaceLocation& from, const SurfaceLocation& to) const = 0;
+  /// Nearest point of the surface to p.
   virtual Projection project(const Vec3& p) const = 0;
-  /// Characteristic size of the face (bounding-box diagonal), model units.
+  /// Characteristic size of the surface (bounding-box diagonal), model units.
   virtual double size() const = 0;
-  /// Characteristic parametric speeds |dS/du|, |dS/dv| (for scaling parameter tolerances).
-  virtual Vec2 speeds() const = 0;
-  /// The face boundary as closed (u, v) polylines: trim loops, or the domain rectangle
-  /// (whose edges across a closed seam are not boundaries: contains() is true on both sides).
-  virtual std::vector<std::vector<Vec2>> boundary_loops() const = 0;
+  /// Area of the surface (its faces' areas summed), model units squared.
+  virtual double area() const = 0;
+  /// True when the surface can close on itself: a face closed across a seam, or a shell that
+  /// is not a disc (a tube, a closed body). A drape on it tests every node for overlap.
+  virtual bool closes_on_itself() const = 0;
+  /// Number of faces (1 for a single face).
+  virtual std::int32_t face_count() const = 0;
+  /// The free boundary (see BoundaryLoop): trim loops, or a face's domain rectangle; never
+  /// the edges shared by two faces of a shell.
+  virtual std::vector<BoundaryLoop> boundary() const = 0;
 };
 
 /// A closed polyline in the (u, v) plane; the first point is not repeated at the end.
@@ -61,7 +114,7 @@ struct TrimLoop {
   /// For a face of a shell: the shared edge each segment lies on (segment k runs from
   /// points[k] to points[k + 1], the last one back to points[0]), an index into the shell's
   /// edges, or kFreeEdge. Empty: every segment is free (a face on its own).
-  std::vector<std::int32_t> edges;
+  std::vector<std::int32_t> edges = {};
 };
 
 /// Plain data of a face, as importers and built-in molds produce it.
@@ -91,26 +144,54 @@ class Face final : public DrapeSurface {
   bool closed_u() const { return closed_u_; }
   bool closed_v() const { return closed_v_; }
 
-  std::vector<std::vector<Vec2>> boundary_loops() const override;
-  /// Area of the face (given, or by Gauss quadrature over the domain with the trims).
-  double area() const { return area_; }
+  /// The face boundary as closed (u, v) polylines: the trim loops, or the domain rectangle.
+  std::vector<std::vector<Vec2>> boundary_loops() const;
   /// Bounding box of points sampled on the face.
   const BBox3& bbox() const { return bbox_; }
+  /// Parameter domain of the face's surface.
+  const ParamDomain& domain() const { return surface_->domain(); }
+  /// Characteristic parametric speeds |dS/du|, |dS/dv|.
+  Vec2 speeds() const { return Vec2(surface_->speed_u(), surface_->speed_v()); }
+  /// +1 when the outward normal is Su x Sv, -1 when the face is reversed.
+  double orientation() const { return reversed_ ? -1.0 : 1.0; }
+  /// True when the derivatives in `e` span no tangent plane (a pole or collapsed edge).
+  bool degenerate(const SurfaceEval1& e) const { return surface_->is_degenerate(e.du, e.dv); }
+  /// uv moved into the domain across closed seams (identity for open directions).
+  Vec2 wrap(const Vec2& uv) const;
+  /// to - from, taken the short way across closed seams.
+  Vec2 delta(const Vec2& from, const Vec2& to) const;
+  /// True when uv (after wrapping) lies on the face: in the domain and inside the trims.
+  bool contains(const Vec2& uv) const;
+  /// The nearest point of the face to p by a damped Newton iteration from `seed` (parameters
+  /// kept in the domain, on the face when `on_face`); ok is false if it cannot evaluate.
+  Projection project_from(const Vec3& p, const Vec2& seed, bool on_face) const;
 
-  SurfaceEval1 eval1(const Vec2& uv) const override;
-  SurfaceEval2 eval2(const Vec2& uv) const override;
-  SurfaceNormal normal(const Vec2& uv) const override;
-  double orientation() const override { return reversed_ ? -1.0 : 1.0; }
-  bool degenerate(const SurfaceEval1& e) const override {
-    return surface_->is_degenerate(e.du, e.dv);
+  // DrapeSurface (face 0 only).
+  SurfaceEval1 eval1(const SurfaceLocation& at) const override;
+  SurfaceEval2 eval2(const SurfaceLocation& at) const override;
+  SurfaceNormal normal(const SurfaceLocation& at) const override;
+  double orientation(const SurfaceLocation&) const override { return orientation(); }
+  bool degenerate(const SurfaceLocation&, const SurfaceEval1& e) const override {
+    return degenerate(e);
   }
-  bool contains(const Vec2& uv) const override;
-  const ParamDomain& domain() const override { return surface_->domain(); }
-  Vec2 wrap(const Vec2& uv) const override;
-  Vec2 delta(const Vec2& from, const Vec2& to) const override;
+  bool contains(const SurfaceLocation& at) const override { return contains(at.uv); }
+  const ParamDomain& domain(const SurfaceLocation&) const override { return domain(); }
+  Vec2 speeds(const SurfaceLocation&) const override { return speeds(); }
+  SurfaceLocation wrap(const SurfaceLocation& at) const override { return {wrap(at.uv), at.face}; }
+  SurfaceLocation locate(const SurfaceLocation& from, const Vec2& uv) const override {
+    return {uv, from.face};
+  }
+  bool same_chart(const SurfaceLocation&, const SurfaceLocation&) const override { return true; }
+  Vec2 delta(const SurfaceLocation& from, const SurfaceLocation& to) const override {
+    return delta(from.uv, to.uv);
+  }
   Projection project(const Vec3& p) const override;
   double size() const override { return size_; }
-  Vec2 speeds() const override { return Vec2(surface_->speed_u(), surface_->speed_v()); }
+  /// Area of the face (given, or by Gauss quadrature over the domain with the trims).
+  double area() const override { return area_; }
+  bool closes_on_itself() const override { return closed_u_ || closed_v_; }
+  std::int32_t face_count() const override { return 1; }
+  std::vector<BoundaryLoop> boundary() const override;
 
  private:
   Face() = default;

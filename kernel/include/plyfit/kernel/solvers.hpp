@@ -33,13 +33,13 @@ const char* to_string(SolveStatus s);
 /// Result of a mapping solve.
 struct SolveResult {
   SolveStatus status = SolveStatus::kFailed;
-  Vec2 uv = Vec2::Zero();     ///< parameters of the point (wrapped into closed domains)
+  SurfaceLocation at;         ///< where the point lies (wrapped into closed domains)
   Vec3 point = Vec3::Zero();  ///< the 3D point
   int iterations = 0;         ///< Newton iterations
   int evaluations = 0;        ///< surface evaluations, line searches and restarts included
   double residual = 0.0;      ///< |F1| + |F2| at the returned point (model units)
   /// For kLeftFace: true when Newton converged on the surface extended past the face, so
-  /// that uv/point are the intersection there (used to find the exact boundary crossing).
+  /// that at/point are the intersection there (used to find the exact boundary crossing).
   bool extended = false;
   /// Thread angle at the new node for the two-sphere solver (radians), else 0.
   double thread_angle = 0.0;
@@ -57,11 +57,11 @@ struct SolverSettings {
 /// normal `plane_normal`, at distance `distance` from `from`, going forward along `forward`
 /// (a 3D direction roughly along the path; the solution satisfies (p - from).forward > 0).
 struct BasePathStep {
-  Vec3 from;              ///< last known point x0 (on the surface)
-  Vec2 from_uv;           ///< its parameters
-  Vec3 plane_normal;      ///< base-plane normal (any length)
-  Vec3 forward;           ///< direction of travel (any length)
-  double distance = 1.0;  ///< d_xyz: rest length to the next point
+  Vec3 from;                ///< last known point x0 (on the surface)
+  SurfaceLocation from_at;  ///< its location
+  Vec3 plane_normal;        ///< base-plane normal (any length)
+  Vec3 forward;             ///< direction of travel (any length)
+  double distance = 1.0;    ///< d_xyz: rest length to the next point
 };
 /// Initial guess by eqs. (7)-(8): a step of `distance` along `forward` projected on the
 /// tangent plane at x0, mapped to (u, v) with the local metric.
@@ -74,29 +74,33 @@ SolveResult solve_base_path(const DrapeSurface& surface, const BasePathStep& ste
 /// If Newton lands on the other branch it restarts from the mirrored guess.
 struct TwoSphereStep {
   Vec3 a;
-  Vec2 a_uv;
+  SurfaceLocation a_at;
   double ra = 1.0;
   Vec3 b;
-  Vec2 b_uv;
+  SurfaceLocation b_at;
   double rb = 1.0;
-  double side = 1.0;          ///< +1 or -1, see above
-  std::optional<Vec2> guess;  ///< initial (u, v) (eqs. 10-11); if absent, the planar
-                              ///< two-circle solution in the tangent plane is used
+  double side = 1.0;  ///< +1 or -1, see above
+  /// Initial (u, v) in the chart (face) of `a` (eqs. 10-11), reached from a by
+  /// DrapeSurface::locate; if absent, the planar two-circle solution in the tangent plane is
+  /// used.
+  std::optional<Vec2> guess;
 };
 SolveResult solve_two_spheres(const DrapeSurface& surface, const TwoSphereStep& step,
                               const SolverSettings& settings);
 
 /// Initial guess of eqs. (10)-(11): each thread continued by its rest length from its last
-/// known node along its previous segment (a_prev -> a, b_prev -> b) in (u, v), averaged.
-Vec2 two_sphere_guess(const DrapeSurface& surface, const Vec2& a_uv, const Vec2& a_prev_uv,
-                      const Vec3& a, const Vec3& a_prev, double ra, const Vec2& b_uv,
-                      const Vec2& b_prev_uv, const Vec3& b, const Vec3& b_prev, double rb);
+/// known node along its previous segment (a_prev -> a, b_prev -> b) in (u, v), averaged; in
+/// the chart of `a_at`. The four locations must share a chart (DrapeSurface::same_chart).
+Vec2 two_sphere_guess(const DrapeSurface& surface, const SurfaceLocation& a_at,
+                      const SurfaceLocation& a_prev_at, const Vec3& a, const Vec3& a_prev,
+                      double ra, const SurfaceLocation& b_at, const SurfaceLocation& b_prev_at,
+                      const Vec3& b, const Vec3& b_prev, double rb);
 
 /// Solver 3 (§6.1, eq. 13): the node at distance `radius` from `center` in the plane through
 /// `center` that contains the face normal there and `direction`; forward along `direction`.
 struct PlaneSphereStep {
   Vec3 center;
-  Vec2 center_uv;
+  SurfaceLocation center_at;
   double radius = 1.0;
   Vec3 direction;  ///< tangent direction of the step (any length; projected on the tangent plane)
 };
@@ -106,19 +110,19 @@ SolveResult solve_plane_sphere(const DrapeSurface& surface, const PlaneSphereSte
 /// v rotated by `angle` (radians) about the unit `axis` (right hand).
 Vec3 rotate_about(const Vec3& v, const Vec3& axis, double angle);
 
-/// The (u, v) direction whose image J*a under the surface's first derivatives at uv is the
-/// component of `dir` in the tangent plane (least squares), together with the (u, v) of the
-/// point to step from: at a degenerate point (a pole) the collapsed edge is searched for the
+/// The (u, v) direction whose image J*a under the surface's first derivatives at a location
+/// is the component of `dir` in the tangent plane (least squares), together with the location
+/// to step from: at a degenerate point (a pole) the collapsed edge is searched for the
 /// parameter whose non-vanishing derivative best matches `dir`. The direction is scaled so
-/// that |J a| = 1 (a unit 3D step).
+/// that |J a| = 1 (a unit 3D step), in the chart of from_at.
 struct UvDirection {
-  Vec2 from_uv;
-  Vec2 dir_uv;
+  SurfaceLocation from_at;
+  Vec2 dir_uv = Vec2::Zero();
   bool ok = false;
   /// At a degenerate point: no direction the face offers (the fan of the collapsed edge's
   /// derivatives) points along `dir`, so a step along it leaves the face at once.
   bool leaves_face = false;
 };
-UvDirection uv_direction(const DrapeSurface& surface, const Vec2& uv, const Vec3& dir);
+UvDirection uv_direction(const DrapeSurface& surface, const SurfaceLocation& at, const Vec3& dir);
 
 }  // namespace plyfit

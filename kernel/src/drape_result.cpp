@@ -1,0 +1,186 @@
+// The net and result types of the drape: status names, the node index, and DrapeResult's
+// queries (neighbours, rest lengths, links, threads).
+#include <plyfit/kernel/drape.hpp>
+
+#include "net_links.hpp"
+#include "overlap_grid.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+
+namespace plyfit {
+
+using detail::mix;
+
+const char* to_string(GuessRule g) {
+  switch (g) {
+    case GuessRule::kPaper:
+      return "paper";
+    case GuessRule::kParallelogram:
+      return "parallelogram";
+    case GuessRule::kExtrapolated:
+      return "extrapolated";
+  }
+  return "paper";
+}
+
+const char* to_string(NodeStatus s) {
+  switch (s) {
+    case NodeStatus::kMapped:
+      return "mapped";
+    case NodeStatus::kOutside:
+      return "outside";
+    case NodeStatus::kOffPly:
+      return "off_ply";
+    case NodeStatus::kShearLimit:
+      return "shear_limit";
+    case NodeStatus::kFailed:
+      return "failed";
+    case NodeStatus::kOverlap:
+      return "overlap";
+    case NodeStatus::kPending:
+      return "pending";
+  }
+  return "failed";
+}
+
+// ---------------------------------------------------------------------------------------
+// NodeIndex
+
+std::int64_t NodeIndex::probe(const std::vector<Slot>& slots, std::uint64_t key) {
+  if (slots.empty()) return -1;
+  const std::size_t mask = slots.size() - 1;
+  for (std::size_t h = mix(key) & mask;; h = (h + 1) & mask) {
+    if (slots[h].key == key) return slots[h].value;
+    if (slots[h].key == kEmpty) return -1;
+  }
+}
+
+void NodeIndex::put(std::vector<Slot>& slots, std::size_t& count, std::uint64_t key,
+                    std::uint32_t value) {
+  if ((count + 1) * 2 > slots.size()) {
+    std::vector<Slot> old = std::move(slots);
+    slots.assign(old.empty() ? 16 : old.size() * 2, Slot{kEmpty, 0});
+    count = 0;
+    for (const Slot& s : old)
+      if (s.key != kEmpty) put(slots, count, s.key, s.value);
+  }
+  const std::size_t mask = slots.size() - 1;
+  for (std::size_t h = mix(key) & mask;; h = (h + 1) & mask) {
+    if (slots[h].key == kEmpty) {
+      slots[h] = {key, value};
+      ++count;
+      return;
+    }
+  }
+}
+
+namespace {
+inline std::uint64_t block_key(std::int32_t i, std::int32_t j, int bits) {
+  return NodeId::regular(i >> bits, j >> bits).key();  // arithmetic shift: floor division
+}
+inline std::size_t block_offset(std::int32_t i, std::int32_t j, int bits) {
+  const std::int32_t m = (1 << bits) - 1;
+  return static_cast<std::size_t>(i & m) << bits | static_cast<std::size_t>(j & m);
+}
+}  // namespace
+
+std::int64_t NodeIndex::find(const NodeId& id) const {
+  if (id.is_path_only()) return probe(path_, id.key());
+  const std::uint64_t bk = block_key(id.i, id.j, kBlockBits);
+  if (bk != last_key_) {
+    last_key_ = bk;
+    last_block_ = probe(blocks_, bk);
+  }
+  if (last_block_ < 0) return -1;
+  const std::int32_t v = cells_[static_cast<std::size_t>(last_block_) * kBlock * kBlock +
+                                block_offset(id.i, id.j, kBlockBits)];
+  return v;
+}
+
+void NodeIndex::insert(const NodeId& id, std::uint32_t index) {
+  ++size_;
+  if (id.is_path_only()) {
+    put(path_, path_count_, id.key(), index);
+    return;
+  }
+  const std::uint64_t bk = block_key(id.i, id.j, kBlockBits);
+  std::int64_t b = probe(blocks_, bk);
+  if (b < 0) {
+    b = static_cast<std::int64_t>(block_count_);
+    put(blocks_, block_count_, bk, static_cast<std::uint32_t>(b));
+    cells_.resize(cells_.size() + kBlock * kBlock, -1);
+  }
+  last_key_ = bk;
+  last_block_ = b;
+  cells_[static_cast<std::size_t>(b) * kBlock * kBlock + block_offset(id.i, id.j, kBlockBits)] =
+      static_cast<std::int32_t>(index);
+}
+
+std::size_t NodeIndex::memory_bytes() const {
+  return blocks_.capacity() * sizeof(Slot) + cells_.capacity() * sizeof(std::int32_t) +
+         path_.capacity() * sizeof(Slot);
+}
+
+// ---------------------------------------------------------------------------------------
+// DrapeResult queries
+
+const DrapeNode* DrapeResult::neighbour(const NodeId& id, ThreadDir dir) const {
+  const DrapeNode* n = find(id);
+  return n ? neighbour(*n, dir) : nullptr;
+}
+
+double DrapeResult::rest_length(const DrapeNode& n, ThreadDir dir) const {
+  const double spacing = is_weft(dir) ? ply->spec().d_weft : ply->spec().d_warp;
+  const DrapeNode* m = neighbour(n, dir);
+  if (!m || (!n.id.is_path_only() && !m->id.is_path_only())) return spacing;
+  return (m->ply - n.ply).norm();  // a link split by the path: the 2D distance
+}
+
+std::vector<DrapeLink> DrapeResult::links() const {
+  std::vector<DrapeLink> out;
+  detail::for_each_link(*this, [&](std::uint32_t a, std::uint32_t b, double rest, LinkKind kind) {
+    out.push_back({a, b, rest, kind});
+  });
+  return out;
+}
+
+std::vector<std::vector<std::uint32_t>> DrapeResult::threads(bool weft) const {
+  // A run starts at a mapped node whose backward neighbour is not mapped and follows the
+  // forward links while they lead to mapped nodes.
+  const ThreadDir fwd = weft ? ThreadDir::kPlusX : ThreadDir::kPlusY;
+  const ThreadDir back = opposite(fwd);
+  auto on_thread = [&](const DrapeNode& n) {
+    if (!n.id.is_path_only()) return true;
+    const PathNode* pn = ply->path_node_if(n.id.j);
+    return pn && pn->link_from && (pn->link_dir == ThreadDir::kPlusX) == weft;
+  };
+  std::vector<std::vector<std::uint32_t>> out;
+  for (std::uint32_t k = 0; k < nodes.size(); ++k) {
+    const DrapeNode& n = nodes[k];
+    if (!n.mapped() || !on_thread(n)) continue;
+    const DrapeNode* b = neighbour(n, back);
+    if (b && b->mapped()) continue;  // not the start of a run
+    std::vector<std::uint32_t> run{k};
+    for (const DrapeNode* m = neighbour(n, fwd); m && m->mapped(); m = neighbour(*m, fwd))
+      run.push_back(static_cast<std::uint32_t>(m - nodes.data()));
+    if (run.size() >= 2) out.push_back(std::move(run));
+  }
+  // Deterministic order: by thread line, then position along it.
+  auto line = [&](const DrapeNode& n) { return weft ? n.ply.y() : n.ply.x(); };
+  auto along = [&](const DrapeNode& n) { return weft ? n.ply.x() : n.ply.y(); };
+  std::sort(out.begin(), out.end(), [&](const auto& a, const auto& b) {
+    const DrapeNode &x = nodes[a[0]], &y = nodes[b[0]];
+    if (line(x) != line(y)) return line(x) < line(y);
+    return along(x) < along(y);
+  });
+  return out;
+}
+
+double DrapeResult::bytes_per_node() const {
+  if (nodes.empty()) return 0.0;
+  return static_cast<double>(nodes.capacity() * sizeof(DrapeNode) + index.memory_bytes()) /
+         static_cast<double>(nodes.size());
+}
+
+}  // namespace plyfit

@@ -1,0 +1,122 @@
+// The metrics of §7.1: thread angles, shear energy, the paper's area (mapped crossings), the
+// 2D and 3D areas of the mapped cells, and independent residual checks.
+#include "metrics.hpp"
+
+#include "mapped_cells.hpp"
+#include "net_links.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace plyfit::detail {
+
+namespace {
+
+double tri_area(const Vec3& a, const Vec3& b, const Vec3& c) {
+  return 0.5 * (b - a).cross(c - a).norm();
+}
+double tri_area2(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return 0.5 * std::abs(cross2(b - a, c - a));
+}
+
+// Thread angles at mapped regular nodes: weft and warp directions by central differences
+// where both neighbours along the thread are mapped, one-sided otherwise.
+void thread_angles(DrapeResult& res) {
+  for (DrapeNode& n : res.nodes) {
+    if (!n.mapped() || n.id.is_path_only()) continue;
+    auto direction = [&](ThreadDir plus, Vec3& out) {
+      const DrapeNode* p = res.neighbour(n, plus);
+      const DrapeNode* m = res.neighbour(n, opposite(plus));
+      const bool hp = p && p->mapped(), hm = m && m->mapped();
+      if (hp && hm)
+        out = p->point - m->point;
+      else if (hp)
+        out = p->point - n.point;
+      else if (hm)
+        out = n.point - m->point;
+      else
+        return false;
+      return out.norm() > 0.0;
+    };
+    Vec3 wf, wp;
+    if (!direction(ThreadDir::kPlusX, wf) || !direction(ThreadDir::kPlusY, wp)) continue;
+    n.thread_angle = std::atan2(wf.cross(wp).norm(), wf.dot(wp));
+    n.flags |= DrapeNode::kHasAngle;
+  }
+}
+
+// 2D and 3D area of the mapped cells (each part as a fan of triangles).
+void cell_areas(DrapeResult& res) {
+  double a2 = 0.0, a3 = 0.0;
+  detail::visit_mapped_cells(res, [&](std::int32_t, std::int32_t, const std::uint32_t* v, int n) {
+    const DrapeNode& o = res.nodes[v[0]];
+    for (int k = 1; k + 1 < n; ++k) {
+      const DrapeNode& b = res.nodes[v[k]];
+      const DrapeNode& c = res.nodes[v[k + 1]];
+      a2 += tri_area2(o.ply, b.ply, c.ply);
+      a3 += tri_area(o.point, b.point, c.point);
+    }
+  });
+  res.metrics.flat_area = a2;
+  res.metrics.surface_area = a3;
+}
+
+}  // namespace
+
+void compute_metrics(const DrapeSurface& s, DrapeResult& res) {
+  DrapeMetrics& m = res.metrics;
+  thread_angles(res);
+  bool first = true;
+  for (const DrapeNode& n : res.nodes) {
+    switch (n.status) {
+      case NodeStatus::kMapped:
+        (n.id.is_path_only() ? m.nodes.auxiliary : m.nodes.mapped)++;
+        break;
+      case NodeStatus::kOutside:
+        ++m.nodes.outside;
+        break;
+      case NodeStatus::kOffPly:
+        ++m.nodes.off_ply;
+        break;
+      case NodeStatus::kShearLimit:
+        ++m.nodes.shear_limit;
+        break;
+      case NodeStatus::kFailed:
+        ++m.nodes.failed;
+        break;
+      case NodeStatus::kOverlap:
+        ++m.nodes.overlap;
+        break;
+      case NodeStatus::kPending:
+        break;
+    }
+    if (n.has(DrapeNode::kHasAngle)) {
+      const double g = n.thread_angle;
+      m.gamma_min = first ? g : std::min(m.gamma_min, g);
+      m.gamma_max = first ? g : std::max(m.gamma_max, g);
+      first = false;
+      m.shear_energy += std::cos(g) * std::cos(g);
+      ++m.angles;
+    }
+  }
+  m.area_mesh_points = m.nodes.mapped;
+  cell_areas(res);
+  // Independent residual checks.
+  const double d = res.ply->d();
+  for_each_link(res, [&](std::uint32_t a, std::uint32_t b, double rest, LinkKind) {
+    const double len = (res.nodes[a].point - res.nodes[b].point).norm();
+    m.edge_length_max_rel = std::max(m.edge_length_max_rel, std::abs(len - rest) / d);
+  });
+  for (const DrapeNode& n : res.nodes) {
+    if (!n.mapped()) continue;
+    const SurfaceEval1 e = s.eval1(n.at());
+    m.surface_distance_max =
+        std::max(m.surface_distance_max, e.ok ? (e.p - n.point).norm() : INFINITY);
+    if (n.has(DrapeNode::kOnPath))
+      m.base_plane_max_rel = std::max(m.base_plane_max_rel,
+                                      std::abs(res.base_normal.dot(n.point - res.start_point)) / d);
+  }
+  if (!std::isfinite(m.surface_distance_max)) m.surface_distance_max = 1e300;
+}
+
+}  // namespace plyfit::detail

@@ -1,0 +1,292 @@
+// The frontier scan of §6.2: nodes next to mapped ones, in sweep order; node bookkeeping, and
+// the overlap and fold tests that stop the cloth where it would lie on itself.
+#include "scanner.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace plyfit::detail {
+
+Scanner::Scanner(const DrapeSurface& s, Ply& ply, const DrapeOptions& opt, DrapeResult& res)
+    : s_(s), ply_(ply), opt_(opt), res_(res) {
+  st_.spacing = ply.d();
+  st_.tol = opt.tol;
+  res_.gamma_min_limit = std::max(0.0, kPi / 2 - opt.lock_angle);
+  st_.gamma_min = std::max(res_.gamma_min_limit, opt.tol.fold_angle);
+  far_ = kFarFromPathCells * std::hypot(ply.spec().d_weft, ply.spec().d_warp);
+  closed_ = s.closes_on_itself();
+  one_face_ = s.face_count() == 1;
+  cell_ = kOverlapRel * ply.d();
+  // Open surfaces record only the base path and steep nodes; closed ones every mapped node.
+  grid_.init(cell_, closed_ ? res_.nodes.capacity() : 64);
+}
+
+void Scanner::run(const Vec3& t3) {
+  map_path(t3);
+  scan();
+}
+
+// The id across the thread link from `id` in direction d, if that node can exist.
+std::optional<NodeId> Scanner::neighbour_id(const NodeId& id, ThreadDir d) const {
+  if (!id.is_path_only()) {
+    if (far_from_path(ply_.pos(id.i, id.j))) {  // no link of (i, j) is split by the path
+      const int k = static_cast<int>(d);
+      return NodeId::regular(id.i + (k == 0   ? 1
+                                     : k == 1 ? -1
+                                              : 0),
+                             id.j + (k == 2   ? 1
+                                     : k == 3 ? -1
+                                              : 0));
+    }
+    const auto n = ply_.neighbour(id.i, id.j, d);
+    return n ? std::optional<NodeId>(n->id) : std::nullopt;
+  }
+  const PathNode* pn = ply_.path_node_if(id.j);
+  if (!pn || !pn->link_from) return std::nullopt;
+  if (d == opposite(pn->link_dir)) return *pn->link_from;
+  if (d == pn->link_dir) {
+    const NodeId a = *pn->link_from;
+    return pn->link_dir == ThreadDir::kPlusX ? NodeId::regular(a.i + 1, a.j)
+                                             : NodeId::regular(a.i, a.j + 1);
+  }
+  return std::nullopt;
+}
+
+// True when ply point p lies so far from the base path line that no thread link from it
+// (and no link within kFarFromPathCells - 1 cells of it) can cross the path.
+bool Scanner::far_from_path(const Vec2& p) const {
+  return std::abs(cross2(ply_.base_dir(), p - ply_.spec().start)) > far_;
+}
+
+// Node for id, created (pending) at ply position `pos` if absent, linked both ways to the
+// existing nodes across its thread links.
+std::uint32_t Scanner::node_for(const NodeId& id, const Vec2& pos) {
+  const auto k = res_.index.find(id);
+  if (k >= 0) return static_cast<std::uint32_t>(k);
+  DrapeNode n;
+  n.id = id;
+  n.ply = pos;
+  const auto idx = static_cast<std::uint32_t>(res_.nodes.size());
+  for (int d = 0; d < 4; ++d) {
+    const auto nid = neighbour_id(id, static_cast<ThreadDir>(d));
+    if (!nid) continue;
+    const auto m = res_.index.find(*nid);
+    if (m < 0) continue;
+    n.nb[d] = static_cast<std::int32_t>(m);
+    res_.nodes[static_cast<std::size_t>(m)]
+        .nb[static_cast<int>(opposite(static_cast<ThreadDir>(d)))] = static_cast<std::int32_t>(idx);
+  }
+  if (res_.nodes.size() == res_.nodes.capacity())  // beyond the estimate: grow by half
+    res_.nodes.reserve(res_.nodes.capacity() + res_.nodes.capacity() / 2 + 16);
+  res_.nodes.push_back(n);
+  res_.index.insert(id, idx);
+  return idx;
+}
+
+void Scanner::resolve(std::uint32_t idx, const SolveResult& r) {
+  DrapeNode& n = node(idx);
+  n.order = order_++;
+  ++res_.metrics.solves;
+  res_.metrics.iterations += static_cast<std::uint64_t>(r.iterations);
+  res_.metrics.evaluations += static_cast<std::uint64_t>(r.evaluations);
+  switch (r.status) {
+    case SolveStatus::kConverged:
+      n.status = NodeStatus::kMapped;
+      n.point = r.point;
+      n.set_at(r.at);
+      res_.metrics.solve_residual_max_rel =
+          std::max(res_.metrics.solve_residual_max_rel, r.residual / st_.spacing);
+      break;
+    case SolveStatus::kLeftFace:
+      n.status = NodeStatus::kOutside;
+      if (r.extended) {
+        n.point = r.point;
+        n.set_at(r.at);
+        n.flags |= DrapeNode::kExtended;
+      }
+      break;
+    case SolveStatus::kShearLimit:
+      n.status = NodeStatus::kShearLimit;
+      break;
+    case SolveStatus::kFailed:
+      n.status = NodeStatus::kFailed;
+      break;
+  }
+}
+
+// True if node k (just mapped) lies on cloth already laid: a recorded node within
+// kOverlapRel * d in 3D but at least kOverlapSeparation * d away on the ply; otherwise
+// records it.
+bool Scanner::overlaps(std::uint32_t k) {
+  const DrapeNode& n = node(k);
+  const double sep = kOverlapSeparation * ply_.d();
+  const bool near = grid_.any_near(n.point, [&](std::uint32_t q) {
+    const DrapeNode& m = node(q);
+    return (m.point - n.point).norm() < cell_ && (m.ply - n.ply).norm() >= sep;
+  });
+  if (!near) grid_.insert(n.point, k);
+  return near;
+}
+
+bool Scanner::cancelled_now() {
+  if (opt_.cancel && opt_.cancel->load(std::memory_order_relaxed)) cancelled_ = true;
+  return cancelled_;
+}
+
+// Adds the unknown regular neighbours of a mapped node to the frontier.
+void Scanner::push_neighbours(std::uint32_t idx) {
+  for (int d = 0; d < 4; ++d) {
+    if (node(idx).nb[d] >= 0) continue;  // already reached (pending or resolved)
+    const auto q = neighbour_id(node(idx).id, static_cast<ThreadDir>(d));
+    if (!q || q->is_path_only()) continue;  // path nodes are mapped by the base path
+    const Vec2 qp = ply_.pos(q->i, q->j);
+    const int side = ply_.side(qp);
+    if (side == 0) continue;                      // on the path: mapped (or not) by the base path
+    if (ply_.sweep_for_side(side) < 0) continue;  // that half-plane is not swept
+    if (res_.nodes.size() >= opt_.max_nodes) {
+      truncated_ = true;
+      continue;
+    }
+    const std::uint32_t qi = node_for(*q, qp);
+    if (!ply_.on_ply(qp)) {
+      node(qi).status = NodeStatus::kOffPly;
+      node(qi).order = order_++;
+      continue;
+    }
+    heap_.push({ply_.sweep_distance(qp), (qp - ply_.spec().start).norm(), q->i, q->j, qi});
+  }
+}
+
+// True if a thread through node k (just mapped) turns back on itself there: the link to
+// a mapped neighbour and that neighbour's next link along the same thread make an angle
+// over 90 degrees. A smooth surface turns a thread by about d / R per link (60 degrees
+// at a curvature radius R = d); more is cloth folded onto itself, which two-sphere solves
+// from a net sheared nearly flat can produce without end on a face that never lets it go.
+bool Scanner::folds_back(std::uint32_t k) const {
+  const DrapeNode& q = res_.nodes[k];
+  for (int d = 0; d < 4; ++d) {
+    const DrapeNode* a = mapped_nb(q, static_cast<ThreadDir>(d));
+    const DrapeNode* a2 = a ? mapped_nb(*a, static_cast<ThreadDir>(d)) : nullptr;
+    if (a2 && (a->point - q.point).dot(a2->point - a->point) < 0.0) return true;
+  }
+  return false;
+}
+
+// True if node k (just mapped) is sheared past kOverlapCheckShear between any of its weft
+// and warp links. On an open face only such nodes are recorded and tested for overlap:
+// a net sheared nearly flat can lie on itself (a ribbon of cells folded flat along the
+// ply's diagonal, revisiting the same stretch of the face without end) while every link
+// and every solve's thread angle passes; a net sheared less cannot, and is not recorded,
+// which keeps the test's cost off ordinary drapes.
+bool Scanner::steep(std::uint32_t k) const {
+  const DrapeNode& q = res_.nodes[k];
+  // The angle g between links a and b is below pi/2 - shear or above pi/2 + shear when
+  // |cos g| > sin(shear): (a.b)^2 > sin^2(shear) |a|^2 |b|^2, no trigonometry.
+  const double s2 = std::sin(kOverlapCheckShear) * std::sin(kOverlapCheckShear);
+  for (int dw = 0; dw < 2; ++dw) {
+    const DrapeNode* w = mapped_nb(q, static_cast<ThreadDir>(dw));
+    if (!w) continue;
+    for (int dv = 2; dv < 4; ++dv) {
+      const DrapeNode* v = mapped_nb(q, static_cast<ThreadDir>(dv));
+      if (!v) continue;
+      const Vec3 a = w->point - q.point, b = v->point - q.point;
+      const double ab = a.dot(b);
+      if (ab * ab > s2 * a.squaredNorm() * b.squaredNorm()) return true;
+    }
+  }
+  return false;
+}
+
+// True if a neighbour of q stopped at the shear limit. Such a node, reached from one side
+// only, is stopped as well: continuing its thread straight (solver 3) past the locked
+// node would fold the cloth over the cells the lock left open (on the sphere octant,
+// case (c) with a 30 degree lock: mapped nodes sheared to 88 degrees, links off by 0.7 d).
+bool Scanner::behind_lock(const DrapeNode& q) const {
+  for (int d = 0; d < 4; ++d) {
+    const std::int32_t k = q.nb[d];
+    if (k >= 0 && res_.nodes[static_cast<std::size_t>(k)].status == NodeStatus::kShearLimit)
+      return true;
+  }
+  return false;
+}
+
+void Scanner::scan() {
+  std::uint32_t popped = 0;
+  while (!heap_.empty()) {
+    const FrontierEntry e = heap_.top();
+    heap_.pop();
+    if (++popped % kCancelEvery == 0 && cancelled_now()) break;
+    if (opt_.progress && popped % kProgressEvery == 0) opt_.progress(res_.metrics.solves);
+    const std::uint32_t qi = e.node;
+    const DrapeNode& qn = node(qi);
+    // Known neighbours, weft and warp.
+    struct Known {
+      ThreadDir dir;
+      const DrapeNode* n;
+    };
+    Known known[4];
+    int nk = 0;
+    for (int d = 0; d < 4; ++d)
+      if (const DrapeNode* m = mapped_nb(qn, static_cast<ThreadDir>(d)))
+        known[nk++] = {static_cast<ThreadDir>(d), m};
+    SolveResult r;
+    if (nk >= 2) {
+      // Prefer a weft-warp pair whose cell's fourth corner is mapped, then any weft-warp
+      // pair, then two neighbours on one thread.
+      int best_a = 0, best_b = 1, best_score = -1;
+      for (int x = 0; x < nk; ++x) {
+        for (int y = x + 1; y < nk; ++y) {
+          int score = 0;
+          if (is_weft(known[x].dir) != is_weft(known[y].dir)) {
+            score = 1;
+            const DrapeNode* a = known[x].n;
+            const DrapeNode* b = known[y].n;
+            if (!a->id.is_path_only() && !b->id.is_path_only()) {
+              const DrapeNode* c = mapped_nb(*a, known[y].dir);
+              if (c && c->id == NodeId::regular(a->id.i + b->id.i - qn.id.i,
+                                                a->id.j + b->id.j - qn.id.j))
+                score = 2;
+            }
+          }
+          if (score > best_score) {
+            best_score = score;
+            best_a = x;
+            best_b = y;
+          }
+        }
+      }
+      // Weft neighbour first, so that guesses and branches are reproducible.
+      Known ka = known[best_a], kb = known[best_b];
+      if (!is_weft(ka.dir) && is_weft(kb.dir)) std::swap(ka, kb);
+      r = solve_two(qn, *ka.n, ka.dir, res_.rest_length(qn, ka.dir), *kb.n, kb.dir,
+                    res_.rest_length(qn, kb.dir));
+      // Links to further known neighbours (fronts that met around a hole in the net) are
+      // not solved for: a node that breaks one is no point of the cloth.
+      for (int x = 0; x < nk && r.status == SolveStatus::kConverged; ++x) {
+        if (known[x].n == ka.n || known[x].n == kb.n) continue;
+        const double rest = res_.rest_length(qn, known[x].dir);
+        const double err = std::abs((r.point - known[x].n->point).norm() - rest);
+        if (err > kFrontMismatchRel * ply_.d()) {
+          r.status = SolveStatus::kFailed;
+          r.reason = "the fronts disagree: a third link is off";
+        }
+      }
+    } else if (nk == 1 && behind_lock(qn)) {
+      r.status = SolveStatus::kShearLimit;
+      r.reason = "behind the shear limit";
+    } else if (nk == 1) {
+      r = solve_one(qn, *known[0].n, known[0].dir, res_.rest_length(qn, known[0].dir));
+    } else {
+      r.reason = "no known neighbour";
+    }
+    resolve(qi, r);
+    // On a closed face the cloth can come round onto itself; on any face, a net sheared
+    // nearly flat can lie on itself or fold its threads back (steep(), folds_back()).
+    if (node(qi).mapped() && (((closed_ || steep(qi)) && overlaps(qi)) || folds_back(qi)))
+      node(qi).status = NodeStatus::kOverlap;
+    if (node(qi).mapped()) push_neighbours(qi);
+  }
+  while (!heap_.empty()) heap_.pop();  // cancelled: pending nodes stay unresolved
+}
+
+}  // namespace plyfit::detail
