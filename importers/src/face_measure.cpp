@@ -5,11 +5,13 @@
 #include <BRepBndLib.hxx>
 #include <BRepGProp.hxx>
 #include <BRepTools.hxx>
+#include <BRepTools_WireExplorer.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
 #include <Geom2dAdaptor_Curve.hxx>
 #include <Geom2d_Curve.hxx>
+#include <Geom2d_Line.hxx>
 #include <GeomAdaptor_Surface.hxx>
 #include <GeomConvert.hxx>
 #include <Geom_BSplineSurface.hxx>
@@ -19,7 +21,9 @@
 #include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Edge.hxx>
+#include <TopoDS_Iterator.hxx>
 #include <TopoDS_Wire.hxx>
+#include <gp_Ax2d.hxx>
 
 #include <algorithm>
 #include <cmath>
@@ -84,6 +88,9 @@ constexpr double kOuterShare = 0.5, kInnerShare = 0.1;
 // one): a band takes the next set until the previous set's interpolant matches the rows at the
 // new points, and is halved (at most kMaxBandDepth times) when the largest set does not.
 constexpr int kBandNodes[] = {3, 5, 9, 17};
+// The band's end points move this fraction of the band inwards (see lobatto()): the
+// interpolant then extrapolates over as little, an error far below the accuracy asked.
+constexpr double kBandInset = 1e-12;
 constexpr int kMaxBandDepth = 12;
 // Samples per smooth interval of a pcurve searched for crossings of knot lines, and the
 // bisection steps that locate a crossing (to the last bits of the parameter).
@@ -95,6 +102,7 @@ constexpr int kMaxSegments = 20000;
 constexpr double kRoundoffFloor = 64.0 * std::numeric_limits<double>::epsilon();
 
 // |S_u x S_v| and points of the face's surface.
+// The integration's (u, v) are the surface's, or (v, u) when `transposed`.
 class Evaluator {
  public:
   virtual ~Evaluator() = default;
@@ -102,16 +110,23 @@ class Evaluator {
   double density(double u, double v) const {
     ++count;
     Vec3 p, a, b;
-    d1(u, v, p, a, b);
+    if (transposed)
+      d1(v, u, p, a, b);
+    else
+      d1(u, v, p, a, b);
     return a.cross(b).norm();
   }
   Vec3 point(double u, double v) const {
     ++count;
     Vec3 p, a, b;
-    d1(u, v, p, a, b);
+    if (transposed)
+      d1(v, u, p, a, b);
+    else
+      d1(u, v, p, a, b);
     return p;
   }
   mutable long count = 0;
+  bool transposed = false;
 };
 
 // OpenCASCADE's evaluation: analytic, swept, offset and periodic B-spline surfaces.
@@ -234,10 +249,17 @@ struct Segment {
   bool operator<(const Segment& o) const { return error < o.error; }
 };
 
-// Chebyshev-Lobatto point k of n on [v0, v1] (k = 0 at v0), and its barycentric weight.
+// Chebyshev-Lobatto point k of n on [v0, v1] (k = 0 at v0), and its barycentric weight. The
+// end points are moved inside by kBandInset of the band (at least a few ulps): a band ends on
+// a knot line, where a surface that is only C0 has two derivatives, and the row there must be
+// the one of the band's side (the evaluator would pick one side for both bands).
 double lobatto(int k, int n, double v0, double v1) {
   constexpr double kPi = 3.14159265358979323846;
-  return 0.5 * (v0 + v1) - 0.5 * (v1 - v0) * std::cos(k * kPi / (n - 1));
+  const double inset =
+      std::max(kBandInset * (v1 - v0),
+               4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(v0), std::abs(v1)));
+  const double a = v0 + inset, b = v1 - inset;
+  return 0.5 * (a + b) - 0.5 * (b - a) * std::cos(k * kPi / (n - 1));
 }
 double lobatto_weight(int k, int n) {
   return (k % 2 ? -1.0 : 1.0) * (k == 0 || k == n - 1 ? 0.5 : 1.0);
@@ -269,7 +291,7 @@ void barycentric(const std::vector<double>& nodes, const std::vector<double>& we
 class RowTable {
  public:
   RowTable(const Evaluator& eval, const Breaks& ub, const Breaks& vb, double u0, double u1,
-           double v0, double v1, double rel_tol)
+           double v0, double v1, double inner_tol)
       : eval_(eval) {
     // Columns: the coarsest rule whose rows agree with the next finer one.
     std::vector<double> knots;
@@ -287,11 +309,12 @@ class RowTable {
         cur.push_back(row_total(v));
         scale = std::max(scale, std::abs(cur.back()));
       }
+      row_scale_ = scale;
       if (!prev.empty()) {
         double diff = 0.0;
         for (size_t k = 0; k < cur.size(); ++k) diff = std::max(diff, std::abs(cur[k] - prev[k]));
         rule_error_ = scale > 0.0 ? diff / scale : 0.0;
-        if (rule_error_ <= kInnerShare * rel_tol) {
+        if (rule_error_ <= inner_tol) {
           set_columns(knots, kInnerRules[level - 1]);
           break;
         }
@@ -304,7 +327,7 @@ class RowTable {
     vb.inside(v0, v1, vk);
     vk.insert(vk.begin(), v0);
     vk.push_back(v1);
-    for (size_t k = 0; k + 1 < vk.size(); ++k) add_band(vk[k], vk[k + 1], kInnerShare * rel_tol, 0);
+    for (size_t k = 0; k + 1 < vk.size(); ++k) add_band(vk[k], vk[k + 1], inner_tol, 0);
   }
 
   // Interior column and band boundaries, where the boundary integrand loses smoothness.
@@ -415,7 +438,7 @@ class RowTable {
       next.v1 = v1;
       next.rows.resize(static_cast<size_t>(n) * stride);
       const int step = level == 0 ? 1 : (n - 1) / (kBandNodes[level - 1] - 1);
-      double worst = 0.0, scale = 0.0;
+      double worst = 0.0;
       for (int k = 0; k < n; ++k) {
         next.nodes.push_back(lobatto(k, n, v0, v1));
         next.weights.push_back(lobatto_weight(k, n));
@@ -427,7 +450,6 @@ class RowTable {
           continue;
         }
         row(next.nodes.back(), out);
-        scale = std::max(scale, std::abs(out[stride - 1]));
         if (level == 0) continue;
         barycentric(b.nodes, b.weights, next.nodes.back(), coef);
         for (size_t i = 0; i < stride; ++i) {
@@ -438,7 +460,10 @@ class RowTable {
       }
       b = std::move(next);
       if (level == 0) continue;
-      rel = scale > 0.0 ? worst / scale : 0.0;
+      // Relative to the largest row across the face: a band where the rows vanish (along a
+      // collapsed edge) is as accurate as it needs to be when its error is small against the
+      // face's rows, not against its own.
+      rel = row_scale_ > 0.0 ? worst / row_scale_ : 0.0;
       if (rel <= tol) break;
     }
     const double mid = 0.5 * (v0 + v1);
@@ -475,6 +500,7 @@ class RowTable {
   std::vector<double> cols_;
   std::vector<Band> bands_;
   double rule_error_ = 0.0, table_error_ = 0.0;
+  double row_scale_ = 0.0;  // the largest |row integral| of the rule test
 };
 
 // The boundary integral of G(u, v) dv by Gauss-Kronrod.
@@ -579,6 +605,15 @@ void split_at_crossings(const Handle(Geom2d_Curve) & c, double a, double b, cons
     if (all[k + 1] > all[k]) out.push_back(Segment{all[k], all[k + 1], edge, 0, 0, 0});
 }
 
+// Appends the straight (u, v) segment from `a` to `b` as a boundary edge, unless they coincide.
+void add_segment(const gp_Pnt2d& a, const gp_Pnt2d& b, std::vector<EdgeRef>& edges,
+                 std::vector<std::pair<double, double>>& ranges) {
+  const double length = a.Distance(b);
+  if (!(length > 0.0)) return;
+  edges.push_back(EdgeRef{new Geom2d_Line(a, gp_Dir2d(b.X() - a.X(), b.Y() - a.Y())), 1.0});
+  ranges.emplace_back(0.0, length);
+}
+
 FaceMeasure fallback(const TopoDS_Face& face, double rel_tol, bool with_box) {
   FaceMeasure m;
   GProp_GProps props;
@@ -644,7 +679,21 @@ BBox3 face_box(const Evaluator& eval, const std::vector<EdgeRef>& edges,
 
 }  // namespace
 
-FaceMeasure measure_face(const TopoDS_Face& face, double rel_tol, bool with_box) {
+std::vector<TopoDS_Edge> ordered_edges(const TopoDS_Wire& w, const TopoDS_Face& f) {
+  std::vector<TopoDS_Edge> edges;
+  int count = 0;
+  for (TopoDS_Iterator it(w); it.More(); it.Next()) ++count;
+  for (BRepTools_WireExplorer we(w, f); we.More(); we.Next()) edges.push_back(we.Current());
+  if (static_cast<int>(edges.size()) == count) return edges;
+  // The explorer could not chain every edge (a wire OpenCASCADE finds ill-connected): keep the
+  // stored order, which readers write along the wire.
+  edges.clear();
+  for (TopoDS_Iterator it(w); it.More(); it.Next())
+    if (it.Value().ShapeType() == TopAbs_EDGE) edges.push_back(TopoDS::Edge(it.Value()));
+  return edges;
+}
+
+FaceMeasure measure_face(const TopoDS_Face& face, double rel_tol, bool with_box, bool transposed) {
   Handle(Geom_Surface) s = BRep_Tool::Surface(face);
   if (s.IsNull()) return fallback(face, rel_tol, with_box);
   Handle(Geom_Surface) basis = s;
@@ -655,70 +704,112 @@ FaceMeasure measure_face(const TopoDS_Face& face, double rel_tol, bool with_box)
     bspline = GeomConvert::SurfaceToBSplineSurface(z);
   std::unique_ptr<Evaluator> eval = kernel_evaluator(bspline);
   if (!eval) eval = std::make_unique<OcctEvaluator>(basis);
+  eval->transposed = transposed;
+  // Transposed: every pcurve mirrored in the line u = v.
+  const gp_Ax2d diagonal(gp_Pnt2d(0, 0), gp_Dir2d(1, 1));
   const Handle(Geom_Surface)& geometry = bspline.IsNull() ? basis : bspline;
 
+  // The boundary, wire by wire with the edges in order along it; where an edge's pcurve does
+  // not start where the previous one ended (CAD files leave gaps of up to 6e-4 mm, e.g.
+  // PRO20359-L1.igs), a straight (u, v) segment closes the gap, so that every loop is closed
+  // and Green's theorem gives the area it bounds (an open loop's result would depend on the
+  // direction of integration).
   std::vector<EdgeRef> edges;
   std::vector<std::pair<double, double>> ranges;
-  for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next()) {
-    const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
-    const TopAbs_Orientation o = e.Orientation();
-    if (o != TopAbs_FORWARD && o != TopAbs_REVERSED) continue;
-    double a = 0, b = 0;
-    const Handle(Geom2d_Curve) c = BRep_Tool::CurveOnSurface(e, face, a, b);
-    if (c.IsNull() || !(b > a)) return fallback(face, rel_tol, with_box);
-    edges.push_back(EdgeRef{c, o == TopAbs_REVERSED ? -1.0 : 1.0});
-    ranges.emplace_back(a, b);
+  for (TopExp_Explorer wx(face, TopAbs_WIRE); wx.More(); wx.Next()) {
+    const size_t first = edges.size();
+    gp_Pnt2d loop_start, last_end;
+    for (const TopoDS_Edge& e : ordered_edges(TopoDS::Wire(wx.Current()), face)) {
+      const TopAbs_Orientation o = e.Orientation();
+      if (o != TopAbs_FORWARD && o != TopAbs_REVERSED) continue;
+      double a = 0, b = 0;
+      Handle(Geom2d_Curve) c = BRep_Tool::CurveOnSurface(e, face, a, b);
+      if (c.IsNull() || !(b > a)) return fallback(face, rel_tol, with_box);
+      if (transposed) {
+        c = Handle(Geom2d_Curve)::DownCast(c->Copy());
+        c->Mirror(diagonal);
+      }
+      const bool reversed = o == TopAbs_REVERSED;
+      const gp_Pnt2d start = c->Value(reversed ? b : a), end = c->Value(reversed ? a : b);
+      if (edges.size() == first)
+        loop_start = start;
+      else
+        add_segment(last_end, start, edges, ranges);
+      edges.push_back(EdgeRef{c, reversed ? -1.0 : 1.0});
+      ranges.emplace_back(a, b);
+      last_end = end;
+    }
+    if (edges.size() > first) add_segment(last_end, loop_start, edges, ranges);
   }
   if (edges.empty()) return fallback(face, rel_tol, with_box);
 
   double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
   BRepTools::UVBounds(face, u0, u1, v0, v1);
-  const RowTable table(*eval, breaks_of(geometry, true), breaks_of(geometry, false), u0, u1, v0, v1,
-                       rel_tol);
-  const AreaIntegrator integrator(table);
-  std::vector<Segment> segs;
-  {
+  if (transposed) {
+    std::swap(u0, v0);
+    std::swap(u1, v1);
+  }
+  // The boundary integral over a row table made to `inner_tol` (relative to a row integral).
+  struct Pass {
+    double total = 0.0, error = 0.0, magnitude = 0.0, inner_rel = 0.0;
+  };
+  auto integrate = [&](double inner_tol) {
+    const RowTable table(*eval, breaks_of(geometry, !transposed), breaks_of(geometry, transposed),
+                         u0, u1, v0, v1, inner_tol);
+    const AreaIntegrator integrator(table);
+    std::vector<Segment> segs;
     const Breaks ub = table.column_breaks(), vb = table.band_breaks();
     for (size_t k = 0; k < edges.size(); ++k)
       split_at_crossings(edges[k].curve, ranges[k].first, ranges[k].second, ub, vb,
                          static_cast<int>(k), segs);
-  }
-
-  // Globally adaptive: the segment with the largest error estimate is halved until the
-  // estimates add up to the outer share of the requested accuracy.
-  std::priority_queue<Segment> queue;
-  double total = 0.0, error = 0.0, magnitude = 0.0;
-  for (Segment& seg : segs) {
-    integrator.integrate(edges[static_cast<size_t>(seg.edge)], seg);
-    total += seg.value;
-    error += seg.error;
-    magnitude += seg.abs_value;
-    queue.push(seg);
-  }
-  while (error > std::max(kOuterShare * rel_tol * std::abs(total), kRoundoffFloor * magnitude) &&
-         static_cast<int>(queue.size()) < kMaxSegments) {
-    const Segment worst = queue.top();
-    queue.pop();
-    const double mid = 0.5 * (worst.t0 + worst.t1);
-    if (!(mid > worst.t0 && mid < worst.t1)) {
-      // Cannot be halved further: keep it as it is (its error stays in the sum).
-      queue.push(Segment{worst.t0, worst.t1, worst.edge, worst.value, 0.0, worst.abs_value});
-      error -= worst.error;
-      continue;
+    // Globally adaptive: the segment with the largest error estimate is halved until the
+    // estimates add up to the outer share of the requested accuracy.
+    std::priority_queue<Segment> queue;
+    Pass p;
+    p.inner_rel = table.relative_error();
+    for (Segment& seg : segs) {
+      integrator.integrate(edges[static_cast<size_t>(seg.edge)], seg);
+      p.total += seg.value;
+      p.error += seg.error;
+      p.magnitude += seg.abs_value;
+      queue.push(seg);
     }
-    Segment a{worst.t0, mid, worst.edge, 0, 0, 0}, b{mid, worst.t1, worst.edge, 0, 0, 0};
-    integrator.integrate(edges[static_cast<size_t>(a.edge)], a);
-    integrator.integrate(edges[static_cast<size_t>(b.edge)], b);
-    total += a.value + b.value - worst.value;
-    error += a.error + b.error - worst.error;
-    magnitude += a.abs_value + b.abs_value - worst.abs_value;
-    queue.push(a);
-    queue.push(b);
-  }
+    while (p.error >
+               std::max(kOuterShare * rel_tol * std::abs(p.total), kRoundoffFloor * p.magnitude) &&
+           static_cast<int>(queue.size()) < kMaxSegments) {
+      const Segment worst = queue.top();
+      queue.pop();
+      const double mid = 0.5 * (worst.t0 + worst.t1);
+      if (!(mid > worst.t0 && mid < worst.t1)) {
+        // Cannot be halved further: keep it as it is (its error stays in the sum).
+        queue.push(Segment{worst.t0, worst.t1, worst.edge, worst.value, 0.0, worst.abs_value});
+        p.error -= worst.error;
+        continue;
+      }
+      Segment a{worst.t0, mid, worst.edge, 0, 0, 0}, b{mid, worst.t1, worst.edge, 0, 0, 0};
+      integrator.integrate(edges[static_cast<size_t>(a.edge)], a);
+      integrator.integrate(edges[static_cast<size_t>(b.edge)], b);
+      p.total += a.value + b.value - worst.value;
+      p.error += a.error + b.error - worst.error;
+      p.magnitude += a.abs_value + b.abs_value - worst.abs_value;
+      queue.push(a);
+      queue.push(b);
+    }
+    return p;
+  };
+  // The inner share assumes the boundary's rows add up to about the area; where they add up
+  // to more (rows of both signs that cancel) and the table's error is what misses the accuracy,
+  // the table is made again, tighter by the ratio.
+  Pass pass = integrate(kInnerShare * rel_tol);
+  const double area = std::abs(pass.total), inner = pass.inner_rel * pass.magnitude;
+  if (pass.error + inner > rel_tol * area && inner > kOuterShare * rel_tol * area &&
+      pass.magnitude > area)
+    pass = integrate(kInnerShare * rel_tol * area / pass.magnitude);
+  const double total = pass.total, error = pass.error, magnitude = pass.magnitude;
 
   FaceMeasure m;
   m.area = std::abs(total);
-  m.error = error + table.relative_error() * magnitude;
+  m.error = error + pass.inner_rel * magnitude;
   m.converged = m.error <= std::max(rel_tol * m.area, kRoundoffFloor * magnitude);
   if (with_box) m.bbox = face_box(*eval, edges, ranges, u0, u1, v0, v1);
   m.evaluations = eval->count;

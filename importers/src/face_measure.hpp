@@ -16,7 +16,11 @@
 
 #include <plyfit/kernel/types.hpp>
 
+#include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
+#include <TopoDS_Wire.hxx>
+
+#include <vector>
 
 namespace plyfit::importers::occt {
 
@@ -40,9 +44,15 @@ constexpr int kBoxGrid = 32;
 constexpr int kBoxEdgeSamples = 64;
 
 /// Measures `face` to the relative accuracy `rel_tol` (estimated), with its bounding box when
-/// `with_box`. Falls back to OpenCASCADE's integration (BRepGProp) for a face that has no
-/// boundary with pcurves; then `converged` is false and `bbox` comes from OpenCASCADE's
-/// BRepBndLib::Add.
-FaceMeasure measure_face(const TopoDS_Face& face, double rel_tol, bool with_box);
+/// `with_box`. `transposed` integrates along v and around the boundary in u instead (the same
+/// area by another path of quadratures: tests and benchmarks compare the two). Falls back to
+/// OpenCASCADE's integration (BRepGProp) for a face that has no boundary with pcurves; then
+/// `converged` is false and `bbox` comes from OpenCASCADE's BRepBndLib::AddOptimal.
+FaceMeasure measure_face(const TopoDS_Face& face, double rel_tol, bool with_box,
+                         bool transposed = false);
+
+/// The edges of a wire of `f` in order along it, with their orientation in the wire
+/// (BRepTools_WireExplorer; the stored order when it cannot chain every edge).
+std::vector<TopoDS_Edge> ordered_edges(const TopoDS_Wire& w, const TopoDS_Face& f);
 
 }  // namespace plyfit::importers::occt

@@ -44,9 +44,9 @@ Module load() {
     }
     return m;
   }
-  m.error = std::string("STEP and IGES files need plyfit's OpenCASCADE module ") +
-            kOcctModuleFile + ", which is neither next to the plyfit executable in " +
-            dir.string() + " nor in " + (dir.parent_path() / "lib").string();
+  m.error = std::string("STEP and IGES files need plyfit's OpenCASCADE module ") + kOcctModuleFile +
+            ", which is neither next to the plyfit executable in " + dir.string() + " nor in " +
+            (dir.parent_path() / "lib").string();
   return m;
 }
 

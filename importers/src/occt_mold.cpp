@@ -4,7 +4,6 @@
 
 #include <BRepBuilderAPI_NurbsConvert.hxx>
 #include <BRepTools.hxx>
-#include <BRepTools_WireExplorer.hxx>
 #include <BRep_Tool.hxx>
 #include <Geom2dAdaptor_Curve.hxx>
 #include <Geom2d_Curve.hxx>
@@ -32,7 +31,6 @@
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Face.hxx>
-#include <TopoDS_Iterator.hxx>
 #include <TopoDS_Wire.hxx>
 #include <TransferBRep.hxx>
 #include <XSControl_TransferReader.hxx>
@@ -333,21 +331,6 @@ class EdgeSampler {
   double tol_;
   Vec2 speeds_;
 };
-
-// The edges of a wire in order along it, with their orientation in the wire.
-std::vector<TopoDS_Edge> ordered_edges(const TopoDS_Wire& w, const TopoDS_Face& f) {
-  std::vector<TopoDS_Edge> edges;
-  int count = 0;
-  for (TopoDS_Iterator it(w); it.More(); it.Next()) ++count;
-  for (BRepTools_WireExplorer we(w, f); we.More(); we.Next()) edges.push_back(we.Current());
-  if (static_cast<int>(edges.size()) == count) return edges;
-  // The explorer could not chain every edge (a wire OpenCASCADE finds ill-connected): keep the
-  // stored order, which readers write along the wire.
-  edges.clear();
-  for (TopoDS_Iterator it(w); it.More(); it.Next())
-    if (it.Value().ShapeType() == TopAbs_EDGE) edges.push_back(TopoDS::Edge(it.Value()));
-  return edges;
-}
 
 Result<std::vector<TrimLoop>> trim_loops(const TopoDS_Face& f,
                                          const Handle(Geom_BSplineSurface) & s, double tol3d,
