@@ -33,6 +33,7 @@
 #include <XCAFDoc_ShapeTool.hxx>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -307,6 +308,43 @@ TEST_CASE("exporters: net.step reads back in OpenCASCADE with named groups and n
   for (const auto& c : cases()) {
     check_step(*c, 1);
     check_step(*c, 3);
+  }
+}
+
+TEST_CASE("exporters: net.step reads back in DRAW (occt-draw) with its names and curve counts") {
+  // DRAW, OpenCASCADE's test harness (Debian occt-draw, scripts/install-deps --test), reads the
+  // file with its own commands: ReadStep into an XDE document, the product names and the edges
+  // of each.
+  if (std::system("command -v occt-draw > /dev/null 2>&1") != 0) {
+    WARN("skipped: occt-draw is not installed (scripts/install-deps --test)");
+    return;
+  }
+  for (const auto& c : cases()) {
+    INFO(c->name);
+    const fs::path dir = fresh_dir("draw");
+    REQUIRE(exporters::find_exporter("step")->write(c->ctx(), dir.string()).ok());
+    {
+      std::ofstream tcl(dir / "read.tcl");
+      tcl << "pload MODELING XDE OCAF\nReadStep D {" << (dir / "net.step").string() << "}\n"
+          << "foreach lab {0:1:1:1 0:1:1:2 0:1:1:3} {\n  XGetShape s D $lab\n"
+          << "  puts \"group [GetName D $lab] [llength [explode s e]]\"\n}\nexit\n";
+    }
+    const std::string out = (dir / "draw.txt").string();
+    const std::string cmd =
+        "timeout 120 occt-draw -b -f '" + (dir / "read.tcl").string() + "' > '" + out + "' 2>&1";
+    REQUIRE(std::system(cmd.c_str()) == 0);
+    std::ifstream in(out);
+    std::map<std::string, std::size_t> edges;
+    for (std::string line; std::getline(in, line);) {
+      std::istringstream ls(line);
+      std::string word, name;
+      std::size_t n = 0;
+      if (ls >> word >> name >> n && word == "group") edges[name] = n;
+    }
+    const std::map<std::string, std::size_t> expected = {{"weft", c->result.threads(true).size()},
+                                                         {"warp", c->result.threads(false).size()},
+                                                         {"base_path", 1}};
+    CHECK(edges == expected);
   }
 }
 
