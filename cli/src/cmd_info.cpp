@@ -1,4 +1,6 @@
 // plyfit info FILE [--json] [--format F]: lists a mold file's faces without converting them.
+// plyfit info FILE --face N [--json]: converts face N alone and gives a point near its middle,
+// its outward normal, and initial conditions for a drape from there.
 
 #include "commands.hpp"
 
@@ -7,8 +9,10 @@
 #include <boost/program_options.hpp>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -123,10 +127,132 @@ nlohmann::json to_json(const Mold& m) {
               {"warnings", m.warnings}};
 }
 
+// ---- --face N: a start near the face's middle ----
+
+// The uv grid searched for a point inside the trims when the centre is not (per direction).
+constexpr int kFaceSearchGrid = 129;
+// Below this fraction of |S_v|, S_u is taken for a collapsed edge (a pole): the base path then
+// runs along v.
+constexpr double kCollapsedTangentRel = 1e-9;
+
+std::string csv(const Vec3& v) {
+  char buf[128];
+  // + 0.0: no "-0".
+  std::snprintf(buf, sizeof buf, "%.9g,%.9g,%.9g", v.x() + 0.0, v.y() + 0.0, v.z() + 0.0);
+  return buf;
+}
+
+/// A start for a drape of one face: the point of the face nearest the (u, v) centre of its
+/// boundary (trim loops, or the domain) that lies inside the trims, the outward normal there,
+/// and the base path along the surface's u direction: base-plane normal and sweeps n x t.
+struct FaceStart {
+  Vec2 uv = Vec2::Zero();
+  Vec3 point = Vec3::Zero(), normal = Vec3::UnitZ(), tangent = Vec3::UnitX(),
+       base_normal = Vec3::UnitY();
+  std::string flags;  ///< the plyfit drape flags of these initial conditions
+};
+
+Result<FaceStart> face_start(const Face& face, int index) {
+  Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const auto& loop : face.boundary_loops())
+    for (const Vec2& q : loop) {
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+  if (!(lo.x() <= hi.x() && lo.y() <= hi.y())) return Error{"the face has no boundary"};
+  const Vec2 centre = 0.5 * (lo + hi);
+  Vec2 span = hi - lo;
+  for (int a = 0; a < 2; ++a)
+    if (!(span[a] > 0)) span[a] = 1.0;
+  FaceStart s;
+  s.uv = centre;
+  if (!face.contains(centre)) {
+    // The contained grid point nearest the centre (distances in fractions of the span).
+    double best = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < kFaceSearchGrid; ++i)
+      for (int j = 0; j < kFaceSearchGrid; ++j) {
+        const Vec2 q = lo + Vec2((i + 0.5) / kFaceSearchGrid * span.x(),
+                                 (j + 0.5) / kFaceSearchGrid * span.y());
+        const double d = (q - centre).cwiseQuotient(span).norm();
+        if (d < best && face.contains(q)) {
+          best = d;
+          s.uv = q;
+        }
+      }
+    if (!std::isfinite(best)) return Error{"no point of the face found inside its trims"};
+  }
+  const SurfaceEval1 e = face.eval1(s.uv);
+  s.point = e.p;
+  s.normal = face.normal(s.uv).n;
+  // The base path along u (along v where u degenerates), on the tangent plane.
+  Vec3 t = e.du.norm() > e.dv.norm() * kCollapsedTangentRel ? e.du : e.dv;
+  t -= t.dot(s.normal) * s.normal;
+  if (!(t.norm() > 0)) return Error{"the face has no tangent plane at its middle"};
+  s.tangent = t.normalized();
+  // (t, n x t) turns about +n like (base2d, sweep2d) = ((1, 0), (0, 1)) about +z.
+  s.base_normal = s.normal.cross(s.tangent).normalized();
+  s.flags = "--face " + std::to_string(index) + " --start3d " + csv(s.point) + " --base-normal " +
+            csv(s.base_normal) + " --sweep3d " + csv(s.base_normal) + " --sweep3d " +
+            csv(-s.base_normal) + " --start2d 0,0 --base2d 1,0 --sweep2d 0,1 --sweep2d 0,-1";
+  return s;
+}
+
+int run_face(importers::MoldFile& file, const std::string& path, int index, bool json) {
+  auto info = file.describe(index);
+  if (!info) {
+    print_error(info.error().message);
+    return kExitFailure;
+  }
+  auto data = file.convert_face(index);
+  if (!data) {
+    print_error(data.error().message);
+    return kExitFailure;
+  }
+  auto face = Face::create(std::move(data).value());
+  if (!face) {
+    print_error(path + ": face " + std::to_string(index) + ": " + face.error().message);
+    return kExitFailure;
+  }
+  auto s = face_start(*face, index);
+  if (!s) {
+    print_error(path + ": face " + std::to_string(index) + ": " + s.error().message);
+    return kExitFailure;
+  }
+  auto vec = [](const Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); };
+  if (json) {
+    const nlohmann::json j = {{"file", path},
+                              {"face", index},
+                              {"name", info->name},
+                              {"kind", info->kind},
+                              {"area_mm2", info->area},
+                              {"uv", {s->uv.x(), s->uv.y()}},
+                              {"point", vec(s->point)},
+                              {"normal", vec(s->normal)},
+                              {"base_tangent", vec(s->tangent)},
+                              {"base_normal", vec(s->base_normal)},
+                              {"sweep3d", {vec(s->base_normal), vec(-s->base_normal)}},
+                              {"flags", s->flags}};
+    std::cout << j.dump(2) << "\n";
+    return kExitOk;
+  }
+  std::cout << "file: " << path << "\n"
+            << "face " << index << ": " << (info->name.empty() ? "-" : "'" + info->name + "'")
+            << ", " << info->kind << ", area " << fmt("%.6g", info->area) << " mm2\n"
+            << "point near the middle: " << point(s->point) << " mm at (u, v) = ("
+            << fmt("%.9g", s->uv.x()) << ", " << fmt("%.9g", s->uv.y()) << ")\n"
+            << "outward normal: " << point(s->normal) << "\n"
+            << "suggested base path: along the surface's u direction " << point(s->tangent)
+            << "; base-plane normal and sweep directions +/- " << point(s->base_normal) << "\n"
+            << "flags: " << s->flags << "\n";
+  return kExitOk;
+}
+
 int run_info(const std::vector<std::string>& args) {
   po::options_description opts("plyfit info FILE [options]");
   opts.add_options()("help,h", "show this help")("json", "print the listing as JSON")(
       "format", po::value<std::string>(), "importer to use (step, iges), overriding the extension")(
+      "face", po::value<int>(),
+      "face N alone: a point near its middle, its outward normal and drape flags from there")(
       "file", po::value<std::string>(), "mold file (STEP or IGES)");
   po::positional_options_description pos;
   pos.add("file", 1);
@@ -140,12 +266,14 @@ int run_info(const std::vector<std::string>& args) {
   }
   if (vm.count("help")) {
     std::cout << "Lists a mold file's faces: index, name, surface kind, degrees, poles, rational,\n"
-                 "trimmed (holes), reversed, area and bounding box (mm), then a summary.\n\n"
+                 "trimmed (holes), reversed, area and bounding box (mm), then a summary.\n"
+                 "With --face N: face N alone, a point near its middle (inside its trims), the\n"
+                 "outward normal there and plyfit drape flags for a start from that point.\n\n"
               << opts;
     return kExitOk;
   }
   if (!vm.count("file")) {
-    print_error("info: missing the mold file (plyfit info FILE [--json] [--format F])");
+    print_error("info: missing the mold file (plyfit info FILE [--face N] [--json] [--format F])");
     return kExitUsage;
   }
   importers::ImportOptions options;
@@ -154,6 +282,14 @@ int run_info(const std::vector<std::string>& args) {
   if (!file) {
     print_error(file.error().message);
     return kExitFailure;
+  }
+  if (vm.count("face")) {
+    const int face = vm["face"].as<int>();
+    if (face < 0) {
+      print_error("info: --face: " + std::to_string(face) + " is negative");
+      return kExitUsage;
+    }
+    return run_face(**file, vm["file"].as<std::string>(), face, vm.count("json") > 0);
   }
   const Mold& m = (*file)->mold();
   if (vm.count("json"))

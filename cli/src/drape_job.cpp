@@ -1,5 +1,7 @@
 #include "drape_job.hpp"
 
+#include "materials.hpp"
+
 #include <plyfit/exporters/exporters.hpp>
 #include <plyfit/importers/importers.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
@@ -8,6 +10,7 @@
 #include <boost/program_options.hpp>
 
 #include <unistd.h>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -26,6 +29,8 @@ constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 // The mapped cells (flat chords of the surface, inside the face) cover at most the face; a
 // little more is the trim polylines' chord error. More is cloth lying on cloth.
 constexpr double kCoverageSlack = 0.01;
+// Without --warn-angle, cells are flagged at least this far (degrees) below the lock angle.
+constexpr double kWarnBelowLockDeg = 5.0;
 
 std::string all_outputs() {
   std::string s;
@@ -58,12 +63,22 @@ const std::vector<OptionSpec>& drape_options() {
        "start"},
       {"sweep3d", "DX,DY,DZ", "", "3D sweep direction, paired in order with --sweep2d", true,
        "start"},
-      {"lock-angle", "DEG", "90",
-       "largest shear (90 - thread angle) the cloth takes; 90 = no limit", false, "material"},
-      {"warn-angle", "DEG", "", "shear above which cells are flagged (default: lock angle - 5)",
+      {"material", "NAME", kDefaultMaterial,
+       "material from the materials table: its label, warning and limit angles", false, "material"},
+      {"materials", "FILE", "", "materials table to use instead of plyfit's (data/materials.ini)",
        false, "material"},
-      {"material", "TEXT", "woven", "material name for labels", false, "material"},
+      {"lock-angle", "DEG", "",
+       "largest shear (90 - thread angle) the cloth takes (default: the material's limit); 90 = "
+       "no limit",
+       false, "material"},
+      {"warn-angle", "DEG", "",
+       "shear above which cells are flagged (default: the material's warning angle, at most "
+       "lock angle - 5)",
+       false, "material"},
       {"ply-name", "TEXT", "ply", "ply name for labels", false, "material"},
+      {"ply-angle", "DEG", "0",
+       "ply angle: the fibre (warp) direction on the part, as in the layup, for labels", false,
+       "material"},
       {"tolerance", "T", "1e-14", "Newton tolerance relative to the spacing (eq. 9)", false,
        "numerics"},
       {"max-iterations", "N", "40", "Newton iteration cap per node", false, "numerics"},
@@ -75,8 +90,8 @@ const std::vector<OptionSpec>& drape_options() {
       {"curve-degree", "1|3", "1", "degree of the thread curves in net.step", false, "output"},
       {"view", "X,Y,Z", "1,1,1", "view direction of drape.svg (towards the viewer)", false,
        "output"},
-      {"dxf-threads", "true|false", "true", "THREADS layer (thread grid) in flat.dxf", false,
-       "output"},
+      {"dxf-threads", "true|false", "false",
+       "THREADS layer (thread grid) in flat.dxf (a cutter would cut it)", false, "output"},
   };
   return list;
 }
@@ -350,22 +365,43 @@ Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
       return Error{name("sweep2d") + ": sweep direction " + std::to_string(k + 1) +
                    " is parallel to the base path"};
 
-  if (auto x = parse_number(*one("lock-angle"), name("lock-angle")); x)
+  // The material: its warning and limit angles are the defaults of --warn-angle and
+  // --lock-angle.
+  if (auto f = one("materials")) job.materials_file = resolve("materials", *f);
+  auto table =
+      job.materials_file.empty() ? builtin_materials() : load_materials(job.materials_file);
+  if (!table)
+    return Error{(job.materials_file.empty() ? "" : name("materials") + ": ") +
+                 table.error().message};
+  job.material = *one("material");
+  auto material = find_material(*table, job.material);
+  if (!material) return Error{name("material") + ": " + material.error().message};
+  job.material_label = material->label;
+  job.lock_angle_deg = material->limit_deg;
+  if (auto l = one("lock-angle")) {
+    auto x = parse_number(*l, name("lock-angle"));
+    if (!x) return x.error();
     job.lock_angle_deg = *x;
-  else
-    return x.error();
+  }
   if (!(job.lock_angle_deg > 0 && job.lock_angle_deg <= 90))
     return Error{name("lock-angle") + ": must be in (0, 90] degrees"};
   job.drape.lock_angle = job.lock_angle_deg * kDegToRad;
-  job.warn_angle_deg = job.lock_angle_deg - 5.0;
+  job.warn_angle_deg =
+      std::min(material->warning_deg, std::max(0.0, job.lock_angle_deg - kWarnBelowLockDeg));
   if (auto w = one("warn-angle")) {
     auto x = parse_number(*w, name("warn-angle"));
     if (!x) return x.error();
     if (!(*x >= 0 && *x <= 90)) return Error{name("warn-angle") + ": must be in [0, 90] degrees"};
     job.warn_angle_deg = *x;
   }
-  job.material = *one("material");
   job.ply_name = *one("ply-name");
+  if (auto x = parse_number(*one("ply-angle"), name("ply-angle")); x) {
+    if (!(*x >= -180 && *x <= 180))
+      return Error{name("ply-angle") + ": must be in [-180, 180] degrees"};
+    job.ply_angle_deg = *x;
+  } else {
+    return x.error();
+  }
   if (auto x = parse_number(*one("tolerance"), name("tolerance")); x)
     job.tolerance_rel = *x;
   else
@@ -457,10 +493,12 @@ std::string dump_scene(const DrapeJob& job) {
   v["start3d"] = {fmt(p.start)};
   v["base-normal"] = {fmt(p.base_normal)};
   for (const auto& w : p.sweeps) v["sweep3d"].push_back(fmt(w));
+  v["material"] = {job.material};
+  if (!job.materials_file.empty()) v["materials"] = {job.materials_file};
   v["lock-angle"] = {fmt(job.lock_angle_deg)};
   v["warn-angle"] = {fmt(job.warn_angle_deg)};
-  v["material"] = {job.material};
   v["ply-name"] = {job.ply_name};
+  v["ply-angle"] = {fmt(job.ply_angle_deg)};
   v["tolerance"] = {fmt(job.tolerance_rel)};
   v["max-iterations"] = {std::to_string(job.max_iterations)};
   v["guess"] = {to_string(job.drape.guess)};
@@ -515,7 +553,7 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
     data = std::move(fd).value();
     run.face_info.name = data.name;
     run.face_info.kind = "builtin:" + spec->first;
-    run.mold_unit = "mm";
+    run.mold_unit = "millimetre";
   } else {
     importers::ImportOptions io;
     io.format = job.format;
@@ -567,6 +605,9 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   eo.curve_degree = job.curve_degree;
   eo.view = job.view;
   eo.dxf_threads = job.dxf_threads;
+  eo.ply_angle_deg = job.ply_angle_deg;
+  eo.material_label = job.material_label;
+  eo.materials_file = job.materials_file;
   run.total_ms = ms_since(t0);
   const exporters::ExportContext ctx{job.problem, *res, *face, &flat, run, eo};
   if (!job.outdir.empty()) {

@@ -54,11 +54,14 @@ struct DrapeJob {
   std::vector<std::string> outputs;
   int curve_degree = 1;
   Vec3 view = Vec3(1, 1, 1);
-  bool dxf_threads = true;  ///< THREADS layer in flat.dxf
-  double warn_angle_deg = 85.0;
+  bool dxf_threads = false;  ///< THREADS layer in flat.dxf
+  double warn_angle_deg = 25.0;
   std::string ply_name = "ply";
-  std::string material = "woven";
-  std::string scene;  ///< scene file the job came from, if any
+  double ply_angle_deg = 0.0;      ///< the ply's fibre direction on the part (labels)
+  std::string material = "woven";  ///< name in the materials table
+  std::string material_label;      ///< the material's label
+  std::string materials_file;      ///< materials table file; empty: plyfit's own
+  std::string scene;               ///< scene file the job came from, if any
 };
 
 /// Parses flags (the arguments after `plyfit drape`, minus a leading scene file) into raw

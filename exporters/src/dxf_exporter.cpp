@@ -1,17 +1,29 @@
 // flat.dxf: the flat pattern as ASCII DXF R2000 (AC1015), millimetres ($INSUNITS 4), in ply
-// coordinates. Layers:
-//   OUTLINE     closed LWPOLYLINEs: the exact outline loops (outer counter-clockwise, holes
-//               clockwise), FlatPattern::outline
+// coordinates, for a cutter or a nesting program. The contours to cut are on their own
+// layers; everything else is marking (pen or ink) on layers of its own:
+//   OUTLINE     closed LWPOLYLINEs: the outer loops of the exact outline, counter-clockwise
+//               (FlatPattern::outline)
+//   HOLES       closed LWPOLYLINEs: its inner loops (holes), clockwise
 //   THREADS     LINEs: the warp (x = i d_weft) and weft (y = j d_warp) grid lines clipped to
-//               the outline (even-odd over all loops); left out when ExportOptions::dxf_threads
-//               is false (the layer is still defined)
+//               the outline (even-odd over all loops); only when ExportOptions::dxf_threads
+//               (otherwise the layer is not in the file at all)
 //   BASEPATH    an open LWPOLYLINE through the mapped base-path nodes, in path order
-//   ORIGIN      the start point (POINT and CIRCLE) and an arrow along the 0 degree direction
-//               (the warp, +y in ply coordinates) with its TEXT
+//   ORIGIN      the start point (POINT and CIRCLE)
+//   GRAIN       the grain arrow: the warp direction (+y, the fabric's 0 degree direction, along
+//               the roll) as LINEs, with the TEXT "WARP" along it, inside the outline
 //   SHEAR_WARN  closed LWPOLYLINEs around the mapped cells whose shear exceeds
 //               ExportOptions::warn_shear (cell shear: the largest |90 deg - gamma| over the
 //               cell's corners that have a thread angle)
-//   LABELS      TEXT: ply name, material, spacing, outline area, max shear, mold and face
+//   LABELS      TEXT inside the outline: ply name, material, ply angle, spacing, outline
+//               area, shear, and the mold's file name (never its folder) with the face
+// The labels and the arrow form a block centred on the outline's pole of inaccessibility (the
+// centre of a largest inscribed circle, net_util's interior_point), as large as fits inside
+// the outline (box_inside_outline, with a generous width per character) up to a text height
+// of 1/40 of the pattern.
+//
+// Text: the file declares $DWGCODEPAGE ANSI_1252, the code page of R2000 text, and writes
+// U+00A0..U+00FF (the degree sign U+00B0 among them) as their single cp1252 bytes, other
+// non-ASCII characters as \U+XXXX; it writes no AutoCAD %% control code.
 //
 // The file carries every table and object AutoCAD requires of R2000 (handles, BLOCK_RECORDs,
 // the model and paper space layouts, the OBJECTS root dictionary). Numbers are written in
@@ -44,9 +56,26 @@ struct LayerDef {
   const char* name;
   int colour;
 };
-constexpr LayerDef kLayers[] = {{"0", 7},      {"OUTLINE", 7},    {"THREADS", 8}, {"BASEPATH", 5},
-                                {"ORIGIN", 3}, {"SHEAR_WARN", 1}, {"LABELS", 7}};
+constexpr LayerDef kLayers[] = {{"0", 7},       {"OUTLINE", 7},    {"HOLES", 7},
+                                {"THREADS", 8}, {"BASEPATH", 5},   {"ORIGIN", 3},
+                                {"GRAIN", 4},   {"SHEAR_WARN", 1}, {"LABELS", 7}};
 constexpr int kLayerCount = static_cast<int>(sizeof(kLayers) / sizeof(kLayers[0]));
+constexpr const char* kThreadsLayer = "THREADS";
+
+// The label block, in units of the text height h: line pitch, the widest a character of the
+// Standard style's font is drawn (AutoCAD's txt and LibreCAD's fonts draw capitals and digits
+// narrower than this, so the block estimate is generous), the grain arrow's column ("WARP"
+// rotated, the shaft, a gap before the text) and the depth below the last baseline.
+constexpr double kLinePitch = 1.6;
+constexpr double kCharWidth = 1.0;
+constexpr double kArrowColumn = 3.0;
+constexpr double kDescent = 0.4;
+// The text height is at most this fraction of the pattern's extent.
+constexpr double kMaxTextRel = 1.0 / 40.0;
+// interior_point's precision, relative to the pattern's extent.
+constexpr double kPolePrecisionRel = 1e-3;
+// Bisection steps for the largest label block that fits.
+constexpr int kFitSteps = 40;
 
 // User text for a DXF string value: printable ASCII and U+00A0..U+00FF as single bytes of the
 // file's code page (ANSI_1252), other characters as \U+XXXX (AutoCAD decodes these), the
@@ -173,12 +202,14 @@ class DxfWriter {
     entity_head("POINT", layer, "AcDbPoint");
     point(p, 10);
   }
-  // `s` is DXF text already: user parts escaped with dxf_text(), "%%d" for a degree sign.
-  void text(const char* layer, const Vec2& at, double height, const std::string& s) {
+  // `s` is user text, escaped here with dxf_text(); `rotation` in degrees.
+  void text(const char* layer, const Vec2& at, double height, const std::string& s,
+            double rotation = 0.0) {
     entity_head("TEXT", layer, "AcDbText");
     point(at, 10);
     real(40, height);
-    tag(1, s);
+    tag(1, dxf_text(s));
+    if (rotation != 0.0) real(50, rotation);
     tag(7, "Standard");
     tag(100, "AcDbText");
   }
@@ -214,6 +245,62 @@ std::vector<std::pair<double, double>> clip_line(const std::vector<OutlineLoop>&
   return segs;
 }
 
+std::string degrees(double deg, int decimals) {
+  return fixed_text(deg, decimals) + "\u00b0";
+}
+
+// The label block: lines of text beside a vertical grain arrow, laid out for text height h
+// with the block's top-left corner at the origin.
+struct LabelBlock {
+  std::vector<std::string> lines;
+  double width(double h) const {
+    std::size_t chars = 0;
+    for (const auto& l : lines) chars = std::max(chars, detail::utf8_decode(l).size());
+    return h * (kArrowColumn + kCharWidth * static_cast<double>(chars));
+  }
+  double height(double h) const {
+    return h * (1.0 + kLinePitch * static_cast<double>(lines.size() - 1) + kDescent);
+  }
+};
+
+// The text height and the block's top-left corner: the largest block up to `max_h` centred
+// on the outline's pole of inaccessibility that lies inside the outline. Without an outline
+// (nothing mapped), below `fallback` at height max_h.
+struct LabelPlace {
+  double h = 0.0;                // text height
+  Vec2 top_left = Vec2::Zero();  // the block's top-left corner
+};
+LabelPlace place_labels(const std::vector<OutlineLoop>& loops, const LabelBlock& b, double extent,
+                        double max_h, const Vec2& fallback) {
+  const detail::InteriorPoint pole = detail::interior_point(loops, kPolePrecisionRel * extent);
+  LabelPlace out;
+  out.h = max_h;
+  if (!pole.found) {
+    out.top_left = fallback - Vec2(0.0, 2.0 * max_h);
+    return out;
+  }
+  auto corner = [&](double h) -> Vec2 { return pole.point + 0.5 * Vec2(-b.width(h), b.height(h)); };
+  auto fits = [&](double h) {
+    const Vec2 tl = corner(h);
+    return detail::box_inside_outline(loops, Vec2(tl.x(), tl.y() - b.height(h)),
+                                      Vec2(tl.x() + b.width(h), tl.y()));
+  };
+  if (fits(max_h)) {
+    out.top_left = corner(max_h);
+    return out;
+  }
+  // Bisection: a block centred on the pole shrinks into itself, so fitting is monotonic; a
+  // small enough block always fits (the pole is at pole.radius > 0 from every edge).
+  double lo = 0.0, hi = max_h;
+  for (int k = 0; k < kFitSteps; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (fits(mid) ? lo : hi) = mid;
+  }
+  out.h = lo;
+  out.top_left = corner(lo);
+  return out;
+}
+
 std::string build_dxf(const ExportContext& ctx) {
   const DrapeResult& r = ctx.result;
   const PlySpec& spec = ctx.problem.ply;
@@ -229,12 +316,11 @@ std::string build_dxf(const ExportContext& ctx) {
   box.add(spec.start);
   const double extent = std::max(
       {box.hi.x() - box.lo.x(), box.hi.y() - box.lo.y(), std::max(spec.d_weft, spec.d_warp)});
-  const double text_h = extent / 40.0;
-  const double arrow = extent / 8.0;
+  const double marker = extent / 80.0;
 
   DxfWriter e;
   // ---- entities first (their handles set $HANDSEED) ----
-  for (const auto& l : loops) e.polyline("OUTLINE", l.points, true);
+  for (const auto& l : loops) e.polyline(l.hole ? "HOLES" : "OUTLINE", l.points, true);
 
   if (ctx.options.dxf_threads && !loops.empty()) {
     const double dx = spec.d_weft, dy = spec.d_warp;
@@ -242,13 +328,13 @@ std::string build_dxf(const ExportContext& ctx) {
     for (auto i = static_cast<long long>(std::ceil(box.lo.x() / dx));
          static_cast<double>(i) * dx <= box.hi.x(); ++i) {
       const double x = static_cast<double>(i) * dx;
-      for (const auto& [a, b] : clip_line(loops, 0, x)) e.line("THREADS", {x, a}, {x, b});
+      for (const auto& [a, b] : clip_line(loops, 0, x)) e.line(kThreadsLayer, {x, a}, {x, b});
     }
     // Weft threads: y = j dy.
     for (auto j = static_cast<long long>(std::ceil(box.lo.y() / dy));
          static_cast<double>(j) * dy <= box.hi.y(); ++j) {
       const double y = static_cast<double>(j) * dy;
-      for (const auto& [a, b] : clip_line(loops, 1, y)) e.line("THREADS", {a, y}, {b, y});
+      for (const auto& [a, b] : clip_line(loops, 1, y)) e.line(kThreadsLayer, {a, y}, {b, y});
     }
   }
 
@@ -256,16 +342,8 @@ std::string build_dxf(const ExportContext& ctx) {
   for (const std::uint32_t k : r.base_path) path.push_back(r.nodes[k].ply);
   e.polyline("BASEPATH", path, false);
 
-  // The start and the 0 degree (warp, +y) direction.
-  const Vec2 s = spec.start;
-  e.dot("ORIGIN", s);
-  e.circle("ORIGIN", s, arrow / 10.0);
-  const Vec2 tip = s + Vec2(0.0, arrow);
-  const double head = arrow / 5.0, head_angle = 25.0 / detail::kRadToDeg;
-  e.line("ORIGIN", s, tip);
-  e.line("ORIGIN", tip, tip + head * Vec2(std::sin(head_angle), -std::cos(head_angle)));
-  e.line("ORIGIN", tip, tip + head * Vec2(-std::sin(head_angle), -std::cos(head_angle)));
-  e.text("ORIGIN", tip + Vec2(text_h * 0.5, 0.0), text_h, "0%%d (warp)");
+  e.dot("ORIGIN", spec.start);
+  e.circle("ORIGIN", spec.start, marker);
 
   const double warn = ctx.options.warn_shear;
   for (const auto& c : detail::mapped_cells(r)) {
@@ -275,28 +353,48 @@ std::string build_dxf(const ExportContext& ctx) {
     e.polyline("SHEAR_WARN", pts, true);
   }
 
+  // Labels and the grain arrow, inside the outline.
   const DrapeMetrics& m = r.metrics;
   const double shear_max_deg = m.angles ? std::max(std::abs(90.0 - m.gamma_min * detail::kRadToDeg),
                                                    std::abs(m.gamma_max * detail::kRadToDeg - 90.0))
                                         : 0.0;
-  const std::vector<std::string> labels = {
-      "PLY: " + dxf_text(ctx.run.ply_name),
-      "MATERIAL: " + dxf_text(ctx.run.material),
+  const double lock_deg = ctx.run.lock_angle_deg;
+  const std::string material =
+      ctx.options.material_label.empty() || ctx.options.material_label == ctx.run.material
+          ? ctx.run.material
+          : ctx.options.material_label + " (" + ctx.run.material + ")";
+  LabelBlock block;
+  block.lines = {
+      "PLY: " + ctx.run.ply_name,
+      "MATERIAL: " + material,
+      "PLY ANGLE: " + degrees(ctx.options.ply_angle_deg, 2),
       "SPACING: " + fixed_text(spec.d_weft, 6) + " x " + fixed_text(spec.d_warp, 6) +
           " mm (weft x warp link)",
-      "AREA: " + fixed_text(ctx.flat ? ctx.flat->area : 0.0, 3) + " mm2",
-      "MAX SHEAR: " + fixed_text(shear_max_deg, 2) + "%%d (warn above " +
-          fixed_text(warn * detail::kRadToDeg, 2) + "%%d)",
-      "MOLD: " + dxf_text(ctx.run.mold) + " face " + std::to_string(ctx.run.face),
+      "AREA: " + fixed_text(ctx.flat ? ctx.flat->area : 0.0, 3) + " mm\u00b2",
+      "SHEAR: max " + degrees(shear_max_deg, 2) + ", warning " +
+          degrees(warn * detail::kRadToDeg, 2) + ", limit " +
+          (lock_deg >= 90.0 ? std::string("none") : degrees(lock_deg, 2)),
+      "MOLD: " + detail::mold_label(ctx.run.mold) + " face " + std::to_string(ctx.run.face),
   };
-  const double lo_y = box.empty() ? 0.0 : box.lo.y();
-  const double lo_x = box.empty() ? 0.0 : box.lo.x();
-  for (std::size_t k = 0; k < labels.size(); ++k) {
-    const Vec2 at(lo_x, lo_y - text_h * (2.0 + 1.6 * static_cast<double>(k)));
-    e.text("LABELS", at, text_h, labels[k]);
-    box.add(at);
+  const LabelPlace place = place_labels(loops, block, extent, kMaxTextRel * extent, box.lo);
+  const double text_h = place.h;
+  const Vec2 top_left = place.top_left;
+  const double block_h = block.height(text_h);
+  // The arrow: up the block's left column, the head at the top; "WARP" along the shaft.
+  const Vec2 foot = top_left + Vec2(2.0 * text_h, -block_h);
+  const Vec2 tip = top_left + Vec2(2.0 * text_h, 0.0);
+  const double head = std::min(1.2 * text_h, 0.3 * block_h), head_half = 0.45 * text_h;
+  e.line("GRAIN", foot, tip);
+  e.line("GRAIN", tip, tip + Vec2(head_half, -head));
+  e.line("GRAIN", tip, tip + Vec2(-head_half, -head));
+  e.text("GRAIN", foot + Vec2(-0.4 * text_h, 0.1 * block_h), text_h, "WARP", 90.0);
+  for (std::size_t k = 0; k < block.lines.size(); ++k) {
+    const Vec2 at = top_left + Vec2(kArrowColumn * text_h,
+                                    -text_h * (1.0 + kLinePitch * static_cast<double>(k)));
+    e.text("LABELS", at, text_h, block.lines[k]);
   }
-  box.add(tip);
+  box.add(top_left);
+  box.add(top_left + Vec2(block.width(text_h), -block_h));
   if (box.empty()) box.add(Vec2::Zero());
 
   // ---- the file ----
@@ -424,8 +522,14 @@ std::string build_dxf(const ExportContext& ctx) {
   }
   f.tag(0, "ENDTAB");
 
-  table("LAYER", kLayerTable, kLayerCount);
+  auto defined = [&](int k) {
+    return ctx.options.dxf_threads || std::string(kLayers[k].name) != kThreadsLayer;
+  };
+  int layer_count = 0;
+  for (int k = 0; k < kLayerCount; ++k) layer_count += defined(k);
+  table("LAYER", kLayerTable, layer_count);
   for (int k = 0; k < kLayerCount; ++k) {
+    if (!defined(k)) continue;
     record("LAYER", kFirstLayerHandle + static_cast<unsigned>(k), kLayerTable,
            "AcDbLayerTableRecord", kLayers[k].name);
     f.tag(62, kLayers[k].colour);

@@ -10,8 +10,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <utility>
 
 namespace plyfit::exporters {
 
@@ -24,6 +27,47 @@ nlohmann::json vec(const Vec2& v) {
 }
 nlohmann::json vec(const Vec3& v) {
   return nlohmann::json::array({v.x(), v.y(), v.z()});
+}
+
+// The file's unit in one spelling: the importers name it "millimetre" (STEP), "millimetre
+// (MM)" (IGES: the name of its unit flag and the file's own text), built-in molds "mm";
+// report.json says "millimetre" for all three. Other known units likewise: the name,
+// lower-case, without the file's own text, abbreviations and American spellings written out.
+// Anything else (e.g. "unspecified (millimetre assumed)") is kept, lower-case.
+std::string unit_name(const std::string& given) {
+  auto lower = [](std::string t) {
+    std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return std::tolower(c); });
+    return t;
+  };
+  const std::string u = lower(given.substr(0, given.find(" (")));
+  static const std::pair<const char*, const char*> kSpellings[] = {{"mm", "millimetre"},
+                                                                   {"millimeter", "millimetre"},
+                                                                   {"millimetre", "millimetre"},
+                                                                   {"cm", "centimetre"},
+                                                                   {"centimeter", "centimetre"},
+                                                                   {"centimetre", "centimetre"},
+                                                                   {"m", "metre"},
+                                                                   {"meter", "metre"},
+                                                                   {"metre", "metre"},
+                                                                   {"km", "kilometre"},
+                                                                   {"kilometer", "kilometre"},
+                                                                   {"kilometre", "kilometre"},
+                                                                   {"in", "inch"},
+                                                                   {"inches", "inch"},
+                                                                   {"inch", "inch"},
+                                                                   {"ft", "foot"},
+                                                                   {"feet", "foot"},
+                                                                   {"foot", "foot"},
+                                                                   {"mile", "mile"},
+                                                                   {"mil", "mil"},
+                                                                   {"um", "micron"},
+                                                                   {"micrometre", "micron"},
+                                                                   {"micrometer", "micron"},
+                                                                   {"micron", "micron"},
+                                                                   {"microinch", "microinch"}};
+  for (const auto& [from, to] : kSpellings)
+    if (u == from) return to;
+  return lower(given);
 }
 
 }  // namespace
@@ -58,7 +102,11 @@ std::string report_json(const ExportContext& ctx) {
   in["max_nodes"] = ctx.run.max_nodes;
   in["warn_angle_deg"] = ctx.options.warn_shear * kRadToDeg;
   in["ply_name"] = ctx.run.ply_name;
+  in["ply_angle_deg"] = ctx.options.ply_angle_deg;
   in["material"] = ctx.run.material;
+  in["material_label"] =
+      ctx.options.material_label.empty() ? ctx.run.material : ctx.options.material_label;
+  in["materials"] = ctx.options.materials_file;
   in["curve_degree"] = ctx.options.curve_degree;
   in["view"] = vec(ctx.options.view);
   in["dxf_threads"] = ctx.options.dxf_threads;
@@ -69,7 +117,8 @@ std::string report_json(const ExportContext& ctx) {
   face["kind"] = ctx.run.face_info.kind;
   face["area"] = ctx.face.area();
   face["bbox"] = {{"min", vec(ctx.face.bbox().min)}, {"max", vec(ctx.face.bbox().max)}};
-  j["mold"] = {{"unit", ctx.run.mold_unit}, {"face", face}, {"warnings", ctx.run.warnings}};
+  j["mold"] = {
+      {"unit", unit_name(ctx.run.mold_unit)}, {"face", face}, {"warnings", ctx.run.warnings}};
   j["start"] = {
       {"point", vec(r.start_point)}, {"uv", vec(r.start_at.uv)}, {"moved", r.start_moved}};
   j["base_tangent"] = vec(r.base_tangent);

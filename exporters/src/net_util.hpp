@@ -3,6 +3,7 @@
 // with their shear, and the shear colour scale of the pictures.
 
 #include <plyfit/kernel/drape.hpp>
+#include <plyfit/kernel/flat_pattern.hpp>
 
 #include <cstdint>
 #include <limits>
@@ -49,6 +50,37 @@ struct NetCell {
 /// DrapeMetrics::flat_area), with its shear. Sorted by (j, i): deterministic.
 std::vector<NetCell> mapped_cells(const DrapeResult& r);
 
+/// True when p lies inside the outline (even-odd over all loops, so holes are outside).
+bool inside_outline(const std::vector<OutlineLoop>& loops, const Vec2& p);
+
+/// Distance from p to the nearest edge of the loops (infinity without loops).
+double outline_distance(const std::vector<OutlineLoop>& loops, const Vec2& p);
+
+/// A point well inside the outline: the centre of a largest inscribed circle and its radius.
+struct InteriorPoint {
+  Vec2 point = Vec2::Zero();
+  double radius = 0.0;  ///< distance from `point` to the outline
+  bool found = false;   ///< false without loops of positive area
+};
+
+/// A pole of inaccessibility of the outline (a point inside it as far from its edges as can
+/// be): a grid of about kGridCells square cells along the outline's long side (at most
+/// kMaxInteriorProbes), then the kClimbSeeds best grid points each climbed uphill on the
+/// distance to the edges (eight directions, the step halved when none is better) until the
+/// step is below precision / 4. The result is a local maximum within `precision`; on outlines
+/// whose best grid point lies in the reach of the global maximum, the largest inscribed circle.
+InteriorPoint interior_point(const std::vector<OutlineLoop>& loops, double precision);
+/// Grid cells along the outline's long side, the cap on grid points (each costs one pass over
+/// the edges), the grid points climbed from, and the climb's step cap.
+constexpr int kGridCells = 32;
+constexpr int kMaxInteriorProbes = 4096;
+constexpr int kClimbSeeds = 8;
+constexpr int kMaxClimbSteps = 400;
+
+/// True when the box [lo, hi] lies inside the outline: its centre inside and no edge of the
+/// loops meeting it.
+bool box_inside_outline(const std::vector<OutlineLoop>& loops, const Vec2& lo, const Vec2& hi);
+
 /// An RGB colour.
 struct Rgb {
   double r = 0, g = 0, b = 0;  ///< 0..1
@@ -66,6 +98,9 @@ Rgb shear_colour(double t);
 inline Rgb no_shear_colour() {
   return {0.75, 0.75, 0.75};
 }
+
+/// The mold as labels show it: a file's name without its folder, or "builtin:..." as given.
+std::string mold_label(const std::string& mold);
 
 /// Unicode code points of UTF-8 text; invalid bytes become U+FFFD.
 std::u32string utf8_decode(const std::string& s);

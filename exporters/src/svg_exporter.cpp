@@ -41,9 +41,8 @@ using detail::kPi;
 using detail::kRadToDeg;
 using detail::xml_escape;
 
-constexpr double kPlotSize = 760.0;    // px: the longer side of the drawing
-constexpr double kMargin = 40.0;       // px around the drawing
-constexpr double kTitleHeight = 56.0;  // px above the drawing
+constexpr double kPlotSize = 760.0;  // px: the longer side of the drawing
+constexpr double kMargin = 40.0;     // px around the drawing
 constexpr double kLegendWidth = 190.0;
 constexpr double kLegendHeight = 520.0;
 constexpr int kMaxGridLines = 400;     // thread grid lines per direction drawn in flat.svg
@@ -53,30 +52,47 @@ constexpr double kMaxTicks = 6.0;      // intervals of the shear colour scale
 constexpr double kViewAlongZ = 1e-6;
 // uv points within this fraction of the domain width of a closed face's seam lie on it.
 constexpr double kSeamParamRel = 1e-9;
+// flat.svg is drawn in millimetres (1 user unit = 1 mm, printable 1:1); its annotation keeps
+// the size it has in the pixel pictures: one CSS pixel is 1/96 inch.
+constexpr double kMmPerPx = 25.4 / 96.0;
+// The title block (px): baselines of the first title line and the first subtitle line below
+// the last title line, line pitches, the depth below the last line, font sizes, and the
+// widest average character of the DejaVu Sans/Verdana text (in em) used to wrap lines.
+constexpr double kTitleBaseline = 28.0, kSubBelowTitle = 19.0, kTitlePitch = 21.0, kSubPitch = 16.0,
+                 kTitleDepth = 9.0, kTitleEm = 17.0, kSubEm = 12.0, kCharEm = 0.62;
+// The scale bar under flat.svg's drawing: at most this fraction of the drawing's width, and
+// its room (px) below the drawing.
+constexpr double kScaleBarRel = 0.5, kScaleBarRoom = 46.0;
 
 std::string px(double v) {
   return fixed_text(v, 2);
 }
 
-// Maps drawing coordinates (y up) to pixels (y down) so the box fills the plot area.
+// Maps drawing coordinates (y up) to the picture's user units (y down). Pixel pictures fit
+// the box into kPlotSize; flat.svg draws it at 1 user unit per model unit (mm). Margins,
+// legend and title sizes are in user units (`unit` user units per pixel).
 struct Frame {
   Vec2 lo = Vec2::Zero(), hi = Vec2::Ones();
   double scale = 1.0;
-  double left = kMargin, top = kMargin + kTitleHeight;
-  double width = 1.0, height = 1.0;  // plot area, px
-  static Frame fit(Box2 box) {
+  double unit = 1.0;  // user units per px of annotation
+  double left = kMargin, top = kMargin;
+  double width = 1.0, height = 1.0;  // plot area, user units
+  double bottom = 0.0;               // room below the plot area (the scale bar)
+  static Frame fit(Box2 box, double fixed_scale = 0.0, double unit = 1.0) {
     if (box.empty()) {
       box.add(Vec2::Zero());
       box.add(Vec2::Ones());
     }
     Frame f;
+    f.unit = unit;
+    f.left = f.top = kMargin * unit;
     Vec2 s = box.size();
     const double ext = std::max(s.x(), s.y());
     const double pad = ext > 0 ? 0.0 : 1.0;
     f.lo = box.lo - Vec2::Constant(pad);
     f.hi = box.hi + Vec2::Constant(pad);
     s = f.hi - f.lo;
-    f.scale = kPlotSize / std::max(s.x(), s.y());
+    f.scale = fixed_scale > 0 ? fixed_scale : kPlotSize / std::max(s.x(), s.y());
     f.width = s.x() * f.scale;
     f.height = s.y() * f.scale;
     return f;
@@ -84,11 +100,76 @@ struct Frame {
   Vec2 map(const Vec2& p) const {
     return {left + (p.x() - lo.x()) * scale, top + (hi.y() - p.y()) * scale};
   }
-  double canvas_width() const { return left + width + kMargin + kLegendWidth; }
+  double canvas_width() const { return left + width + (kMargin + kLegendWidth) * unit; }
   double canvas_height() const {
-    return std::max(top + height + kMargin, top + kLegendHeight + kMargin);
+    return std::max(top + height + bottom + kMargin * unit, top + (kLegendHeight + kMargin) * unit);
   }
 };
+
+// Greedy word wrap to lines of at most `width` px at font size `em` (px); a word longer than
+// a line gets a line of its own, never cut.
+std::vector<std::string> wrap(const std::string& s, double width, double em) {
+  const auto max_chars =
+      static_cast<std::size_t>(std::max(10.0, std::floor(width / (kCharEm * em))));
+  std::vector<std::string> lines;
+  std::string line, word;
+  std::size_t line_len = 0;
+  auto flush_word = [&] {
+    if (word.empty()) return;
+    const std::size_t n = detail::utf8_decode(word).size();
+    if (line_len > 0 && line_len + 1 + n > max_chars) {
+      lines.push_back(line);
+      line.clear();
+      line_len = 0;
+    }
+    if (line_len > 0) {
+      line += ' ';
+      ++line_len;
+    }
+    line += word;
+    line_len += n;
+    word.clear();
+  };
+  for (const char c : s) {
+    if (c == ' ')
+      flush_word();
+    else
+      word += c;
+  }
+  flush_word();
+  if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
+std::string text(double x, double y, const std::string& s, const std::string& cls,
+                 const std::string& extra = "");
+
+// The title and the subtitle, wrapped to `width` px, in px coordinates from the top-left
+// corner of the picture; `height` is the room they take (px).
+struct TitleBlock {
+  std::string svg;
+  double height = 0.0;
+};
+TitleBlock title_block(const std::string& title, const std::string& sub, double width) {
+  TitleBlock b;
+  b.svg = "<g id=\"title\">\n";
+  double y = kTitleBaseline;
+  bool first = true;
+  for (const auto& l : wrap(title, width, kTitleEm)) {
+    if (!first) y += kTitlePitch;
+    b.svg += text(kMargin, y, l, "title");
+    first = false;
+  }
+  first = true;
+  for (const auto& l : wrap(sub, width, kSubEm)) {
+    y += first ? kSubBelowTitle : kSubPitch;
+    b.svg += text(kMargin, y, l, "sub");
+    first = false;
+  }
+  b.svg += "</g>\n";
+  b.height = y + kTitleDepth;
+  return b;
+}
 
 std::string pt(const Vec2& p) {
   return px(p.x()) + "," + px(p.y());
@@ -140,11 +221,13 @@ std::string cell_fill(double shear, double top) {
   return shear < 0 ? detail::no_shear_colour().hex() : detail::shear_colour(shear / top).hex();
 }
 
-std::string svg_open(double w, double h, const std::string& title) {
+// The svg element: `w` x `h` user units, in px (pixel pictures) or in mm (flat.svg, 1:1).
+std::string svg_open(double w, double h, const std::string& title, bool mm = false) {
+  const std::string u = mm ? "mm" : "";
   std::string o;
   o += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  o += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + px(w) +
-       "\" height=\"" + px(h) + "\" viewBox=\"0 0 " + px(w) + " " + px(h) + "\">\n";
+  o += "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" + px(w) + u +
+       "\" height=\"" + px(h) + u + "\" viewBox=\"0 0 " + px(w) + " " + px(h) + "\">\n";
   o += "<title>" + xml_escape(title) + "</title>\n";
   o += "<style>\n"
        "text{font-family:DejaVu Sans,Verdana,Arial,sans-serif;fill:#222}\n"
@@ -158,7 +241,7 @@ std::string svg_open(double w, double h, const std::string& title) {
 }
 
 std::string text(double x, double y, const std::string& s, const std::string& cls,
-                 const std::string& extra = "") {
+                 const std::string& extra) {
   return "<text x=\"" + px(x) + "\" y=\"" + px(y) + "\" class=\"" + cls + "\"" + extra + ">" +
          xml_escape(s) + "</text>\n";
 }
@@ -251,12 +334,29 @@ std::string shear_summary(const ExportContext& ctx) {
 }
 
 std::string source_line(const ExportContext& ctx) {
-  return ctx.run.ply_name + " (" + ctx.run.material + ") on " + ctx.run.mold + ", face " +
-         std::to_string(ctx.run.face);
+  const std::string& material =
+      ctx.options.material_label.empty() ? ctx.run.material : ctx.options.material_label;
+  return ctx.run.ply_name + " (" + material + ") on " + detail::mold_label(ctx.run.mold) +
+         ", face " + std::to_string(ctx.run.face);
 }
 
 // ---------------------------------------------------------------------------------------
 // flat.svg
+
+// A round length for the scale bar: 1, 2 or 5 times a power of ten, at most `max_len`.
+double scale_bar_length(double max_len) {
+  if (!(max_len > 0)) return 0.0;
+  const double p = std::pow(10.0, std::floor(std::log10(max_len)));
+  for (const double m : {5.0, 2.0, 1.0})
+    if (m * p <= max_len) return m * p;
+  return p;
+}
+
+// Annotation drawn in px at a point of a picture whose user units are `unit` per px.
+std::string at_px(const Vec2& p, double unit, const std::string& svg) {
+  return "<g transform=\"translate(" + px(p.x()) + " " + px(p.y()) + ") scale(" +
+         fixed_text(unit, 6) + ")\">\n" + svg + "</g>\n";
+}
 
 std::string flat_svg(const ExportContext& ctx) {
   const DrapeResult& r = ctx.result;
@@ -265,6 +365,7 @@ std::string flat_svg(const ExportContext& ctx) {
   const ShearScale scale = shear_scale(r);
   const double top = scale.top;
   const double warn = ctx.options.warn_shear;
+  const double u = kMmPerPx;  // user units (mm) per px of annotation
 
   Box2 box;
   if (ctx.flat)
@@ -280,17 +381,21 @@ std::string flat_svg(const ExportContext& ctx) {
   Box2 padded = box;
   padded.add(box.lo - Vec2::Constant(0.04 * ext));
   padded.add(box.hi + Vec2::Constant(0.04 * ext));
-  const Frame f = Frame::fit(padded);
+  // 1:1: one user unit is one millimetre of the ply.
+  Frame f = Frame::fit(padded, 1.0, u);
+  f.bottom = kScaleBarRoom * u;
+  const TitleBlock tb = title_block(
+      "Plane development (ply coordinates, mm; 1:1 at 100 %)",
+      source_line(ctx) + "; " + std::to_string(r.metrics.nodes.mapped) +
+          " mapped nodes, outline area " + fixed_text(ctx.flat ? ctx.flat->area : 0.0, 2) +
+          " mm\u00b2, " + shear_summary(ctx),
+      f.canvas_width() / u - 2 * kMargin);
+  f.top = tb.height * u + kMargin * u * 0.5;
   auto P = [&](const Vec2& p) { return f.map(p); };
-  const double d_px = std::min(spec.d_weft, spec.d_warp) * f.scale;
+  const double d = std::min(spec.d_weft, spec.d_warp);  // the thread spacing, user units
 
-  std::string o = svg_open(f.canvas_width(), f.canvas_height(), "plyfit plane development");
-  o += text(kMargin, 28, "Plane development (ply coordinates, mm)", "title");
-  o += text(kMargin, 47,
-            source_line(ctx) + "; " + std::to_string(r.metrics.nodes.mapped) +
-                " mapped nodes, outline area " + fixed_text(ctx.flat ? ctx.flat->area : 0.0, 2) +
-                " mm\u00b2, " + shear_summary(ctx),
-            "sub");
+  std::string o = svg_open(f.canvas_width(), f.canvas_height(), "plyfit plane development", true);
+  o += at_px(Vec2::Zero(), u, tb.svg);
 
   // The thread grid of the ply.
   const Box2 view{f.lo, f.hi};
@@ -298,18 +403,18 @@ std::string flat_svg(const ExportContext& ctx) {
                gx1 = std::floor(view.hi.x() / spec.d_weft);
   const double gy0 = std::ceil(view.lo.y() / spec.d_warp),
                gy1 = std::floor(view.hi.y() / spec.d_warp);
-  if (d_px >= kMinGridPitch && gx1 - gx0 < kMaxGridLines && gy1 - gy0 < kMaxGridLines) {
-    std::string d;
+  if (d >= kMinGridPitch * u && gx1 - gx0 < kMaxGridLines && gy1 - gy0 < kMaxGridLines) {
+    std::string g;
     for (double i = gx0; i <= gx1; ++i) {
       const double x = i * spec.d_weft;
-      d += "M" + pt(P({x, view.lo.y()})) + "L" + pt(P({x, view.hi.y()}));
+      g += "M" + pt(P({x, view.lo.y()})) + "L" + pt(P({x, view.hi.y()}));
     }
     for (double j = gy0; j <= gy1; ++j) {
       const double y = j * spec.d_warp;
-      d += "M" + pt(P({view.lo.x(), y})) + "L" + pt(P({view.hi.x(), y}));
+      g += "M" + pt(P({view.lo.x(), y})) + "L" + pt(P({view.hi.x(), y}));
     }
-    o += "<path id=\"grid\" d=\"" + d +
-         "\" stroke=\"#dddddd\" stroke-width=\"0.6\" fill=\"none\"/>\n";
+    o += "<path id=\"grid\" d=\"" + g + "\" stroke=\"#dddddd\" stroke-width=\"" + px(0.6 * u) +
+         "\" fill=\"none\"/>\n";
   }
 
   o += "<g id=\"cells\" stroke=\"none\">\n";
@@ -323,11 +428,11 @@ std::string flat_svg(const ExportContext& ctx) {
 
   // Mapped links in bold (the paper's bold segments).
   {
-    std::string d;
+    std::string g;
     for (const DrapeLink& l : r.links())
-      d += "M" + pt(P(r.nodes[l.a].ply)) + "L" + pt(P(r.nodes[l.b].ply));
-    const double w = std::clamp(0.12 * d_px, 0.8, 2.5);
-    o += "<path id=\"links\" d=\"" + d + "\" stroke=\"#1a1a1a\" stroke-width=\"" + px(w) +
+      g += "M" + pt(P(r.nodes[l.a].ply)) + "L" + pt(P(r.nodes[l.b].ply));
+    const double w = std::clamp(0.12 * d, 0.8 * u, 2.5 * u);
+    o += "<path id=\"links\" d=\"" + g + "\" stroke=\"#1a1a1a\" stroke-width=\"" + px(w) +
          "\" stroke-linecap=\"round\" fill=\"none\"/>\n";
   }
   auto loops_of = [&](const std::vector<OutlineLoop>& ls) {
@@ -341,12 +446,14 @@ std::string flat_svg(const ExportContext& ctx) {
   };
   if (ctx.flat) {
     o += "<path id=\"staircase\" d=\"" + loops_path(loops_of(ctx.flat->staircase)) +
-         "\" stroke=\"#000000\" stroke-width=\"2.6\" fill=\"none\" stroke-linejoin=\"round\"/>\n";
+         "\" stroke=\"#000000\" stroke-width=\"" + px(2.6 * u) +
+         "\" fill=\"none\" stroke-linejoin=\"round\"/>\n";
     o += "<path id=\"outline\" d=\"" + loops_path(loops_of(ctx.flat->outline)) +
-         "\" stroke=\"#e8112d\" stroke-width=\"1.8\" fill=\"none\" fill-rule=\"evenodd\" "
-         "stroke-linejoin=\"round\"/>\n";
+         "\" stroke=\"#e8112d\" stroke-width=\"" + px(1.8 * u) +
+         "\" fill=\"none\" fill-rule=\"evenodd\" stroke-linejoin=\"round\"/>\n";
   }
-  o += "<g id=\"shear-warn\" fill=\"none\" stroke=\"#ff00cc\" stroke-width=\"1.6\">\n";
+  o += "<g id=\"shear-warn\" fill=\"none\" stroke=\"#ff00cc\" stroke-width=\"" + px(1.6 * u) +
+       "\">\n";
   for (const auto& c : cells) {
     if (!(c.shear > warn)) continue;
     std::vector<Vec2> pts;
@@ -355,7 +462,7 @@ std::string flat_svg(const ExportContext& ctx) {
   }
   o += "</g>\n";
 
-  const double node_r = std::clamp(0.1 * d_px, 0.6, 2.4);
+  const double node_r = std::clamp(0.1 * d, 0.6 * u, 2.4 * u);
   o += "<g id=\"nodes\">\n";
   for (const DrapeNode& n : r.nodes) {
     if (!n.mapped() || n.id.is_path_only()) continue;
@@ -364,7 +471,7 @@ std::string flat_svg(const ExportContext& ctx) {
          px(node_r) + "\"/>\n";
   }
   o += "</g>\n<g id=\"base-path\">\n";
-  const double path_r = std::clamp(0.22 * d_px, 1.8, 4.0);
+  const double path_r = std::clamp(0.22 * d, 1.8 * u, 4.0 * u);
   for (const std::uint32_t k : r.base_path) {
     const Vec2 q = P(r.nodes[k].ply);
     o += "<circle class=\"path-node\" cx=\"" + px(q.x()) + "\" cy=\"" + px(q.y()) + "\" r=\"" +
@@ -374,37 +481,54 @@ std::string flat_svg(const ExportContext& ctx) {
   const Vec2 s = P(spec.start);
   for (std::size_t k = 0; k < spec.sweeps.size(); ++k) {
     const Vec2 tip = P(spec.start + arrow_len * spec.sweeps[k].normalized());
-    o += arrow(s, tip, "#1f5fd6", 2.4);
-    o += text(tip.x() + 6, tip.y() - 4, "sweep " + std::to_string(k + 1), "sub halo",
-              " fill=\"#1f5fd6\"");
+    o += at_px(s, u, arrow(Vec2::Zero(), (tip - s) / u, "#1f5fd6", 2.4));
+    o += at_px(tip, u,
+               text(6, -4, "sweep " + std::to_string(k + 1), "sub halo", " fill=\"#1f5fd6\""));
   }
-  o += "<circle cx=\"" + px(s.x()) + "\" cy=\"" + px(s.y()) +
-       "\" r=\"6\" fill=\"#ffffff\" stroke=\"#1f5fd6\" stroke-width=\"2.4\"/>\n";
-  o += text(s.x() + 8, s.y() + 16, "P", "title halo", " fill=\"#1f5fd6\"");
-  o += text(s.x() + 19, s.y() + 20, "s", "sub halo", " fill=\"#1f5fd6\"");
+  o += at_px(s, u,
+             "<circle cx=\"0\" cy=\"0\" r=\"6\" fill=\"#ffffff\" stroke=\"#1f5fd6\" "
+             "stroke-width=\"2.4\"/>\n" +
+                 text(8, 16, "P", "title halo", " fill=\"#1f5fd6\"") +
+                 text(19, 20, "s", "sub halo", " fill=\"#1f5fd6\""));
   o += "</g>\n";
 
-  const double lx = f.left + f.width + kMargin;
+  // The scale bar: a round length in millimetres, to check the print is 1:1.
+  {
+    const double len = scale_bar_length(kScaleBarRel * f.width);
+    const Vec2 a(f.left, f.top + f.height + 0.5 * f.bottom);
+    const double tick = 6.0 * u;
+    o += "<g id=\"scale-bar\" data-length-mm=\"" + fixed_text(len, 6) + "\">\n";
+    o += "<line x1=\"" + px(a.x()) + "\" y1=\"" + px(a.y()) + "\" x2=\"" + px(a.x() + len) +
+         "\" y2=\"" + px(a.y()) + "\" stroke=\"#000000\" stroke-width=\"" + px(1.6 * u) + "\"/>\n";
+    for (const double x : {a.x(), a.x() + len})
+      o += "<line x1=\"" + px(x) + "\" y1=\"" + px(a.y() - tick) + "\" x2=\"" + px(x) + "\" y2=\"" +
+           px(a.y() + tick) + "\" stroke=\"#000000\" stroke-width=\"" + px(1.2 * u) + "\"/>\n";
+    o += at_px(Vec2(a.x() + len, a.y()), u, text(8, 4, fixed_text(len, 6) + " mm", "small"));
+    o += "</g>\n";
+  }
+
+  const double lx = f.left + f.width + kMargin * u;
   double legend_end = 0.0;
-  o += legend(lx, f.top + 10, scale, warn,
-              {{"<rect x=\"{X}\" y=\"{Y}\" width=\"24\" height=\"12\" fill=\"none\" "
-                "stroke=\"#ff00cc\" stroke-width=\"1.6\"/>",
-                "shear > " + fixed_text(warn * kRadToDeg, 1) + "\u00b0"},
-               {sym_line("#1a1a1a", 2.0), "mapped threads"},
-               {sym_line("#000000", 2.6), "mapped cells' edge"},
-               {sym_line("#e8112d", 1.8), "exact outline"},
-               {"<circle cx=\"{XM}\" cy=\"{YM}\" r=\"3\" fill=\"#000\"/>", "base path"},
-               {"<circle cx=\"{XM}\" cy=\"{YM}\" r=\"5\" fill=\"#fff\" stroke=\"#1f5fd6\" "
-                "stroke-width=\"2\"/>",
-                "start P\u209b, sweeps"},
-               {sym_line("#dddddd", 1.0), "ply threads"}},
-              &legend_end);
+  std::string lg = legend(0, 10, scale, warn,
+                          {{"<rect x=\"{X}\" y=\"{Y}\" width=\"24\" height=\"12\" fill=\"none\" "
+                            "stroke=\"#ff00cc\" stroke-width=\"1.6\"/>",
+                            "shear > " + fixed_text(warn * kRadToDeg, 1) + "\u00b0"},
+                           {sym_line("#1a1a1a", 2.0), "mapped threads"},
+                           {sym_line("#000000", 2.6), "mapped cells' edge"},
+                           {sym_line("#e8112d", 1.8), "exact outline"},
+                           {"<circle cx=\"{XM}\" cy=\"{YM}\" r=\"3\" fill=\"#000\"/>", "base path"},
+                           {"<circle cx=\"{XM}\" cy=\"{YM}\" r=\"5\" fill=\"#fff\" "
+                            "stroke=\"#1f5fd6\" stroke-width=\"2\"/>",
+                            "start P\u209b, sweeps"},
+                           {sym_line("#dddddd", 1.0), "ply threads"}},
+                          &legend_end);
   // Ply axes.
-  const double ax = lx + 20, ay = legend_end + 70;
-  o += arrow({ax, ay}, {ax + 40, ay}, "#444", 1.4);
-  o += arrow({ax, ay}, {ax, ay - 40}, "#444", 1.4);
-  o += text(ax + 44, ay + 4, "x weft", "small");
-  o += text(ax - 8, ay - 46, "y warp (0\u00b0)", "small");
+  const double ax = 20, ay = legend_end + 70;
+  lg += arrow({ax, ay}, {ax + 40, ay}, "#444", 1.4);
+  lg += arrow({ax, ay}, {ax, ay - 40}, "#444", 1.4);
+  lg += text(ax + 44, ay + 4, "x weft", "small");
+  lg += text(ax - 8, ay - 46, "y warp (0\u00b0)", "small");
+  o += at_px(Vec2(lx, f.top), u, lg);
   o += "</svg>\n";
   return o;
 }
@@ -494,7 +618,15 @@ std::string drape_svg(const ExportContext& ctx) {
   Box2 padded = box;
   padded.add(box.lo - Vec2::Constant(0.03 * ext));
   padded.add(box.hi + Vec2::Constant(0.03 * ext));
-  const Frame f = Frame::fit(padded);
+  Frame f = Frame::fit(padded);
+  const Vec3 view_dir = ctx.options.view;
+  const TitleBlock tb =
+      title_block("3D fitting (orthographic, view (" + fixed_text(view_dir.x(), 3) + ", " +
+                      fixed_text(view_dir.y(), 3) + ", " + fixed_text(view_dir.z(), 3) + "))",
+                  source_line(ctx) + "; " + std::to_string(r.metrics.nodes.mapped) +
+                      " mapped nodes, " + shear_summary(ctx),
+                  f.canvas_width() - 2 * kMargin);
+  f.top = tb.height + kMargin * 0.5;
   auto P = [&](const Vec3& p) { return f.map(cam.project(p)); };
   const double bias = 0.5 * d;  // segments and nodes are drawn over the cells they border
 
@@ -551,16 +683,8 @@ std::string drape_svg(const ExportContext& ctx) {
                          "\" r=\"" + px(std::max(1.6, 2 * node_r)) + "\" fill=\"#1f5fd6\"/>\n"});
   }
 
-  const Vec3 v = ctx.options.view;
   std::string o = svg_open(f.canvas_width(), f.canvas_height(), "plyfit 3D fitting");
-  o += text(kMargin, 28,
-            "3D fitting (orthographic, view (" + fixed_text(v.x(), 3) + ", " +
-                fixed_text(v.y(), 3) + ", " + fixed_text(v.z(), 3) + "))",
-            "title");
-  o += text(kMargin, 47,
-            source_line(ctx) + "; " + std::to_string(r.metrics.nodes.mapped) + " mapped nodes, " +
-                shear_summary(ctx),
-            "sub");
+  o += tb.svg;
   o += "<g id=\"scene\">\n" + draw_sorted(prims) + "</g>\n";
   // Start point.
   {
@@ -633,14 +757,16 @@ std::string shear_svg(const ExportContext& ctx) {
   Box2 padded = box;
   padded.add(box.lo - Vec2::Constant(0.05 * ext));
   padded.add(box.hi + Vec2::Constant(0.05 * ext));
-  const Frame f = Frame::fit(padded);
+  Frame f = Frame::fit(padded);
+  const TitleBlock tb = title_block(
+      "Thread-angle distribution (height \u03b3 from 0\u00b0 to 180\u00b0 over the plane "
+      "development)",
+      source_line(ctx) + "; " + shear_summary(ctx), f.canvas_width() - 2 * kMargin);
+  f.top = tb.height + kMargin * 0.5;
   auto P = [&](const Vec2& p, double gamma) { return f.map(proj(p, gamma)); };
 
   std::string o = svg_open(f.canvas_width(), f.canvas_height(), "plyfit thread-angle distribution");
-  o += text(kMargin, 28,
-            "Thread-angle distribution (height \u03b3 from 0 to \u03c0 over the plane development)",
-            "title");
-  o += text(kMargin, 47, source_line(ctx) + "; " + shear_summary(ctx), "sub");
+  o += tb.svg;
 
   // Under everything: the plane development on the floor, the frame, the pi/2 reference.
   o += "<g id=\"floor\">\n";
@@ -674,7 +800,7 @@ std::string shear_svg(const ExportContext& ctx) {
     const Vec2 a = P(axis_foot, 0.0), b = P(axis_foot, kPi);
     o += "<line x1=\"" + px(a.x()) + "\" y1=\"" + px(a.y()) + "\" x2=\"" + px(b.x()) + "\" y2=\"" +
          px(b.y()) + "\" stroke=\"#333\" stroke-width=\"1.2\"/>\n";
-    const char* names[] = {"0", "\u03c0/4", "\u03c0/2", "3\u03c0/4", "\u03c0"};
+    const char* names[] = {"0\u00b0", "45\u00b0", "90\u00b0", "135\u00b0", "180\u00b0"};
     for (int k = 0; k <= 4; ++k) {
       const Vec2 t = P(axis_foot, kPi * k / 4.0);
       o += "<line x1=\"" + px(t.x() - 6) + "\" y1=\"" + px(t.y()) + "\" x2=\"" + px(t.x()) +
@@ -730,7 +856,7 @@ std::string shear_svg(const ExportContext& ctx) {
               {{"<rect x=\"{X}\" y=\"{Y}\" width=\"24\" height=\"12\" fill=\"#ececec\" "
                 "stroke=\"#e8112d\" stroke-width=\"1.2\"/>",
                 "plane development"},
-               {sym_line("#999999", 0.8, "5,4"), "\u03b3 = \u03c0/2 (no shear)"}});
+               {sym_line("#999999", 0.8, "5,4"), "\u03b3 = 90\u00b0 (no shear)"}});
   o += "</svg>\n";
   return o;
 }

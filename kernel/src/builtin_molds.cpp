@@ -1,6 +1,8 @@
 #include <plyfit/kernel/analytic_surfaces.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
 
+#include "builtin_params.hpp"
+
 #include <cmath>
 #include <sstream>
 
@@ -71,27 +73,9 @@ const std::vector<BuiltinInfo>& builtin_molds() {
 
 Result<FaceData> builtin_mold(const std::string& name,
                               const std::map<std::string, double>& params) {
-  const BuiltinInfo* info = nullptr;
-  for (const auto& b : builtin_molds())
-    if (b.name == name) info = &b;
-  if (!info) {
-    std::string names;
-    for (const auto& b : builtin_molds()) names += (names.empty() ? "" : ", ") + b.name;
-    return Error{"unknown built-in mold '" + name + "' (known: " + names + ")"};
-  }
-  std::map<std::string, double> v;
-  for (const auto& p : info->params) v[p.key] = p.value;
-  for (const auto& [k, x] : params) {
-    if (!v.count(k)) {
-      std::string keys;
-      for (const auto& p : info->params) keys += (keys.empty() ? "" : ", ") + p.key;
-      return Error{"built-in mold '" + name + "' has no parameter '" + k +
-                   "' (its parameters: " + keys + ")"};
-    }
-    if (!std::isfinite(x))
-      return Error{"parameter '" + k + "' of '" + name + "' is not a finite number"};
-    v[k] = x;
-  }
+  auto resolved = detail::builtin_params(builtin_molds(), "mold", name, params);
+  if (!resolved) return resolved.error();
+  std::map<std::string, double>& v = resolved->second;
   auto positive = [&](const char* k) -> Status {
     if (!(v[k] > 0.0))
       return Error{"parameter '" + std::string(k) + "' of '" + name + "' must be positive"};

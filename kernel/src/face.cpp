@@ -26,6 +26,13 @@ constexpr double kProjectMaxDamping = 1e16;
 // A boundary segment shorter than this in 3D, relative to the face size, is a collapsed edge
 // (a pole): no boundary of the face.
 constexpr double kCollapsedRel = 1e-9;
+// Grid over the trim loops' box for contains(): about this many cells per direction per
+// square root of the segment count, within bounds.
+constexpr double kCellsPerSegmentRoot = 4.0;
+constexpr int kCellsMin = 64;
+constexpr int kCellsMax = 512;
+// Relative widening of a segment's box when marking the cells it touches.
+constexpr double kCellPadRel = 1e-6;
 
 // Distinct knot values inside the domain: the breakpoints of the polynomial pieces.
 std::vector<double> breakpoints(const std::vector<double>& knots, double a, double b) {
@@ -49,8 +56,14 @@ Result<Face> Face::create(FaceData data, const Tolerances& tol) {
   f.name_ = std::move(data.name);
   for (size_t l = 0; l < data.loops.size(); ++l) {
     auto& loop = data.loops[l];
-    // Drop a repeated closing point.
-    if (loop.points.size() > 1 && loop.points.front() == loop.points.back()) loop.points.pop_back();
+    // Drop a repeated closing point (and the tag of the segment from it back to the start).
+    if (loop.points.size() > 1 && loop.points.front() == loop.points.back()) {
+      loop.points.pop_back();
+      if (loop.edges.size() > loop.points.size()) loop.edges.pop_back();
+    }
+    if (!loop.edges.empty() && loop.edges.size() != loop.points.size())
+      return Error{"trim loop " + std::to_string(l) + " has " + std::to_string(loop.edges.size()) +
+                   " edge tags for " + std::to_string(loop.points.size()) + " segments"};
     if (loop.points.size() < 3)
       return Error{"trim loop " + std::to_string(l) + " has fewer than 3 points"};
     for (const auto& p : loop.points)
@@ -59,6 +72,17 @@ Result<Face> Face::create(FaceData data, const Tolerances& tol) {
   }
   f.loops_ = std::move(data.loops);
   f.build_slabs();
+  // A single loop along the domain's border (a natural boundary given as a loop, e.g. to tag
+  // a shell's shared edges) bounds the whole domain: contains() needs only the domain test.
+  if (f.loops_.size() == 1) {
+    const auto& d = f.domain();
+    const double eu = tol.param_rel * d.width_u(), ev = tol.param_rel * d.width_v();
+    bool border = true;
+    for (const Vec2& p : f.loops_[0].points)
+      border = border && (std::abs(p.x() - d.u0) <= eu || std::abs(p.x() - d.u1) <= eu ||
+                          std::abs(p.y() - d.v0) <= ev || std::abs(p.y() - d.v1) <= ev);
+    f.natural_ = border;
+  }
   // Bounding box from samples on the face (control boxes can be far larger).
   for (const auto& s : sample_face(f, 33)) f.bbox_.add(s.second);
   if (f.bbox_.empty) return Error{"no point of the face lies inside its trim loops"};
@@ -139,6 +163,54 @@ void Face::build_slabs() {
         std::clamp(static_cast<int>(std::floor((hi - slab_v0_) / slab_h_)), 0, nslab - 1);
     for (int k = k0; k <= k1; ++k) slabs_[k].push_back(s);
   }
+  // Cells of the loops' box that no loop segment touches are wholly inside or outside: their
+  // centre's answer holds for all their points, and contains() needs no crossing count there.
+  cells_n_ = std::clamp(
+      static_cast<int>(kCellsPerSegmentRoot * std::sqrt(static_cast<double>(segs_.size() + 1))),
+      kCellsMin, kCellsMax);
+  cell_size_ = ((loops_max_ - loops_min_) / cells_n_).cwiseMax(Vec2::Constant(1e-300));
+  cells_.assign(static_cast<std::size_t>(cells_n_) * cells_n_, kCellUnknown);
+  auto cell = [&](double x, double o, double c) {
+    return std::clamp(static_cast<int>(std::floor((x - o) / c)), 0, cells_n_ - 1);
+  };
+  for (const auto& l : loops_) {
+    const size_t n = l.points.size();
+    for (size_t k = 0; k < n; ++k) {
+      const Vec2 lo = l.points[k].cwiseMin(l.points[(k + 1) % n]);
+      const Vec2 hi = l.points[k].cwiseMax(l.points[(k + 1) % n]);
+      // The segment's box widened by a hair: a point on a cell's border, which rounding may
+      // put in either cell, is tested exactly.
+      const Vec2 pad = kCellPadRel * cell_size_;
+      const int i0 = cell(lo.x() - pad.x(), loops_min_.x(), cell_size_.x());
+      const int i1 = cell(hi.x() + pad.x(), loops_min_.x(), cell_size_.x());
+      const int j0 = cell(lo.y() - pad.y(), loops_min_.y(), cell_size_.y());
+      const int j1 = cell(hi.y() + pad.y(), loops_min_.y(), cell_size_.y());
+      for (int i = i0; i <= i1; ++i)
+        for (int j = j0; j <= j1; ++j)
+          cells_[static_cast<std::size_t>(i) * cells_n_ + j] = kCellBoundary;
+    }
+  }
+  for (int i = 0; i < cells_n_; ++i)
+    for (int j = 0; j < cells_n_; ++j) {
+      auto& c = cells_[static_cast<std::size_t>(i) * cells_n_ + j];
+      if (c == kCellUnknown)
+        c = inside_trims(loops_min_ + Vec2((i + 0.5) * cell_size_.x(), (j + 0.5) * cell_size_.y()))
+                ? kCellInside
+                : kCellOutside;
+    }
+}
+
+bool Face::inside_trims_fast(const Vec2& uv) const {
+  const double u = uv.x(), v = uv.y();
+  if (v < loops_min_.y() || v > loops_max_.y() || u < loops_min_.x() || u > loops_max_.x())
+    return false;
+  const int i =
+      std::clamp(static_cast<int>((u - loops_min_.x()) / cell_size_.x()), 0, cells_n_ - 1);
+  const int j =
+      std::clamp(static_cast<int>((v - loops_min_.y()) / cell_size_.y()), 0, cells_n_ - 1);
+  const std::uint8_t c = cells_[static_cast<std::size_t>(i) * cells_n_ + j];
+  if (c != kCellBoundary) return c == kCellInside;
+  return inside_trims(uv);
 }
 
 bool Face::inside_trims(const Vec2& uv) const {
@@ -164,29 +236,7 @@ bool Face::contains(const Vec2& uv) const {
   const auto& d = domain();
   if (!d.contains(w.x(), w.y(), tol_.param_rel * d.width_u(), tol_.param_rel * d.width_v()))
     return false;
-  return loops_.empty() || inside_trims(w);
-}
-
-Vec2 Face::wrap(const Vec2& uv) const {
-  Vec2 w = uv;
-  const auto& d = domain();
-  if (closed_u_ && (w.x() < d.u0 || w.x() > d.u1)) {
-    const double P = d.width_u();
-    w.x() = d.u0 + (w.x() - d.u0) - P * std::floor((w.x() - d.u0) / P);
-  }
-  if (closed_v_ && (w.y() < d.v0 || w.y() > d.v1)) {
-    const double P = d.width_v();
-    w.y() = d.v0 + (w.y() - d.v0) - P * std::floor((w.y() - d.v0) / P);
-  }
-  return w;
-}
-
-Vec2 Face::delta(const Vec2& from, const Vec2& to) const {
-  Vec2 d = to - from;
-  const auto& dom = domain();
-  if (closed_u_) d.x() -= dom.width_u() * std::round(d.x() / dom.width_u());
-  if (closed_v_) d.y() -= dom.width_v() * std::round(d.y() / dom.width_v());
-  return d;
+  return loops_.empty() || natural_ || inside_trims_fast(w);
 }
 
 SurfaceEval1 Face::eval1(const SurfaceLocation& at) const {

@@ -3,6 +3,8 @@
 
 #include <plyfit/kernel/cells.hpp>
 
+#include "segment_index.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -23,21 +25,10 @@ constexpr double kBarycentricSlack = 1e-12;
 // Corners the drape never reached are solved on the surface extended this many steps past
 // the face.
 constexpr double kVirtualExtensionSteps = 4.0;
-// Cells of the grid index over boundary segments, per direction (at most).
-constexpr int kGridMax = 256;
 
-// The boundary loops' (u, v) points, and per vertex: does it lie on a collapsed edge (a
-// segment of no 3D length, as a pole's domain edge)? Such edges are no boundary of the face:
-// crossings with them are artefacts of the parametrisation and their vertices are no corners.
-std::vector<std::vector<Vec2>> loop_points(const std::vector<BoundaryLoop>& boundary) {
-  std::vector<std::vector<Vec2>> out;
-  for (const auto& b : boundary) {
-    std::vector<Vec2> L;
-    for (const auto& p : b.points) L.push_back(p.uv);
-    out.push_back(std::move(L));
-  }
-  return out;
-}
+// Per boundary-loop vertex: does it lie on a collapsed edge (a segment of no 3D length, as a
+// pole's domain edge)? Such edges are no boundary of the face: crossings with them are
+// artefacts of the parametrisation and their vertices are no corners.
 std::vector<std::vector<bool>> collapsed_vertices(const std::vector<BoundaryLoop>& boundary) {
   std::vector<std::vector<bool>> out;
   for (const auto& b : boundary) {
@@ -53,100 +44,71 @@ std::vector<std::vector<bool>> collapsed_vertices(const std::vector<BoundaryLoop
 // A vertex of the outline polygons: a node, an edge crossing or a boundary vertex.
 struct Vertex {
   Vec2 p2 = Vec2::Zero();  // ply coordinates
-  Vec2 uv = Vec2::Zero();  // surface parameters (if has_uv)
+  SurfaceLocation at;      // where it lies on the surface (if has_uv)
+  Vec3 p3 = Vec3::Zero();  // its 3D point (if has_uv)
   bool has_uv = false;
-  bool in = false;    // on the face
-  bool pole = false;  // at a degenerate point (a collapsed edge): its free parameter means
-                      // nothing and is taken from its neighbours when interpolating
-  int free = 1;       // at a pole: 0 if u is the free parameter, 1 if v
+  bool in = false;            // on the surface
+  bool pole = false;          // at a degenerate point (a collapsed edge): its free parameter means
+                              // nothing and is taken from its neighbours when interpolating
+  int free = 1;               // at a pole: 0 if u is the free parameter, 1 if v
+  int bloop = -1, bseg = -1;  // for a boundary crossing: the boundary segment it lies on
 };
 
-// The face boundary as segments in (u, v), with copies shifted by a period across closed
-// seams, in a uniform grid for segment queries. Domain edges along a closed seam are not
-// boundaries and are left out.
+// The free boundary's segments (kind kEdge, both ends on one face) indexed per face in that
+// face's (u, v), with copies shifted by a period across closed seams.
 class BoundaryIndex {
  public:
-  struct Seg {
-    Vec2 a, b;
-    int loop, index;  // position in the boundary loops
+  struct Ref {
+    int loop, index;  // segment `index` of boundary loop `loop`
+    Vec2 shift;       // the period the copy is shifted by
   };
 
-  BoundaryIndex(const DrapeSurface& s, const std::vector<BoundaryLoop>& boundary) {
-    const auto& d = s.domain(SurfaceLocation());
-    const bool cu = s.wrap(Vec2(d.u1 + 0.5 * d.width_u(), d.v0)).uv.x() <= d.u1;
-    const bool cv = s.wrap(Vec2(d.u0, d.v1 + 0.5 * d.width_v())).uv.y() <= d.v1;
+  BoundaryIndex(const DrapeSurface& s, const std::vector<BoundaryLoop>& boundary)
+      : faces_(static_cast<std::size_t>(s.face_count())) {
+    std::vector<std::vector<detail::SegmentIndex::Seg>> segs(faces_.size());
     for (int l = 0; l < static_cast<int>(boundary.size()); ++l) {
-      const auto& L = boundary[l].points;
+      const auto& L = boundary[static_cast<std::size_t>(l)].points;
       for (int k = 0; k < static_cast<int>(L.size()); ++k) {
-        if (boundary[l].kinds[k] != BoundaryLoop::kEdge) continue;
-        const Vec2 a = L[k].uv, b = L[(k + 1) % L.size()].uv;
+        if (boundary[static_cast<std::size_t>(l)].kinds[static_cast<std::size_t>(k)] !=
+            BoundaryLoop::kEdge)
+          continue;
+        const SurfaceLocation& A = L[static_cast<std::size_t>(k)];
+        const SurfaceLocation& B = L[(static_cast<std::size_t>(k) + 1) % L.size()];
+        if (A.face != B.face) continue;
+        const auto& d = s.domain(A);
+        const bool cu = s.wrap(A.with_uv(Vec2(d.u1 + 0.5 * d.width_u(), d.v0))).uv.x() <= d.u1;
+        const bool cv = s.wrap(A.with_uv(Vec2(d.u0, d.v1 + 0.5 * d.width_v()))).uv.y() <= d.v1;
+        auto& F = faces_[static_cast<std::size_t>(A.face)];
         for (int su = cu ? -1 : 0; su <= (cu ? 1 : 0); ++su)
           for (int sv = cv ? -1 : 0; sv <= (cv ? 1 : 0); ++sv) {
             const Vec2 sh(su * d.width_u(), sv * d.width_v());
-            segs_.push_back({a + sh, b + sh, l, k});
+            segs[static_cast<std::size_t>(A.face)].push_back(
+                {A.uv + sh, B.uv + sh, static_cast<int>(F.refs.size())});
+            F.refs.push_back({l, k, sh});
           }
       }
     }
-    if (segs_.empty()) return;
-    lo_ = hi_ = segs_[0].a;
-    for (const Seg& g : segs_) {
-      lo_ = lo_.cwiseMin(g.a).cwiseMin(g.b);
-      hi_ = hi_.cwiseMax(g.a).cwiseMax(g.b);
-    }
-    n_ = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(segs_.size()))), 1, kGridMax);
-    cell_ = ((hi_ - lo_) / n_).cwiseMax(Vec2::Constant(1e-300));
-    grid_.assign(static_cast<std::size_t>(n_) * n_, {});
-    for (int k = 0; k < static_cast<int>(segs_.size()); ++k) {
-      int i0, j0, i1, j1;
-      range(segs_[k].a.cwiseMin(segs_[k].b), segs_[k].a.cwiseMax(segs_[k].b), i0, j0, i1, j1);
-      for (int i = i0; i <= i1; ++i)
-        for (int j = j0; j <= j1; ++j) grid_[static_cast<std::size_t>(i) * n_ + j].push_back(k);
-    }
+    for (std::size_t f = 0; f < faces_.size(); ++f)
+      faces_[f].index = detail::SegmentIndex(std::move(segs[f]));
   }
 
-  // Parameters t in (0, 1) where segment p -> q crosses the boundary, sorted, with the
-  // segment crossed. Half-open rules count a crossing through a boundary vertex once.
-  std::vector<std::pair<double, int>> crossings(const Vec2& p, const Vec2& q) const {
-    std::vector<std::pair<double, int>> out;
-    if (segs_.empty()) return out;
-    int i0, j0, i1, j1;
-    range(p.cwiseMin(q), p.cwiseMax(q), i0, j0, i1, j1);
-    std::vector<int> cand;
-    for (int i = i0; i <= i1; ++i)
-      for (int j = j0; j <= j1; ++j)
-        for (int k : grid_[static_cast<std::size_t>(i) * n_ + j]) cand.push_back(k);
-    std::sort(cand.begin(), cand.end());
-    cand.erase(std::unique(cand.begin(), cand.end()), cand.end());
-    const Vec2 r = q - p;
-    for (int k : cand) {
-      const Vec2 a = segs_[k].a, e = segs_[k].b - segs_[k].a;
-      const double den = cross2(r, e);
-      if (den == 0.0) continue;  // parallel
-      const double t = cross2(a - p, e) / den;
-      const double s = cross2(a - p, r) / den;
-      if (t > 0.0 && t < 1.0 && s >= 0.0 && s < 1.0) out.push_back({t, k});
-    }
-    std::sort(out.begin(), out.end());
-    return out;
+  // The free-boundary segments of `face` whose boxes meet [lo, hi] (face's (u, v)), as
+  // (segment a, segment b, ref) in that face's parameters.
+  template <class F>
+  void near(std::int32_t face, const Vec2& lo, const Vec2& hi, F&& f) const {
+    const auto& Fi = faces_[static_cast<std::size_t>(face)];
+    Fi.index.for_candidates(lo, hi, [&](int k) {
+      const auto& g = Fi.index.seg(k);
+      f(g.a, g.b, Fi.refs[static_cast<std::size_t>(g.id)]);
+    });
   }
-
-  const Seg& seg(int k) const { return segs_[k]; }
-  bool empty() const { return segs_.empty(); }
 
  private:
-  void range(const Vec2& a, const Vec2& b, int& i0, int& j0, int& i1, int& j1) const {
-    auto idx = [&](double x, double o, double c) {
-      return std::clamp(static_cast<int>(std::floor((x - o) / c)), 0, n_ - 1);
-    };
-    i0 = idx(a.x(), lo_.x(), cell_.x());
-    i1 = idx(b.x(), lo_.x(), cell_.x());
-    j0 = idx(a.y(), lo_.y(), cell_.y());
-    j1 = idx(b.y(), lo_.y(), cell_.y());
-  }
-  std::vector<Seg> segs_;
-  Vec2 lo_ = Vec2::Zero(), hi_ = Vec2::Zero(), cell_ = Vec2::Ones();
-  int n_ = 1;
-  std::vector<std::vector<int>> grid_;
+  struct FaceIndex {
+    detail::SegmentIndex index;
+    std::vector<Ref> refs;
+  };
+  std::vector<FaceIndex> faces_;
 };
 
 class Builder {
@@ -156,7 +118,6 @@ class Builder {
         r_(r),
         ply_(*r.ply),
         boundary_(s.boundary()),
-        loops_(loop_points(boundary_)),
         collapsed_(collapsed_vertices(boundary_)),
         index_(s, boundary_),
         drape_vertices_(r.nodes.size(), -1) {
@@ -186,7 +147,7 @@ class Builder {
  private:
   using Polygon = std::vector<int>;  // vertex indices, counter-clockwise
   struct Position {
-    Vec2 uv;
+    SurfaceLocation at;
     Vec3 point;
     bool in;
   };
@@ -194,8 +155,8 @@ class Builder {
   // Known position of a node: mapped, extended by the drape, or virtual.
   std::optional<Position> position(const NodeId& id) const {
     if (const DrapeNode* n = r_.find(id)) {
-      if (n->mapped()) return Position{n->uv, n->point, true};
-      if (n->has(DrapeNode::kExtended)) return Position{n->uv, n->point, false};
+      if (n->mapped()) return Position{n->at(), n->point, true};
+      if (n->has(DrapeNode::kExtended)) return Position{n->at(), n->point, false};
     }
     const auto it = virtual_.find(id.key());
     if (it != virtual_.end()) return it->second;
@@ -298,7 +259,7 @@ class Builder {
   // another reason).
   bool accept_virtual(const NodeId& id, const SolveResult& res) {
     if (!(res.status == SolveStatus::kLeftFace && res.extended)) return false;
-    virtual_[id.key()] = Position{res.at.uv, res.point, false};
+    virtual_[id.key()] = Position{res.at, res.point, false};
     return true;
   }
 
@@ -312,7 +273,7 @@ class Builder {
         const double side =
             cross2(ply_.pos(b.id) - ply_.pos(a.id), q2 - ply_.pos(a.id)) > 0 ? 1.0 : -1.0;
         if (accept_virtual(id, solve_two_spheres(s_,
-                                                 {a.p.point, a.p.uv, a.rest, b.p.point, b.p.uv,
+                                                 {a.p.point, a.p.at, a.rest, b.p.point, b.p.at,
                                                   b.rest, side, std::nullopt},
                                                  st_)))
           return true;
@@ -337,7 +298,7 @@ class Builder {
       const auto pb = position(before->id);
       if (!pb) continue;
       if (accept_virtual(
-              id, solve_plane_sphere(s_, {a.p.point, a.p.uv, a.rest, a.p.point - pb->point}, st_)))
+              id, solve_plane_sphere(s_, {a.p.point, a.p.at, a.rest, a.p.point - pb->point}, st_)))
         return true;
     }
     return false;
@@ -357,15 +318,16 @@ class Builder {
     Vertex v;
     v.p2 = ply_.pos(id);
     if (const auto p = n && (n->mapped() || n->has(DrapeNode::kExtended))
-                           ? std::optional<Position>(Position{n->uv, n->point, n->mapped()})
+                           ? std::optional<Position>(Position{n->at(), n->point, n->mapped()})
                            : position(id)) {
       v.has_uv = true;
-      v.uv = p->uv;
+      v.at = p->at;
+      v.p3 = p->point;
       v.in = p->in;
-      const SurfaceEval1 e = s_.eval1(v.uv);
-      v.pole = e.ok && s_.degenerate(v.uv, e);
+      const SurfaceEval1 e = s_.eval1(v.at);
+      v.pole = e.ok && s_.degenerate(v.at, e);
       if (v.pole) {  // the collapsed direction is the one whose derivative vanishes
-        const Vec2 sp = s_.speeds(v.uv);
+        const Vec2 sp = s_.speeds(v.at);
         v.free = e.dv.norm() * sp.x() <= e.du.norm() * sp.y() ? 1 : 0;
       }
     }
@@ -374,11 +336,65 @@ class Builder {
     return *slot;
   }
 
+  // A vertex on the surface at `at` (its 3D point evaluated), at ply point p2.
+  int surface_vertex(const SurfaceLocation& at, const Vec2& p2, int bloop = -1, int bseg = -1) {
+    Vertex x;
+    x.p2 = p2;
+    x.at = s_.wrap(at);
+    const SurfaceEval1 e = s_.eval1(x.at);
+    x.p3 = e.ok ? e.p : Vec3::Zero();
+    x.has_uv = x.in = true;
+    x.bloop = bloop;
+    x.bseg = bseg;
+    verts_.push_back(x);
+    return static_cast<int>(verts_.size()) - 1;
+  }
+
+  // Where segment pu -> qu of the chart of `chart` crosses the free boundary: (t, loop,
+  // segment) sorted by t. The boundary of the chart's face is taken as it is; that of
+  // another face `other` (the far end's, across a shared edge) is carried into the chart
+  // through DrapeSurface::delta.
+  std::vector<std::tuple<double, int, int>> boundary_crossings(const SurfaceLocation& chart,
+                                                               const Vec2& pu, const Vec2& qu,
+                                                               const SurfaceLocation& other) const {
+    std::vector<std::tuple<double, int, int>> out;
+    const Vec2 r = qu - pu;
+    auto test = [&](const Vec2& a, const Vec2& b, const BoundaryIndex::Ref& ref) {
+      const Vec2 e = b - a;
+      const double den = cross2(r, e);
+      if (den == 0.0) return;  // parallel
+      const double t = cross2(a - pu, e) / den;
+      const double u = cross2(a - pu, r) / den;
+      if (t > 0.0 && t < 1.0 && u >= 0.0 && u < 1.0) out.emplace_back(t, ref.loop, ref.index);
+    };
+    index_.near(chart.face, pu.cwiseMin(qu), pu.cwiseMax(qu), test);
+    if (!s_.same_chart(chart, other)) {
+      // The other face's segments near the far end, in its own (u, v) first.
+      const Vec2 ou = other.uv, span = (s_.delta(other, chart)).cwiseAbs();
+      index_.near(other.face, ou - span, ou + span,
+                  [&](const Vec2& a, const Vec2& b, const BoundaryIndex::Ref& ref) {
+                    if (ref.shift != Vec2::Zero()) return;  // delta takes seams the short way
+                    const Vec2 ac = chart.uv + s_.delta(chart, other.with_uv(a - ref.shift));
+                    const Vec2 bc = chart.uv + s_.delta(chart, other.with_uv(b - ref.shift));
+                    test(ac, bc, ref);
+                  });
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+
+  // True when the point of the chart's parameters uv lies on the surface (reached from the
+  // chart's location, across shared edges where the path crosses them).
+  bool contains_in_chart(const SurfaceLocation& chart, const Vec2& uv) const {
+    return s_.contains(s_.locate(chart, uv));
+  }
+
   // Boundary crossings on the edge between vertices a and b, in order from a to b: the
-  // intersections of the edge's (u, v) segment with the face boundary, their count checked
+  // intersections of the edge's (u, v) segment with the free boundary, their count checked
   // against contains() at the ends (bisection when a node sits on the boundary itself).
-  // Computed once per edge so that both cells sharing it get the same points (an edge with
-  // none, most of them, is not stored: recomputing it gives none again).
+  // Computed once per edge, in the chart of its lower-numbered vertex, so that both cells
+  // sharing it get the same points (an edge with none, most of them, is not stored:
+  // recomputing it gives none again).
   std::vector<int> crossings(int a, int b) {
     const bool flip = b < a;
     const std::pair<int, int> key = flip ? std::pair{b, a} : std::pair{a, b};
@@ -386,14 +402,15 @@ class Builder {
     if (it == crossings_.end()) {
       const Vertex P = verts_[key.first];
       const Vertex Q = verts_[key.second];
-      Vec2 pu = P.uv, qu = P.uv + s_.delta(P.uv, Q.uv);
+      Vec2 pu = P.at.uv, qu = P.at.uv + s_.delta(P.at, Q.at);
       // From a pole the edge runs along the other end's meridian: the pole takes its free
       // parameter from the other end (an edge to a node beyond a boundary through the pole
       // then crosses at the pole itself).
-      if (P.pole && !Q.pole) pu[P.free] = qu[P.free];
-      if (Q.pole && !P.pole) qu[Q.free] = pu[Q.free];
-      std::vector<double> ts;
-      for (const auto& c : index_.crossings(pu, qu)) ts.push_back(c.first);
+      if (s_.same_chart(P.at, Q.at)) {
+        if (P.pole && !Q.pole) pu[P.free] = qu[P.free];
+        if (Q.pole && !P.pole) qu[Q.free] = pu[Q.free];
+      }
+      auto ts = boundary_crossings(P.at, pu, qu, Q.at);
       const bool odd = ts.size() % 2 == 1;
       if (odd != (P.in != Q.in)) {
         ts.clear();
@@ -401,20 +418,15 @@ class Builder {
           double lo = 0.0, hi = 1.0;
           for (int k = 0; k < kCrossingBisections; ++k) {
             const double mid = 0.5 * (lo + hi);
-            ((s_.contains(pu + mid * (qu - pu)) == P.in) ? lo : hi) = mid;
+            ((contains_in_chart(P.at, pu + mid * (qu - pu)) == P.in) ? lo : hi) = mid;
           }
-          ts.push_back(0.5 * (lo + hi));
+          ts.emplace_back(0.5 * (lo + hi), -1, -1);
         }
       }
       std::vector<int> ids;
-      for (double t : ts) {
-        Vertex x;
-        x.p2 = P.p2 + t * (Q.p2 - P.p2);
-        x.uv = s_.wrap(pu + t * (qu - pu)).uv;
-        x.has_uv = x.in = true;
-        verts_.push_back(x);
-        ids.push_back(static_cast<int>(verts_.size()) - 1);
-      }
+      for (const auto& [t, loop, seg] : ts)
+        ids.push_back(surface_vertex(s_.locate(P.at, pu + t * (qu - pu)), P.p2 + t * (Q.p2 - P.p2),
+                                     loop, seg));
       if (ids.empty()) return ids;
       it = crossings_.emplace(key, std::move(ids)).first;
     }
@@ -445,18 +457,19 @@ class Builder {
     if (c.size() >= 3) exact_.push_back(std::move(c));
   }
 
-  // The part of a polygon on the face: its vertices on the face, the boundary crossings on
-  // its edges, and between an exit and the next entry the face boundary itself, carried into
-  // ply coordinates by the part's own piecewise-affine interpolation.
+  // The part of a polygon on the surface: its vertices on the surface, the boundary
+  // crossings on its edges, and between an exit and the next entry the free boundary itself,
+  // carried into ply coordinates by the part's own piecewise-affine interpolation in the
+  // chart of its first corner.
   Polygon clip(const Polygon& poly) {
     const std::size_t m = poly.size();
-    std::vector<Vec2> uvw(m);  // unwrapped relative to the first corner
-    for (std::size_t k = 0; k < m; ++k)
-      uvw[k] = verts_[poly[0]].uv + s_.delta(verts_[poly[0]].uv, verts_[poly[k]].uv);
+    const SurfaceLocation chart = verts_[poly[0]].at;
+    std::vector<Vec2> uvw(m);  // unwrapped relative to the first corner, in its chart
+    for (std::size_t k = 0; k < m; ++k) uvw[k] = chart.uv + s_.delta(chart, verts_[poly[k]].at);
     // A pole corner takes the mean free parameter of its two neighbours in the part.
     for (std::size_t k = 0; k < m; ++k) {
       const Vertex& v = verts_[poly[k]];
-      if (!v.pole) continue;
+      if (!v.pole || !s_.same_chart(chart, v.at)) continue;
       const Vec2& a = uvw[(k + m - 1) % m];
       const Vec2& b = uvw[(k + 1) % m];
       uvw[k][v.free] = 0.5 * (a[v.free] + b[v.free]);
@@ -493,19 +506,23 @@ class Builder {
     return out;
   }
 
-  // The boundary segment (loop, index) a crossing lies on: the nearest one.
-  std::pair<int, int> segment_of(const Vec2& uv) const {
+  // The free-boundary segment (loop, index) a crossing lies on: the one it was found on, or
+  // (for a crossing found by bisection) the nearest one in its face's parameters.
+  std::pair<int, int> segment_of(const Vertex& x) const {
+    if (x.bloop >= 0) return {x.bloop, x.bseg};
     std::pair<int, int> best{-1, -1};
     double bd = INFINITY;
-    for (std::size_t l = 0; l < loops_.size(); ++l) {
-      const auto& L = loops_[l];
+    for (std::size_t l = 0; l < boundary_.size(); ++l) {
+      const auto& L = boundary_[l].points;
       for (std::size_t k = 0; k < L.size(); ++k) {
-        const Vec2 a = uv + s_.delta(uv, L[k]);
+        if (boundary_[l].kinds[k] != BoundaryLoop::kEdge || L[k].face != x.at.face) continue;
+        const Vec2 a = x.at.uv + s_.delta(x.at, L[k]);
         const Vec2 b = a + s_.delta(L[k], L[(k + 1) % L.size()]);
         const Vec2 ab = b - a;
-        const double t =
-            ab.squaredNorm() > 0 ? std::clamp((uv - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-        const double d = (a + t * ab - uv).norm();
+        const double t = ab.squaredNorm() > 0
+                             ? std::clamp((x.at.uv - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0)
+                             : 0.0;
+        const double d = (a + t * ab - x.at.uv).norm();
         if (d < bd) {
           bd = d;
           best = {static_cast<int>(l), static_cast<int>(k)};
@@ -548,30 +565,33 @@ class Builder {
     return best;
   }
 
-  // Face-boundary vertices between crossings x (exit) and y (entry) that lie inside the
-  // part, as new vertices in ply coordinates; the way round the loop that stays inside.
+  // Free-boundary vertices between crossings x (exit) and y (entry) that lie inside the
+  // part, as new vertices in ply coordinates; the way round the loop that stays inside. The
+  // loop may pass from face to face (a corner of a shell); its vertices are carried into the
+  // part's chart.
   std::vector<int> boundary_walk(int x, int y, const Polygon& poly, const std::vector<Vec2>& uvw) {
-    if (loops_.empty()) return {};
-    const auto sx = segment_of(verts_[x].uv), sy = segment_of(verts_[y].uv);
+    if (boundary_.empty()) return {};
+    const auto sx = segment_of(verts_[x]), sy = segment_of(verts_[y]);
     if (sx.first < 0 || sx.first != sy.first || sx.second == sy.second) return {};
-    const auto& L = loops_[sx.first];
+    const auto& L = boundary_[static_cast<std::size_t>(sx.first)].points;
     const int n = static_cast<int>(L.size());
-    std::vector<Vec2> best;
+    const SurfaceLocation chart = verts_[poly[0]].at;
+    std::vector<std::pair<Vec2, int>> best;  // (chart uv, loop vertex)
     bool found = false;
     for (int dir : {1, -1}) {
       // Forward: loop vertices sx+1 .. sy; backward: sx .. sy+1; all inside the part.
-      std::vector<Vec2> walk;
+      std::vector<std::pair<Vec2, int>> walk;
       bool ok = true;
       int k = dir > 0 ? (sx.second + 1) % n : sx.second;
       const int stop = dir > 0 ? (sy.second + 1) % n : sy.second;
       for (int guard = 0; guard <= n && k != stop; ++guard, k = (k + dir + n) % n) {
-        if (collapsed_[sx.first][k]) continue;
-        const Vec2 p = uvw[0] + s_.delta(uvw[0], L[k]);
+        if (collapsed_[static_cast<std::size_t>(sx.first)][static_cast<std::size_t>(k)]) continue;
+        const Vec2 p = chart.uv + s_.delta(chart, L[static_cast<std::size_t>(k)]);
         if (!in_polygon(uvw, p)) {
           ok = false;
           break;
         }
-        walk.push_back(p);
+        walk.push_back({p, k});
       }
       if (k != stop) ok = false;
       if (ok && (!found || walk.size() < best.size())) {
@@ -580,14 +600,8 @@ class Builder {
       }
     }
     std::vector<int> out;
-    for (const Vec2& p : best) {
-      Vertex v;
-      v.uv = s_.wrap(p).uv;
-      v.has_uv = v.in = true;
-      v.p2 = to_ply(poly, uvw, p);
-      verts_.push_back(v);
-      out.push_back(static_cast<int>(verts_.size()) - 1);
-    }
+    for (const auto& [p, k] : best)
+      out.push_back(surface_vertex(L[static_cast<std::size_t>(k)], to_ply(poly, uvw, p)));
     return out;
   }
 
@@ -648,10 +662,15 @@ class Builder {
       OutlineLoop l;
       for (int v : ids) {
         const Vec2& p = verts_[v].p2;
-        if (l.points.empty() || (p - l.points.back()).norm() > merge) l.points.push_back(p);
+        if (l.points.empty() || (p - l.points.back()).norm() > merge) {
+          l.points.push_back(p);
+          l.points3d.push_back(verts_[v].p3);
+        }
       }
-      while (l.points.size() > 1 && (l.points.front() - l.points.back()).norm() <= merge)
+      while (l.points.size() > 1 && (l.points.front() - l.points.back()).norm() <= merge) {
         l.points.pop_back();
+        l.points3d.pop_back();
+      }
       if (l.points.size() < 3) continue;
       double a = 0.0, per = 0.0;
       for (std::size_t k = 0; k < l.points.size(); ++k) {
@@ -677,7 +696,6 @@ class Builder {
   const DrapeResult& r_;
   const Ply& ply_;
   std::vector<BoundaryLoop> boundary_;
-  std::vector<std::vector<Vec2>> loops_;
   std::vector<std::vector<bool>> collapsed_;  // per loop vertex: on a collapsed edge
   BoundaryIndex index_;
   SolverSettings st_;

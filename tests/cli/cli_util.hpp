@@ -45,6 +45,11 @@ inline void spit(const std::string& path, const std::string& text) {
   out << text;
 }
 
+/// The paper's Table 1 case (a) on the built-in octant, as plyfit drape flags.
+inline const std::string kOctantFlags =
+    "--mold builtin:sphere-octant --spacing 1 --start2d 0,0 --base2d 1,0 --sweep2d 0,1 "
+    "--start3d 0,0,20 --base-normal 0,1,0 --sweep3d 0,1,0";
+
 /// Exit code and output of a plyfit run.
 struct CliRun {
   int code = -1;

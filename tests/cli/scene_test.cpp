@@ -14,9 +14,7 @@ using nlohmann::json;
 namespace {
 
 /// Table 1 case (a) on the built-in octant, as flags.
-const std::string kFlags =
-    "--mold builtin:sphere-octant --spacing 1 --start2d 0,0 --base2d 1,0 --sweep2d 0,1 "
-    "--start3d 0,0,20 --base-normal 0,1,0 --sweep3d 0,1,0";
+const std::string& kFlags = kOctantFlags;
 
 /// The same drape as a scene file with sections.
 const std::string kScene =
@@ -143,7 +141,7 @@ TEST_CASE("cli: a dumped scene loads back to the same job") {
   // Every kind of key: switches, repeatable keys, defaults, non-default numerics.
   const std::string flags =
       kFlags +
-      " --ply 30,25 --lock-angle 60 --warn-angle 50 --material 'carbon twill' "
+      " --ply 30,25 --lock-angle 60 --warn-angle 50 --material carbon-twill "
       "--ply-name P1 --tolerance 1e-13 --max-iterations 30 --guess parallelogram "
       "--flip-normal --view 0,0,1 -o '" +
       tmp.file("out") + "'";

@@ -1,18 +1,56 @@
 #!/usr/bin/python3
 """Parses DIR/flat.svg, drape.svg and shear.svg with Python's XML parser and checks them
-against DIR/report.json: well-formed SVG with a viewBox, self-contained (no external
-references, images or scripts), and one element of class "node" per mapped regular node
-(flat.svg, drape.svg: nodes.mapped; shear.svg: nodes.with_angle, the nodes with a thread
-angle).
+against DIR/report.json:
+
+- well-formed SVG with a viewBox, self-contained (no external references, images or
+  scripts), and one element of class "node" per mapped regular node (flat.svg, drape.svg:
+  nodes.mapped; shear.svg: nodes.with_angle, the nodes with a thread angle);
+- flat.svg is printable 1:1: its width and height are in millimetres and equal to its
+  viewBox's, so one user unit is one millimetre; the outline drawn (id "outline") spans
+  exactly the width and height of report.json's flat_outline loops (to the 0.01 mm the
+  coordinates are written with); the scale bar (id "scale-bar") is a line as long as the
+  length its label names;
+- titles and subtitles (the group id "title") are wrapped, not cut: every line fits the
+  picture's width (at 0.62 em a character, wider than DejaVu Sans's average), and the
+  subtitle lines put together hold the whole subtitle (the mold's file name, never its folder, and the shear summary);
+- shear.svg has one unit, degrees: no pi in any text, the gamma axis labelled in degrees.
 
 usage: check_svg.py DIR
 """
 import json
 import os
+import re
 import sys
 import xml.etree.ElementTree as ET
 
 SVG = "{http://www.w3.org/2000/svg}"
+WRITTEN_MM = 0.01      # flat.svg coordinates have two decimals
+CHAR_EM = 0.62         # a generous average character width of the pictures' sans-serif font
+FONT_PX = {"title": 17.0, "sub": 12.0, "small": 11.0}
+MARGIN_PX = 40.0       # the pictures' margin
+
+
+def number(s):
+    return float(re.match(r"[-+0-9.eE]+", s).group(0))
+
+
+def path_points(d):
+    return [(float(x), float(y)) for x, y in re.findall(r"([-0-9.]+),([-0-9.]+)", d)]
+
+
+def text_lines(root):
+    """(class, text, in the title block) of every text element."""
+    out = []
+
+    def walk(el, in_title):
+        in_title = in_title or el.get("id") == "title"
+        if el.tag == SVG + "text":
+            out.append((el.get("class", ""), "".join(el.itertext()), in_title))
+        for c in el:
+            walk(c, in_title)
+
+    walk(root, False)
+    return out
 
 
 def main():
@@ -21,6 +59,8 @@ def main():
         report = json.load(f)
     expected = {"flat.svg": report["nodes"]["mapped"], "drape.svg": report["nodes"]["mapped"],
                 "shear.svg": report["nodes"]["with_angle"]}
+    mold = report["inputs"]["mold"]
+    mold_shown = mold if mold.startswith("builtin:") else os.path.basename(mold)
     failures = []
     for name, want in expected.items():
         path = os.path.join(d, name)
@@ -31,6 +71,7 @@ def main():
             continue
         if root.tag != SVG + "svg" or "viewBox" not in root.attrib:
             failures.append("%s: root is %s, viewBox %s" % (path, root.tag, root.get("viewBox")))
+            continue
         nodes = 0
         for el in root.iter():
             tag = el.tag.replace(SVG, "")
@@ -45,8 +86,76 @@ def main():
                 nodes += 1
         if nodes != want or want <= 0:
             failures.append("%s: %d node marks, report.json says %d" % (path, nodes, want))
-        else:
-            print("check_svg: %s: ok (%d nodes)" % (path, nodes))
+
+        vb = [float(x) for x in root.get("viewBox").split()]
+        # Wrapped, not cut: every title and subtitle line fits the width (in px of annotation).
+        lines = text_lines(root)
+        px_per_unit = 1.0
+        if name == "flat.svg":
+            px_per_unit = 96.0 / 25.4
+        width_px = vb[2] * px_per_unit
+        subtitle = []
+        for cls, t, in_title in lines:
+            c = cls.split()[0] if cls else ""
+            if in_title:
+                est = len(t) * CHAR_EM * FONT_PX[c]
+                if est > width_px - 2 * MARGIN_PX + 1e-6:
+                    failures.append("%s: the %s line %r (about %.0f px) is wider than the picture (%.0f px)"
+                                    % (path, c, t, est, width_px))
+                if c == "sub":
+                    subtitle.append(t)
+        sub = " ".join(subtitle)
+        if ("on %s, face %d" % (mold_shown, report["inputs"]["face"])) not in sub:
+            failures.append("%s: the subtitle %r does not name %r and the face" % (path, sub, mold_shown))
+        if "max shear" not in sub or not re.search(r"\u03b3 [0-9.]+\u00b0 \u2026 [0-9.]+\u00b0$", sub):
+            failures.append("%s: the subtitle %r lacks the shear summary at its end" % (path, sub))
+        folder = "" if mold.startswith("builtin:") else os.path.dirname(mold)
+        if any(w.startswith("/") or (folder and folder in w) for w in sub.split()):
+            failures.append("%s: the subtitle %r holds a folder" % (path, sub))
+
+        if name == "flat.svg":
+            w, h = root.get("width"), root.get("height")
+            if not (w.endswith("mm") and h.endswith("mm")):
+                failures.append("%s: width %r and height %r are not in mm" % (path, w, h))
+            elif abs(number(w) - vb[2]) > WRITTEN_MM or abs(number(h) - vb[3]) > WRITTEN_MM or vb[:2] != [0, 0]:
+                failures.append("%s: size %s x %s but viewBox %s: not 1 mm per user unit" % (path, w, h, vb))
+            outline = [el for el in root.iter(SVG + "path") if el.get("id") == "outline"]
+            loops = report["flat_outline"]["loops"]
+            xs = [p[0] for l in loops for p in l["points"]]
+            ys = [p[1] for l in loops for p in l["points"]]
+            if len(outline) != 1:
+                failures.append("%s: %d outline paths" % (path, len(outline)))
+            else:
+                pts = path_points(outline[0].get("d"))
+                dw = max(p[0] for p in pts) - min(p[0] for p in pts)
+                dh = max(p[1] for p in pts) - min(p[1] for p in pts)
+                if abs(dw - (max(xs) - min(xs))) > 2 * WRITTEN_MM or abs(dh - (max(ys) - min(ys))) > 2 * WRITTEN_MM:
+                    failures.append("%s: the outline is drawn %.3f x %.3f, report.json's is %.3f x %.3f mm"
+                                    % (path, dw, dh, max(xs) - min(xs), max(ys) - min(ys)))
+            bars = [el for el in root.iter(SVG + "g") if el.get("id") == "scale-bar"]
+            if len(bars) != 1:
+                failures.append("%s: %d scale bars" % (path, len(bars)))
+            else:
+                bar_lines = list(bars[0].iter(SVG + "line"))
+                label = "".join("".join(t.itertext()) for t in bars[0].iter(SVG + "text"))
+                m = re.match(r"([0-9.]+) mm$", label)
+                if not bar_lines or not m:
+                    failures.append("%s: scale bar %r without a line or a length" % (path, label))
+                else:
+                    b = bar_lines[0]
+                    length = abs(float(b.get("x2")) - float(b.get("x1")))
+                    if abs(length - float(m.group(1))) > WRITTEN_MM or float(m.group(1)) <= 0:
+                        failures.append("%s: the scale bar is %.3f long, labelled %r" % (path, length, label))
+        if name == "shear.svg":
+            for cls, t, s in lines:
+                if "\u03c0" in t:
+                    failures.append("%s: text %r in radians (pi)" % (path, t))
+            ticks = [t for cls, t, s in lines if re.fullmatch(r"[0-9]+\u00b0", t)]
+            for v in ("0\u00b0", "90\u00b0", "180\u00b0"):
+                if v not in ticks:
+                    failures.append("%s: no gamma axis label %r" % (path, v))
+        if not any(f.startswith(path + ":") for f in failures):
+            print("check_svg: %s: ok (%d nodes%s)" % (path, nodes, ", 1:1 in mm" if name == "flat.svg" else ""))
     for f in failures:
         print("check_svg: " + f)
     return 1 if failures else 0

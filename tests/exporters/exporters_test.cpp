@@ -1,15 +1,19 @@
 // The writers, read back by independent readers: net.step by OpenCASCADE's XDE STEP reader
-// (names, curve counts, every node on its curve), net.vtk by a small legacy-VTK parser written
-// here (counts, arrays, ranges), and the atomic-write and determinism promises. The DXF and
-// SVG files are checked by ezdxf and Python's XML parser (tests/exporters/*.py).
+// (names, curve counts, every node on its curve), net.vtk by a small binary legacy-VTK parser
+// written here (counts, cells, arrays, NaN), the labels, units and sizes the shop sees, the
+// interior point the DXF labels sit on, and the atomic-write and determinism promises. The
+// DXF, SVG and VTK files are also checked by ezdxf, Python's XML parser and VTK's own reader
+// (tests/exporters/*.py), and LibreCAD renders the DXF.
 
 #include <plyfit/exporters/exporters.hpp>
 #include <plyfit/importers/importers.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
+#include <plyfit/kernel/cells.hpp>
 #include <plyfit/kernel/drape.hpp>
 #include <plyfit/kernel/flat_pattern.hpp>
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include "support/problems.hpp"
 
@@ -34,6 +38,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -222,68 +227,94 @@ void check_step(const Case& c, int degree) {
 }
 
 // ---------------------------------------------------------------------------------------
-// VTK, read by a small parser of the legacy ASCII format.
+// VTK, read by a small parser of the legacy BINARY format (big-endian data blocks).
 
 struct Vtk {
   std::vector<Vec3> points;
-  std::vector<std::pair<long, long>> lines;
+  std::vector<std::vector<long>> verts, lines, polys;
   std::map<std::string, std::vector<double>> point_data, cell_data;
 };
 
 Vtk read_vtk(const fs::path& file) {
-  std::ifstream in(file);
-  REQUIRE(in);
-  std::string line;
-  std::getline(in, line);
-  REQUIRE(line.rfind("# vtk DataFile Version", 0) == 0);
-  std::getline(in, line);  // title
-  std::getline(in, line);
-  REQUIRE(line == "ASCII");
-  std::string word;
-  in >> word;
-  REQUIRE(word == "DATASET");
-  in >> word;
-  REQUIRE(word == "POLYDATA");
+  const std::string text = slurp(file);
+  std::size_t at = 0;
+  auto line = [&] {
+    const std::size_t end = text.find('\n', at);
+    REQUIRE(end != std::string::npos);
+    std::string l = text.substr(at, end - at);
+    at = end + 1;
+    return l;
+  };
+  auto bytes = [&](int n) {
+    REQUIRE(at + static_cast<std::size_t>(n) <= text.size());
+    std::uint64_t v = 0;
+    for (int k = 0; k < n; ++k) v = (v << 8) | static_cast<unsigned char>(text[at++]);
+    return v;
+  };
+  auto int32 = [&] { return static_cast<long>(static_cast<std::int32_t>(bytes(4))); };
+  auto float64 = [&] {
+    const std::uint64_t u = bytes(8);
+    double x = 0;
+    std::memcpy(&x, &u, sizeof x);
+    return x;
+  };
+  auto end_block = [&] {
+    REQUIRE(at < text.size());
+    REQUIRE(text[at] == '\n');
+    ++at;
+  };
+  REQUIRE(line().rfind("# vtk DataFile Version 3.0", 0) == 0);
+  line();  // title
+  REQUIRE(line() == "BINARY");
+  REQUIRE(line() == "DATASET POLYDATA");
   Vtk v;
   std::map<std::string, std::vector<double>>* data = nullptr;
   long data_count = 0;
-  while (in >> word) {
+  while (at < text.size()) {
+    std::istringstream head(line());
+    std::string word;
+    head >> word;
     if (word == "POINTS") {
       long n = 0;
       std::string type;
-      in >> n >> type;
+      head >> n >> type;
       REQUIRE(type == "double");
       for (long k = 0; k < n; ++k) {
         Vec3 p;
-        REQUIRE(static_cast<bool>(in >> p.x() >> p.y() >> p.z()));
+        for (int a = 0; a < 3; ++a) p[a] = float64();
         v.points.push_back(p);
       }
-    } else if (word == "LINES") {
+      end_block();
+    } else if (word == "VERTICES" || word == "LINES" || word == "POLYGONS") {
       long n = 0, size = 0;
-      in >> n >> size;
-      REQUIRE(size == 3 * n);
+      head >> n >> size;
+      auto& cells = word == "VERTICES" ? v.verts : word == "LINES" ? v.lines : v.polys;
+      long read = 0;
       for (long k = 0; k < n; ++k) {
-        long two = 0, a = 0, b = 0;
-        REQUIRE(static_cast<bool>(in >> two >> a >> b));
-        REQUIRE(two == 2);
-        v.lines.emplace_back(a, b);
+        const long count = int32();
+        REQUIRE(count > 0);
+        std::vector<long> ids;
+        for (long m = 0; m < count; ++m) ids.push_back(int32());
+        read += 1 + count;
+        cells.push_back(ids);
       }
+      REQUIRE(read == size);
+      end_block();
     } else if (word == "POINT_DATA" || word == "CELL_DATA") {
-      in >> data_count;
+      head >> data_count;
       data = word == "POINT_DATA" ? &v.point_data : &v.cell_data;
     } else if (word == "SCALARS") {
       REQUIRE(data);
-      std::string name, type, lut, lut_name;
+      std::string name, type;
       int comps = 0;
-      in >> name >> type >> comps >> lut >> lut_name;
+      head >> name >> type >> comps;
       REQUIRE(comps == 1);
-      REQUIRE(lut == "LOOKUP_TABLE");
+      REQUIRE((type == "double" || type == "int"));
+      REQUIRE(line() == "LOOKUP_TABLE default");
       auto& arr = (*data)[name];
-      for (long k = 0; k < data_count; ++k) {
-        double x = 0;
-        REQUIRE(static_cast<bool>(in >> x));
-        arr.push_back(x);
-      }
+      for (long k = 0; k < data_count; ++k)
+        arr.push_back(type == "double" ? float64() : static_cast<double>(int32()));
+      end_block();
     } else {
       FAIL("unexpected keyword in net.vtk: " << word);
     }
@@ -348,7 +379,8 @@ TEST_CASE("exporters: net.step reads back in DRAW (occt-draw) with its names and
   }
 }
 
-TEST_CASE("exporters: net.vtk parses and matches the drape") {
+TEST_CASE(
+    "exporters: net.vtk holds the nodes, links and mapped cells, in degrees, NaN where undefined") {
   for (const auto& c : cases()) {
     INFO(c->name);
     const fs::path dir = fresh_dir("vtk");
@@ -356,55 +388,94 @@ TEST_CASE("exporters: net.vtk parses and matches the drape") {
     const Vtk v = read_vtk(dir / "net.vtk");
     const DrapeResult& r = c->result;
     std::vector<std::uint32_t> written;
-    for (std::uint32_t k = 0; k < r.nodes.size(); ++k)
+    std::uint64_t beyond = 0;
+    for (std::uint32_t k = 0; k < r.nodes.size(); ++k) {
       if (r.nodes[k].mapped() || r.nodes[k].has(DrapeNode::kExtended)) written.push_back(k);
+      if (!r.nodes[k].mapped() && r.nodes[k].has(DrapeNode::kExtended)) ++beyond;
+    }
     REQUIRE(v.points.size() == written.size());
     const auto links = r.links();
+    const auto cells = plyfit::mapped_cells(r);
+    REQUIRE(v.verts.size() == beyond);
     REQUIRE(v.lines.size() == links.size());
-    for (const char* name : {"thread_angle", "shear", "status", "on_path"}) {
+    REQUIRE(v.polys.size() == cells.size());
+    for (const char* name : {"thread_angle_deg", "shear_deg", "status", "on_path"}) {
       INFO(name);
       REQUIRE(v.point_data.count(name) == 1);
       CHECK(v.point_data.at(name).size() == v.points.size());
     }
-    REQUIRE(v.cell_data.count("link_kind") == 1);
-    CHECK(v.cell_data.at("link_kind").size() == v.lines.size());
+    const std::size_t ncells = v.verts.size() + v.lines.size() + v.polys.size();
+    for (const char* name : {"cell_kind", "shear_deg"}) {
+      INFO(name);
+      REQUIRE(v.cell_data.count(name) == 1);
+      CHECK(v.cell_data.at(name).size() == ncells);
+    }
     // Points are the nodes' exact positions, in order; the arrays hold their values.
     std::uint64_t status0 = 0, angles = 0;
     for (std::size_t k = 0; k < written.size(); ++k) {
       const DrapeNode& n = r.nodes[written[k]];
       CHECK(v.points[k] == n.point);
-      const double g = v.point_data.at("thread_angle")[k];
-      const double s = v.point_data.at("shear")[k];
+      const double g = v.point_data.at("thread_angle_deg")[k];
+      const double s = v.point_data.at("shear_deg")[k];
       const double st = v.point_data.at("status")[k];
       CHECK((st == 0.0 || st == 1.0));
       CHECK((st == 0.0) == n.mapped());
       if (st == 0.0) ++status0;
-      if (g == -1.0) {
-        CHECK(s == -1.0);
+      CHECK(std::isnan(g) == !(n.mapped() && n.has(DrapeNode::kHasAngle)));
+      if (std::isnan(g)) {
+        CHECK(std::isnan(s));
       } else {
         ++angles;
+        CHECK(std::abs(g - n.thread_angle * 180.0 / kPi) <= test::kRoundoffRel * 180.0);
         CHECK(g >= 0.0);
-        CHECK(g <= kPi);
-        CHECK(g == n.thread_angle);
-        CHECK(s >= 0.0);
-        CHECK(s <= kPi / 2);
-        CHECK(std::abs(s - std::abs(kPi / 2 - g)) <= test::kRoundoffRel);
+        CHECK(g <= 180.0);
+        CHECK(std::abs(s - std::abs(90.0 - g)) <= test::kRoundoffRel * 180.0);
       }
       const double on = v.point_data.at("on_path")[k];
       CHECK((on == 0.0 || on == 1.0));
+      CHECK((on == 1.0) == n.has(DrapeNode::kOnPath));
     }
     CHECK(status0 == r.metrics.nodes.mapped + r.metrics.nodes.auxiliary);
     CHECK(angles == r.metrics.angles);
+    // Vertices: the nodes beyond the face (status 1).
+    for (std::size_t k = 0; k < v.verts.size(); ++k) {
+      REQUIRE(v.verts[k].size() == 1);
+      CHECK(v.point_data.at("status")[static_cast<std::size_t>(v.verts[k][0])] == 1.0);
+      CHECK(v.cell_data.at("cell_kind")[k] == 4.0);
+      CHECK(std::isnan(v.cell_data.at("shear_deg")[k]));
+    }
     for (std::size_t k = 0; k < links.size(); ++k) {
-      const auto [a, b] = v.lines[k];
+      REQUIRE(v.lines[k].size() == 2);
+      const long a = v.lines[k][0], b = v.lines[k][1];
       REQUIRE(a >= 0);
       REQUIRE(b >= 0);
       REQUIRE(a < static_cast<long>(v.points.size()));
       REQUIRE(b < static_cast<long>(v.points.size()));
-      CHECK(v.points[a] == r.nodes[links[k].a].point);
-      CHECK(v.points[b] == r.nodes[links[k].b].point);
-      const double kind = v.cell_data.at("link_kind")[k];
-      CHECK(kind == static_cast<double>(static_cast<int>(links[k].kind)));
+      CHECK(v.points[static_cast<std::size_t>(a)] == r.nodes[links[k].a].point);
+      CHECK(v.points[static_cast<std::size_t>(b)] == r.nodes[links[k].b].point);
+      const std::size_t cell = v.verts.size() + k;
+      CHECK(v.cell_data.at("cell_kind")[cell] ==
+            static_cast<double>(static_cast<int>(links[k].kind)));
+      CHECK(std::isnan(v.cell_data.at("shear_deg")[cell]));
+    }
+    // Polygons: the kernel's mapped cells, corner by corner, with their shear in degrees.
+    for (std::size_t k = 0; k < cells.size(); ++k) {
+      REQUIRE(v.polys[k].size() == cells[k].nodes.size());
+      double shear = -1.0;
+      for (std::size_t m = 0; m < cells[k].nodes.size(); ++m) {
+        const DrapeNode& n = r.nodes[cells[k].nodes[m]];
+        CHECK(v.points[static_cast<std::size_t>(v.polys[k][m])] == n.point);
+        if (n.has(DrapeNode::kHasAngle))
+          shear = std::max(shear, std::abs(kPi / 2 - n.thread_angle));
+      }
+      const std::size_t cell = v.verts.size() + links.size() + k;
+      CHECK(v.cell_data.at("cell_kind")[cell] == 3.0);
+      const double cs = v.cell_data.at("shear_deg")[cell];
+      if (shear < 0) {
+        CHECK(std::isnan(cs));
+      } else {
+        CHECK(std::abs(cs - shear * 180.0 / kPi) <= test::kRoundoffRel * 180.0);
+      }
     }
   }
 }
@@ -462,22 +533,155 @@ TEST_CASE("exporters: equal inputs give equal bytes") {
   }
 }
 
-TEST_CASE("exporters: flat.dxf leaves out the thread grid when asked") {
+TEST_CASE("exporters: flat.dxf has no thread grid unless asked for one") {
   const auto all = cases();
   Case& c = *all.front();
-  auto count_threads = [&](bool on) {
+  auto dxf = [&](bool on) {
     c.options.dxf_threads = on;
     const fs::path dir = fresh_dir("dxf_threads");
     REQUIRE(exporters::find_exporter("dxf")->write(c.ctx(), dir.string()).ok());
-    const std::string text = slurp(dir / "flat.dxf");
+    return slurp(dir / "flat.dxf");
+  };
+  auto count = [](const std::string& text, const std::string& what) {
     std::size_t n = 0;
-    for (std::size_t at = text.find("\n  8\nTHREADS\n"); at != std::string::npos;
-         at = text.find("\n  8\nTHREADS\n", at + 1))
+    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1))
       ++n;
     return n;
   };
-  CHECK(count_threads(true) > 0);
-  CHECK(count_threads(false) == 0);
+  CHECK_FALSE(exporters::ExportOptions{}.dxf_threads);  // the default: a cutter cuts every line
+  const std::string on = dxf(true), off = dxf(false);
+  CHECK(count(on, "\n  8\nTHREADS\n") > 0);
+  CHECK(count(off, "THREADS") == 0);  // neither entities nor the layer
+  CHECK(count(off, "\n  8\nOUTLINE\n") == 1);
+}
+
+TEST_CASE("exporters: flat.dxf labels name the mold file, not its folder, with real degree signs") {
+  const auto all = cases();
+  Case& c = *all.front();
+  c.run.mold = "/some/where/deep/molds/wing-skin.stp";
+  c.options.ply_angle_deg = -45;
+  const fs::path dir = fresh_dir("dxf_labels");
+  REQUIRE(exporters::find_exporter("dxf")->write(c.ctx(), dir.string()).ok());
+  const std::string text = slurp(dir / "flat.dxf");
+  CHECK(text.find("\n  1\nMOLD: wing-skin.stp face 0\n") != std::string::npos);
+  CHECK(text.find("/some/where") == std::string::npos);
+  CHECK(text.find("\n  3\nANSI_1252\n") != std::string::npos);
+  // The degree sign is the cp1252 byte 0xB0, never AutoCAD's %%d code.
+  CHECK(text.find("\n  1\nPLY ANGLE: -45\xb0\n") != std::string::npos);
+  CHECK(text.find("%%d") == std::string::npos);
+  CHECK(text.find("%%D") == std::string::npos);
+}
+
+TEST_CASE("exporters: report.json spells the file's unit one way") {
+  const auto all = cases();
+  Case& c = *all.front();
+  for (const auto& [given, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"mm", "millimetre"},
+           {"millimetre", "millimetre"},
+           {"millimetre (MM)", "millimetre"},
+           {"MILLIMETRE", "millimetre"},
+           {"inch (IN)", "inch"},
+           {"INCH", "inch"},
+           {"unspecified (millimetre assumed)", "unspecified (millimetre assumed)"}}) {
+    INFO(given);
+    c.run.mold_unit = given;
+    const auto j = nlohmann::json::parse(exporters::report_json(c.ctx()));
+    CHECK(j["mold"]["unit"] == expected);
+  }
+}
+
+TEST_CASE("exporters: flat.svg is sized in millimetres, one user unit per millimetre") {
+  const auto all = cases();
+  const Case& c = *all.front();
+  const fs::path dir = fresh_dir("svg_mm");
+  REQUIRE(exporters::find_exporter("svg")->write(c.ctx(), dir.string()).ok());
+  const std::string text = slurp(dir / "flat.svg");
+  const auto svg = text.find("<svg ");
+  REQUIRE(svg != std::string::npos);
+  const std::string head = text.substr(svg, text.find('>', svg) - svg);
+  auto attr = [&](const std::string& name) {
+    const auto at = head.find(" " + name + "=\"");
+    REQUIRE(at != std::string::npos);
+    const auto from = at + name.size() + 3;
+    return head.substr(from, head.find('"', from) - from);
+  };
+  const std::string w = attr("width"), h = attr("height");
+  REQUIRE(w.size() > 2);
+  CHECK(w.substr(w.size() - 2) == "mm");
+  CHECK(h.substr(h.size() - 2) == "mm");
+  CHECK(attr("viewBox") == "0 0 " + w.substr(0, w.size() - 2) + " " + h.substr(0, h.size() - 2));
+}
+
+// The interior point the DXF labels sit on, on outlines with known answers.
+std::vector<OutlineLoop> loops_of(const std::vector<std::vector<Vec2>>& polys) {
+  std::vector<OutlineLoop> out;
+  for (const auto& p : polys) {
+    OutlineLoop l;
+    l.points = p;
+    out.push_back(l);
+  }
+  return out;
+}
+
+TEST_CASE("exporters: the labels' interior point is the centre of a largest inscribed circle") {
+  using exporters::detail::interior_point;
+  constexpr double kPrecision = 1e-4;
+  // A 4 x 2 rectangle: the inscribed circle has radius 1, its centre on the line y = 1.
+  {
+    const auto loops = loops_of({{{0, 0}, {4, 0}, {4, 2}, {0, 2}}});
+    const auto p = interior_point(loops, kPrecision);
+    REQUIRE(p.found);
+    CHECK(std::abs(p.radius - 1.0) <= kPrecision);
+    CHECK(std::abs(p.point.y() - 1.0) <= kPrecision);
+    CHECK(p.point.x() >= 1.0 - kPrecision);
+    CHECK(p.point.x() <= 3.0 + kPrecision);
+  }
+  // A square frame (10 x 10 with a 6 x 6 hole): the ring is 2 wide, but the largest circle
+  // sits in a corner, touching two outer edges and the hole's corner: centre (x, x) with
+  // x = sqrt(2) (2 - x), radius x = 4 - 2 sqrt(2). Not in the hole (where the centroid is).
+  {
+    const auto loops =
+        loops_of({{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {{2, 2}, {2, 8}, {8, 8}, {8, 2}}});
+    const auto p = interior_point(loops, kPrecision);
+    REQUIRE(p.found);
+    CHECK(std::abs(p.radius - (4 - 2 * std::sqrt(2.0))) <= kPrecision);
+    CHECK(exporters::detail::inside_outline(loops, p.point));
+    const Vec2 q = p.point;
+    CHECK_FALSE((q.x() > 2 && q.x() < 8 && q.y() > 2 && q.y() < 8));
+  }
+  // An L (two 1-wide arms of length 10): the circle in its corner touches the two outer edges
+  // and the inner corner (1, 1): radius x with x = sqrt(2) (1 - x), x = 2 - sqrt(2). The L's
+  // centroid (about (2.6, 2.6)) is outside it.
+  {
+    const auto loops = loops_of({{{0, 0}, {10, 0}, {10, 1}, {1, 1}, {1, 10}, {0, 10}}});
+    const auto p = interior_point(loops, kPrecision);
+    REQUIRE(p.found);
+    CHECK(std::abs(p.radius - (2 - std::sqrt(2.0))) <= kPrecision);
+    CHECK(exporters::detail::inside_outline(loops, p.point));
+  }
+  // A regular 64-gon of circumradius 10: the centre, radius 10 cos(pi / 64).
+  {
+    std::vector<Vec2> ring;
+    for (int k = 0; k < 64; ++k)
+      ring.emplace_back(10 * std::cos(2 * kPi * k / 64), 10 * std::sin(2 * kPi * k / 64));
+    const auto p = interior_point(loops_of({ring}), kPrecision);
+    REQUIRE(p.found);
+    CHECK(std::abs(p.radius - 10 * std::cos(kPi / 64)) <= kPrecision);
+    CHECK(p.point.norm() <= std::sqrt(2 * 10 * kPrecision));  // radius falls off quadratically
+  }
+  CHECK_FALSE(interior_point({}, kPrecision).found);
+}
+
+TEST_CASE("exporters: a box lies inside an outline when no edge meets it") {
+  using exporters::detail::box_inside_outline;
+  const auto loops =
+      loops_of({{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {{4, 4}, {4, 6}, {6, 6}, {6, 4}}});
+  CHECK(box_inside_outline(loops, {1, 1}, {3, 9}));
+  CHECK(box_inside_outline(loops, {1, 1}, {5, 3.5}));              // below the hole
+  CHECK_FALSE(box_inside_outline(loops, {3, 3}, {7, 7}));          // around the hole
+  CHECK_FALSE(box_inside_outline(loops, {4.5, 4.5}, {5.5, 5.5}));  // in the hole
+  CHECK_FALSE(box_inside_outline(loops, {8, 8}, {11, 9}));         // across the border
+  CHECK_FALSE(box_inside_outline(loops, {11, 1}, {12, 2}));        // outside
 }
 
 TEST_CASE("exporters: the writers' mapped cells are the kernel's (their area is flat_area)") {

@@ -40,11 +40,14 @@ struct RunInfo {
 /// Options of the writers.
 struct ExportOptions {
   /// Cells whose shear exceeds this (radians) go to the DXF SHEAR_WARN layer and are flagged
-  /// in the pictures; default: 5 degrees below the lock angle.
-  double warn_shear = 1.4835298641951802;
-  bool dxf_threads = true;    ///< THREADS layer in flat.dxf
-  int curve_degree = 1;       ///< net.step thread curves: 1 (polyline) or 3 (interpolated)
-  Vec3 view = Vec3(1, 1, 1);  ///< drape.svg view direction (towards the viewer)
+  /// in the pictures; default: 25 degrees, the warning angle of plyfit's default material.
+  double warn_shear = 0.43633231299858238;
+  bool dxf_threads = false;    ///< THREADS layer in flat.dxf (a cutter would cut it)
+  int curve_degree = 1;        ///< net.step thread curves: 1 (polyline) or 3 (interpolated)
+  Vec3 view = Vec3(1, 1, 1);   ///< drape.svg view direction (towards the viewer)
+  double ply_angle_deg = 0.0;  ///< the ply's fibre direction on the part (labels, report)
+  std::string material_label;  ///< the material's label text; empty: RunInfo::material
+  std::string materials_file;  ///< the materials table used; empty: plyfit's own
 };
 
 /// Everything a writer may use.

@@ -4,6 +4,7 @@
 #include <plyfit/kernel/nurbs_curve.hpp>
 #include <plyfit/kernel/nurbs_surface.hpp>
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -45,7 +46,9 @@ struct Projection {
 /// that the loop stays closed: a collapsed edge (a pole: no 3D length) or the seam of a face
 /// closed on itself (contains() is true on both sides).
 struct BoundaryLoop {
-  enum Kind : std::uint8_t { kEdge = 0, kCollapsed = 1, kSeam = 2 };
+  /// kJunction: a segment of no length joining two faces' copies of one 3D point (a corner
+  /// of a shell where the free boundary passes from one face to the next).
+  enum Kind : std::uint8_t { kEdge = 0, kCollapsed = 1, kSeam = 2, kJunction = 3 };
   std::vector<SurfaceLocation> points;
   std::vector<Kind> kinds;  ///< per segment
 };
@@ -84,8 +87,10 @@ class DrapeSurface {
   /// planes), never on this face's surface extended past the edge. A path across a free edge
   /// stays on its face, past the edge.
   virtual SurfaceLocation locate(const SurfaceLocation& from, const Vec2& uv) const = 0;
-  /// True when two locations' parameters can be combined directly (they are on one face).
-  virtual bool same_chart(const SurfaceLocation& a, const SurfaceLocation& b) const = 0;
+  /// True when two locations' parameters can be combined directly: they are on one face.
+  bool same_chart(const SurfaceLocation& a, const SurfaceLocation& b) const {
+    return a.face == b.face;
+  }
   /// The parameter step in `from`'s face that leads to `to`: on one face to - from, taken the
   /// short way across closed seams; between two faces, to first order through the tangent
   /// plane at `from` (3D difference of the points).
@@ -141,6 +146,12 @@ class Face final : public DrapeSurface {
   const std::vector<TrimLoop>& loops() const { return loops_; }
   bool trimmed() const { return !loops_.empty(); }
   const std::string& name() const { return name_; }
+  /// The same face with its orientation reversed (its normal flipped).
+  Face flipped() const {
+    Face f = *this;
+    f.reversed_ = !f.reversed_;
+    return f;
+  }
   bool closed_u() const { return closed_u_; }
   bool closed_v() const { return closed_v_; }
 
@@ -157,9 +168,27 @@ class Face final : public DrapeSurface {
   /// True when the derivatives in `e` span no tangent plane (a pole or collapsed edge).
   bool degenerate(const SurfaceEval1& e) const { return surface_->is_degenerate(e.du, e.dv); }
   /// uv moved into the domain across closed seams (identity for open directions).
-  Vec2 wrap(const Vec2& uv) const;
+  Vec2 wrap(const Vec2& uv) const {
+    Vec2 w = uv;
+    const auto& d = domain();
+    if (closed_u_ && (w.x() < d.u0 || w.x() > d.u1)) {
+      const double P = d.width_u();
+      w.x() = d.u0 + (w.x() - d.u0) - P * std::floor((w.x() - d.u0) / P);
+    }
+    if (closed_v_ && (w.y() < d.v0 || w.y() > d.v1)) {
+      const double P = d.width_v();
+      w.y() = d.v0 + (w.y() - d.v0) - P * std::floor((w.y() - d.v0) / P);
+    }
+    return w;
+  }
   /// to - from, taken the short way across closed seams.
-  Vec2 delta(const Vec2& from, const Vec2& to) const;
+  Vec2 delta(const Vec2& from, const Vec2& to) const {
+    Vec2 d = to - from;
+    const auto& dom = domain();
+    if (closed_u_) d.x() -= dom.width_u() * std::round(d.x() / dom.width_u());
+    if (closed_v_) d.y() -= dom.width_v() * std::round(d.y() / dom.width_v());
+    return d;
+  }
   /// True when uv (after wrapping) lies on the face: in the domain and inside the trims.
   bool contains(const Vec2& uv) const;
   /// The nearest point of the face to p by a damped Newton iteration from `seed` (parameters
@@ -181,7 +210,6 @@ class Face final : public DrapeSurface {
   SurfaceLocation locate(const SurfaceLocation& from, const Vec2& uv) const override {
     return {uv, from.face};
   }
-  bool same_chart(const SurfaceLocation&, const SurfaceLocation&) const override { return true; }
   Vec2 delta(const SurfaceLocation& from, const SurfaceLocation& to) const override {
     return delta(from.uv, to.uv);
   }
@@ -196,12 +224,14 @@ class Face final : public DrapeSurface {
  private:
   Face() = default;
   bool inside_trims(const Vec2& uv) const;
+  bool inside_trims_fast(const Vec2& uv) const;  // cells_ first, then inside_trims
   void build_slabs();
   double compute_area() const;
 
   std::shared_ptr<const NurbsSurface> surface_;
   std::vector<TrimLoop> loops_;
   bool reversed_ = false, closed_u_ = false, closed_v_ = false;
+  bool natural_ = false;  // the one loop runs along the domain's border
   std::string name_;
   double area_ = 0.0;
   BBox3 bbox_;
@@ -215,6 +245,12 @@ class Face final : public DrapeSurface {
   std::vector<std::vector<int>> slabs_;
   double slab_v0_ = 0.0, slab_h_ = 1.0;
   Vec2 loops_min_ = Vec2::Zero(), loops_max_ = Vec2::Zero();
+  // Cells of the loops' box classified as inside, outside or touched by the boundary.
+  static constexpr std::uint8_t kCellUnknown = 0, kCellInside = 1, kCellOutside = 2,
+                                kCellBoundary = 3;
+  std::vector<std::uint8_t> cells_;
+  int cells_n_ = 1;
+  Vec2 cell_size_ = Vec2::Ones();
 };
 
 /// Samples the face on a grid of about n x n points per direction (more for many knot

@@ -12,6 +12,10 @@ namespace plyfit {
 /// A closed outline loop in ply coordinates (the first point is not repeated).
 struct OutlineLoop {
   std::vector<Vec2> points;
+  /// The same points on the mold (the 3D ply boundary, e.g. for laser projection): every
+  /// outline point is a node, a boundary crossing or a boundary vertex, each on the surface.
+  /// Points of the staircase have their nodes' positions (zero for a corner never placed).
+  std::vector<Vec3> points3d;
   bool hole = false;  ///< holes run clockwise, outer loops counter-clockwise
   double area = 0.0;  ///< enclosed area (positive)
   double perimeter = 0.0;

@@ -1,0 +1,114 @@
+// plyfit info FILE --face N: a point of the face near its middle (inside its trims), its
+// outward normal, and drape flags that start a drape there.
+
+#include <plyfit/importers/importers.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <catch2/catch.hpp>
+
+#include "cli/cli_util.hpp"
+#include "test_util.hpp"
+
+#include <cmath>
+#include <regex>
+
+using namespace plyfit;
+using namespace plyfit::test;
+using nlohmann::json;
+
+namespace {
+
+Vec3 vec(const json& j) {
+  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+}
+
+// The plyfit info --face flags run as a drape: it must map nodes from a start on the face.
+void drape_from(const std::string& file, const std::string& flags, const Scratch& tmp) {
+  const CliRun r = plyfit_run("drape --mold '" + file + "' " + flags +
+                                  " --spacing 1 --outputs json --quiet -o '" + tmp.file("d") + "'",
+                              tmp);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const json rep = json::parse(slurp(tmp.file("d") + "/report.json"));
+  CHECK(rep["nodes"]["mapped"].get<int>() > 0);
+  CHECK(rep["start"]["moved"].get<double>() <= 1e-6);  // the point is on the face (9 digits)
+}
+
+}  // namespace
+
+TEST_CASE("cli: plyfit info --face gives the octant's middle, its outward normal and flags") {
+  Scratch tmp("info_face");
+  const std::string file = std::string(PLYFIT_SOURCE_DIR) + "/samples/molds/sphere-octant.step";
+  const CliRun r = plyfit_run("info '" + file + "' --face 0 --json", tmp);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const json j = json::parse(r.out);
+  // The octant of the sphere R = 20: a point on it, the normal radial and outward, the base
+  // plane through the normal (its normal tangent), sweeps opposite and tangent.
+  const Vec3 p = vec(j["point"]), n = vec(j["normal"]), b = vec(j["base_normal"]),
+             t = vec(j["base_tangent"]);
+  constexpr double kRel = 1e-9;
+  CHECK(std::abs(p.norm() - 20.0) <= kRel * 20);
+  CHECK((n - p / 20.0).norm() <= kRel);
+  CHECK(std::abs(b.norm() - 1.0) <= kRel);
+  CHECK(std::abs(b.dot(n)) <= kRel);
+  CHECK(std::abs(t.dot(n)) <= kRel);
+  CHECK((t.cross(b) - n).norm() <= kRel);  // (base, sweep) turns about +n like (x, y) about +z
+  CHECK(vec(j["sweep3d"][0]) == b);
+  CHECK(vec(j["sweep3d"][1]) == -b);
+  // Near the middle: the octant's uv centre is inside it, and x = y there by symmetry.
+  for (int a = 0; a < 3; ++a) CHECK(p[a] > 0.25 * 20);
+  CHECK(std::abs(p.x() - p.y()) <= kRel * 20);
+  drape_from(file, j["flags"].get<std::string>(), tmp);
+  // The text form gives the same flags.
+  const CliRun text = plyfit_run("info '" + file + "' --face 0", tmp);
+  REQUIRE(text.code == 0);
+  CHECK(text.out.find("flags: " + j["flags"].get<std::string>() + "\n") != std::string::npos);
+}
+
+TEST_CASE("cli: plyfit info --face finds a point inside the trims of real faces") {
+  const std::string dir = std::string(PLYFIT_SHARED_DIR) + "/cad";
+  if (!std::filesystem::exists(dir + "/PRO20359-L1.igs")) {
+    WARN("skipped: " << dir << " (the shared CAD corpus) is absent");
+    return;
+  }
+  Scratch tmp("info_face_cad");
+  for (const auto& [name, face] :
+       std::vector<std::pair<std::string, int>>{{"PRO20359-L1.igs", 0},
+                                                {"surf114.igs", 3},
+                                                {"trj7_c2-td-203.stp", 2},
+                                                {"example_45_faces.iges", 7},
+                                                {"bug27693_cornetta-step.stp", 20}}) {
+    const std::string file = dir + "/" + name;
+    if (!std::filesystem::exists(file)) continue;
+    INFO(name << " face " << face);
+    const CliRun r =
+        plyfit_run("info '" + file + "' --face " + std::to_string(face) + " --json", tmp);
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    const json j = json::parse(r.out);
+    auto f = importers::load_face(file, face);
+    REQUIRE(f.ok());
+    const Vec2 uv(j["uv"][0].get<double>(), j["uv"][1].get<double>());
+    CHECK(f->contains(uv));
+    CHECK((f->eval1(uv).p - vec(j["point"])).norm() <= 1e-9 * f->size());
+    CHECK((f->normal(uv).n - vec(j["normal"])).norm() <= 1e-9);
+    drape_from(file, j["flags"].get<std::string>(), tmp);
+  }
+}
+
+TEST_CASE("cli: plyfit info --face errors") {
+  Scratch tmp("info_face_errors");
+  const std::string file = std::string(PLYFIT_SOURCE_DIR) + "/samples/molds/sphere-octant.step";
+  CliRun r = plyfit_run("info '" + file + "' --face 3", tmp);
+  CHECK(r.code == 1);
+  CHECK(lines(r.err) == 1);
+  CHECK(r.err.find(file) != std::string::npos);
+  r = plyfit_run("info '" + file + "' --face -1", tmp);
+  CHECK(r.code == 2);
+  CHECK(r.err == "plyfit: error: info: --face: -1 is negative\n");
+  r = plyfit_run("info '" + file + "' --face x", tmp);
+  CHECK(r.code == 2);
+  CHECK(lines(r.err) == 1);
+}

@@ -1,0 +1,182 @@
+// The materials table: --material picks an entry of plyfit's own table (data/materials.ini,
+// built in) or of --materials FILE; its warning and limit angles are the defaults of
+// --warn-angle and --lock-angle; one-line errors name the table and list the known names.
+// Also: the README agrees with the table and with samples/sphere-octant-a.ini.
+
+#include <nlohmann/json.hpp>
+
+#include <catch2/catch.hpp>
+
+#include "cli/cli_util.hpp"
+
+#include <regex>
+#include <set>
+
+using namespace plyfit::test;
+using nlohmann::json;
+
+namespace {
+
+const std::string& kFlags = kOctantFlags;
+
+std::string source(const std::string& rel) {
+  return slurp(std::string(PLYFIT_SOURCE_DIR) + "/" + rel);
+}
+
+// The value of `key = ...` in a dumped scene.
+std::string dumped(const std::string& dump, const std::string& key) {
+  const std::regex re("(^|\n)" + key + " = ([^\n]*)");
+  std::smatch m;
+  return std::regex_search(dump, m, re) ? m[2].str() : std::string("<absent>");
+}
+
+// The [sections] of an INI text.
+std::set<std::string> sections(const std::string& ini) {
+  std::set<std::string> out;
+  const std::regex re(R"((^|\n)\[([A-Za-z0-9_-]+)\])");
+  for (auto it = std::sregex_iterator(ini.begin(), ini.end(), re); it != std::sregex_iterator();
+       ++it)
+    out.insert((*it)[2].str());
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("cli: the default material warns at 25 degrees and imposes no lock") {
+  Scratch tmp("materials_default");
+  const CliRun d = plyfit_run("drape " + kFlags + " --dump-scene", tmp);
+  INFO(d.err);
+  REQUIRE(d.code == 0);
+  CHECK(dumped(d.out, "material") == "woven");
+  CHECK(dumped(d.out, "lock-angle") == "90");
+  CHECK(dumped(d.out, "warn-angle") == "25");
+  CHECK(dumped(d.out, "ply-angle") == "0");
+  CHECK(dumped(d.out, "dxf-threads") == "false");
+  CHECK(dumped(d.out, "materials") == "<absent>");
+  // The drape's report says so too, with the material's label.
+  const CliRun r =
+      plyfit_run("drape " + kFlags + " --outputs json -o '" + tmp.file("o") + "'", tmp);
+  REQUIRE(r.code == 0);
+  const json j = json::parse(slurp(tmp.file("o") + "/report.json"));
+  CHECK(j["inputs"]["material"] == "woven");
+  CHECK(j["inputs"]["material_label"] == "woven fabric");
+  CHECK(j["inputs"]["lock_angle_deg"] == 90.0);
+  CHECK(j["inputs"]["warn_angle_deg"] == Approx(25.0).epsilon(1e-15));
+  CHECK(j["inputs"]["ply_angle_deg"] == 0.0);
+  CHECK(j["nodes"]["shear_limit"] == 0);
+}
+
+TEST_CASE("cli: a material sets the lock and warning angles unless the flags do") {
+  Scratch tmp("materials_pick");
+  struct Case {
+    std::string flags, lock, warn;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"--material carbon-twill", "40", "30"},
+           {"--material glass-satin8", "50", "40"},
+           {"--material carbon-twill --lock-angle 60", "60", "30"},
+           {"--material carbon-twill --lock-angle 20", "20", "15"},  // at most lock - 5
+           {"--material carbon-twill --warn-angle 12", "40", "12"},
+           {"--lock-angle 20", "20", "15"},
+       }) {
+    INFO(c.flags);
+    const CliRun d = plyfit_run("drape " + kFlags + " " + c.flags + " --dump-scene", tmp);
+    INFO(d.err);
+    REQUIRE(d.code == 0);
+    CHECK(dumped(d.out, "lock-angle") == c.lock);
+    CHECK(dumped(d.out, "warn-angle") == c.warn);
+  }
+  // The limit stops the drape: case (a) shears to 49.5 degrees, the twill locks at 40.
+  const CliRun r = plyfit_run(
+      "drape " + kFlags + " --material carbon-twill --outputs json -o '" + tmp.file("o") + "'",
+      tmp);
+  REQUIRE(r.code == 0);
+  const json j = json::parse(slurp(tmp.file("o") + "/report.json"));
+  CHECK(j["nodes"]["shear_limit"].get<int>() > 0);
+  CHECK(j["shear_max_deg"].get<double>() <= 40.0);
+  CHECK(j["inputs"]["material_label"] == "carbon 2/2 twill");
+}
+
+TEST_CASE("cli: an unknown material or a bad table is a one-line error naming the table") {
+  Scratch tmp("materials_errors");
+  CliRun r = plyfit_run("drape " + kFlags + " --material kevlar --dump-scene", tmp);
+  CHECK(r.code == 2);
+  CHECK(lines(r.err) == 1);
+  CHECK(r.err.find("--material: plyfit's materials table (data/materials.ini): no material "
+                   "'kevlar' (known: woven, ") != std::string::npos);
+  CHECK(r.err.find("carbon-twill") != std::string::npos);
+
+  const std::string own = tmp.file("own.ini");
+  spit(own, "# mine\n[wet-layup]\nlabel = my fabric\nwarning = 20\nlimit = 38\n");
+  r = plyfit_run("drape " + kFlags + " --materials '" + own + "' --material wet-layup --dump-scene",
+                 tmp);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(dumped(r.out, "lock-angle") == "38");
+  CHECK(dumped(r.out, "warn-angle") == "20");
+  CHECK(dumped(r.out, "materials") == own);
+  // Your own table replaces plyfit's: the default material is not in it.
+  r = plyfit_run("drape " + kFlags + " --materials '" + own + "' --dump-scene", tmp);
+  CHECK(r.code == 2);
+  CHECK(r.err ==
+        "plyfit: error: --material: " + own + ": no material 'woven' (known: wet-layup)\n");
+
+  struct Bad {
+    std::string text, message;
+  };
+  for (const Bad& b : std::vector<Bad>{
+           {"[a]\nwarning = 20\nlimit = 3O\n",
+            ":3: material 'a': limit: '3O' is not a number or none"},
+           {"[a]\nwarning = 95\nlimit = none\n",
+            ":2: material 'a': warning: 95 is not in [0, 90] degrees"},
+           {"[a]\nwarning = 40\nlimit = 30\n",
+            ":1: material 'a': the warning angle is above the limit angle"},
+           {"[a]\nwarning = 20\n", ":1: material 'a' needs a limit angle"},
+           {"[a]\nwarn = 20\nlimit = 30\n",
+            ":2: material 'a': unknown key 'warn' (known: label, warning, limit)"},
+           {"warning = 20\n", ":1: key 'warning' before the first [material] section"},
+           {"[a b]\n", ":1: material name 'a b' must be letters, digits, '-' or '_'"},
+           {"[a]\nwarning = 1\nlimit = 2\n[a]\n", ":4: material 'a' given twice"},
+           {"# nothing\n", ": no [material] section"},
+       }) {
+    INFO(b.text);
+    spit(own, b.text);
+    r = plyfit_run("drape " + kFlags + " --materials '" + own + "' --material a --dump-scene", tmp);
+    CHECK(r.code == 2);
+    CHECK(r.err == "plyfit: error: --materials: " + own + b.message + "\n");
+  }
+  r = plyfit_run("drape " + kFlags + " --materials '" + tmp.file("none.ini") + "' --dump-scene",
+                 tmp);
+  CHECK(r.code == 2);
+  CHECK(r.err == "plyfit: error: --materials: " + tmp.file("none.ini") +
+                     ": cannot open the materials file\n");
+  // From a scene: the path is relative to the scene's folder, and a bad value fails the job (1).
+  spit(own, "[wet-layup]\nwarning = 20\nlimit = 38\n");
+  spit(tmp.file("s.ini"),
+       "[mold]\nmold = builtin:sphere-octant\n[ply]\nspacing = 1\n[start]\n"
+       "start2d = 0,0\nbase2d = 1,0\nsweep2d = 0,1\nstart3d = 0,0,20\n"
+       "base-normal = 0,1,0\nsweep3d = 0,1,0\n[material]\n"
+       "materials = own.ini\nmaterial = wet-layup\n");
+  r = plyfit_run("drape '" + tmp.file("s.ini") + "' --dump-scene", tmp);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(dumped(r.out, "lock-angle") == "38");
+  spit(tmp.file("s.ini"), slurp(tmp.file("s.ini")) + "ply-angle = 200\n");
+  r = plyfit_run("drape '" + tmp.file("s.ini") + "' --dump-scene", tmp);
+  CHECK(r.code == 1);
+  CHECK(r.err == "plyfit: error: " + tmp.file("s.ini") +
+                     ": key 'ply-angle': must be in [-180, 180] degrees\n");
+}
+
+TEST_CASE("cli: the README lists every material of the table and shows the sample scene as it is") {
+  const std::string readme = source("README.md");
+  const auto names = sections(source("data/materials.ini"));
+  REQUIRE(names.size() >= 5);
+  for (const auto& n : names) {
+    INFO(n);
+    CHECK(readme.find("| `" + n + "` |") != std::string::npos);
+  }
+  // The scene example is samples/sphere-octant-a.ini, verbatim.
+  const std::string sample = source("samples/sphere-octant-a.ini");
+  CHECK(readme.find("```ini\n" + sample + "```\n") != std::string::npos);
+}

@@ -1,0 +1,220 @@
+// Shells of several faces: validation and topology, moving across shared edges, and drapes
+// across faces compared with the same surface as one face.
+#include <plyfit/kernel/analytic_surfaces.hpp>
+#include <plyfit/kernel/builtin_molds.hpp>
+#include <plyfit/kernel/builtin_shells.hpp>
+#include <plyfit/kernel/drape.hpp>
+#include <plyfit/kernel/shell.hpp>
+
+#include "support/problems.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <set>
+
+using namespace plyfit;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+Shell make_shell(const std::string& name, const std::map<std::string, double>& params = {}) {
+  auto data = builtin_shell(name, params);
+  REQUIRE(data.ok());
+  auto sh = Shell::create(std::move(data).value());
+  INFO(name << ": " << (sh.ok() ? "" : sh.error().message));
+  REQUIRE(sh.ok());
+  return std::move(sh).value();
+}
+
+Face make_face(FaceData fd) {
+  auto f = Face::create(std::move(fd));
+  REQUIRE(f.ok());
+  return std::move(f).value();
+}
+
+// The whole sphere as one face: closed around Z, poles at both ends of u.
+Face one_patch_sphere(double R) {
+  FaceData fd;
+  fd.surface = sphere_patch(R, -kPi / 2, kPi / 2, 0.0, 2 * kPi);
+  fd.closed_v = true;
+  return make_face(std::move(fd));
+}
+
+// Two nets with the same nodes: every node reached by one is reached by the other with the
+// same status, and mapped nodes lie within tol of each other. Returns the mapped count.
+std::size_t same_net(const DrapeResult& a, const DrapeResult& b, double tol) {
+  std::size_t mapped = 0;
+  CHECK(a.nodes.size() == b.nodes.size());
+  for (const DrapeNode& n : a.nodes) {
+    const DrapeNode* m = b.find(n.id);
+    INFO("node (" << n.id.i << ", " << n.id.j << ") " << to_string(n.status));
+    REQUIRE(m);
+    CHECK(m->status == n.status);
+    if (n.mapped() && m->mapped()) {
+      ++mapped;
+      const double e = (n.point - m->point).norm();
+      if (e > tol) FAIL_CHECK("mapped nodes " << e << " apart");
+    }
+  }
+  return mapped;
+}
+
+}  // namespace
+
+TEST_CASE("shell: the built-in shells are sewn, oriented and have the topology they should") {
+  const Shell sphere = make_shell("sphere-8");
+  CHECK(sphere.face_count() == 8);
+  CHECK(sphere.edge_count() == 12);
+  CHECK(sphere.euler_characteristic() == 2);  // a sphere
+  CHECK(sphere.free_loop_count() == 0);
+  CHECK(sphere.closes_on_itself());
+  CHECK(sphere.area() == Approx(4 * kPi * 400).epsilon(1e-9));
+  for (std::int32_t e = 0; e < sphere.edge_count(); ++e) CHECK(sphere.crease_angle(e) < 1e-9);
+
+  const Shell half = make_shell("cylinder-split", {{"angle", 180}, {"parts", 3}});
+  CHECK(half.euler_characteristic() == 1);  // a disc
+  CHECK(half.free_loop_count() == 1);
+  CHECK_FALSE(half.closes_on_itself());
+
+  const Shell tube = make_shell("cylinder-split", {{"angle", 360}, {"parts", 2}});
+  CHECK(tube.euler_characteristic() == 0);  // a tube
+  CHECK(tube.free_loop_count() == 2);
+  CHECK(tube.closes_on_itself());
+
+  const Shell ffw = make_shell("flange-fillet-wall");
+  CHECK(ffw.euler_characteristic() == 1);
+  CHECK(ffw.free_loop_count() == 1);
+  CHECK_FALSE(ffw.closes_on_itself());
+  CHECK(ffw.area() == Approx(60 * (40 + 10 * kPi / 2 + 40)).epsilon(1e-9));
+  CHECK(ffw.crease_angle(0) < 1e-9);  // tangent joins
+  CHECK(ffw.crease_angle(1) < 1e-9);
+}
+
+TEST_CASE("shell: a face given the wrong way round is turned to agree with its neighbours") {
+  auto data = builtin_shell("flange-fillet-wall", {});
+  REQUIRE(data.ok());
+  data->faces[1].reversed = true;  // the fillet's normal inward
+  auto sh = Shell::create(std::move(data).value());
+  REQUIRE(sh.ok());
+  // Every face's normal points to the convex side: +Z on the flange, +X on the wall, and
+  // away from the fillet's axis.
+  CHECK(sh->normal(SurfaceLocation(Vec2(0.5, 0.5), 0)).n.z() == Approx(1.0));
+  CHECK(sh->normal(SurfaceLocation(Vec2(0.5, 0.5), 2)).n.x() == Approx(1.0));
+  const SurfaceLocation mid(Vec2(0.5 * (sh->domain(SurfaceLocation(Vec2::Zero(), 1)).u0 +
+                                        sh->domain(SurfaceLocation(Vec2::Zero(), 1)).u1),
+                                 0.5),
+                            1);
+  const Vec3 p = sh->eval1(mid).p;
+  const Vec3 radial = Vec3(p.x(), 0, p.z() + 10).normalized();
+  CHECK(sh->normal(mid).n.dot(radial) == Approx(1.0));
+}
+
+TEST_CASE("shell: a crease between two faces is measured") {
+  // Two planar faces meeting along the Y axis at 30 degrees.
+  ShellData sd;
+  const double a = 30.0 * kPi / 180.0;
+  FaceData f0, f1;
+  f0.surface = plane_patch(Vec3(-10, 0, 0), Vec3(10, 0, 0), Vec3(0, 10, 0));
+  f1.surface =
+      plane_patch(Vec3(0, 0, 0), Vec3(10 * std::cos(a), 0, -10 * std::sin(a)), Vec3(0, 10, 0));
+  f0.loops.push_back({{Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}, {-1, 0, -1, -1}});
+  f1.loops.push_back({{Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}, {-1, -1, -1, 0}});
+  sd.faces = {f0, f1};
+  sd.edge_count = 1;
+  auto sh = Shell::create(std::move(sd));
+  REQUIRE(sh.ok());
+  CHECK(sh->crease_angle(0) == Approx(a).epsilon(1e-12));
+  CHECK(sh->crease_angle(0, 1) == Approx(a).epsilon(1e-12));
+}
+
+TEST_CASE("shell: bad shells are refused with a message") {
+  auto data = builtin_shell("flange-fillet-wall", {});
+  REQUIRE(data.ok());
+  SECTION("an edge used by one face") {
+    data->faces[2].loops[0].edges = {-1, -1, -1, -1};
+    auto sh = Shell::create(*data);
+    REQUIRE_FALSE(sh.ok());
+    CHECK(sh.error().message.find("shared edge 1 is used by 1 faces") != std::string::npos);
+  }
+  SECTION("an edge index out of range") {
+    data->faces[0].loops[0].edges[1] = 7;
+    auto sh = Shell::create(*data);
+    REQUIRE_FALSE(sh.ok());
+    CHECK(sh.error().message.find("out of range") != std::string::npos);
+  }
+  SECTION("faces that are not sewn") {
+    data->faces[2].surface = plane_patch(Vec3(30, 0, -10), Vec3(0, 0, -40), Vec3(0, 60, 0));
+    auto sh = Shell::create(*data);
+    REQUIRE_FALSE(sh.ok());
+    CHECK(sh.error().message.find("not sewn") != std::string::npos);
+  }
+}
+
+TEST_CASE("shell: a step in one face's parameters continues on the neighbouring face") {
+  const Shell sh = make_shell("flange-fillet-wall");
+  // From the middle of the flange straight towards the fillet, past the shared edge.
+  const SurfaceLocation from(Vec2(0.5, 0.5), 0);
+  const SurfaceLocation to = sh.locate(from, Vec2(1.2, 0.5));  // 8 mm past the edge
+  CHECK(to.face == 1);
+  CHECK(sh.contains(to));
+  // The point is on the fillet's cylinder, about 8 mm of arc from the edge.
+  const Vec3 p = sh.eval1(to).p;
+  CHECK(std::hypot(p.x(), p.z() + 10) == Approx(10).epsilon(1e-12));
+  CHECK(std::atan2(p.x(), p.z() + 10) * 10 == Approx(8).epsilon(0.2));
+  CHECK(p.y() == Approx(30));
+  // Far enough to cross the fillet onto the wall.
+  const SurfaceLocation wall = sh.locate(from, Vec2(2.0, 0.5));
+  CHECK(wall.face == 2);
+  CHECK(sh.contains(wall));
+  // Past a free edge the location stays on its face, outside it.
+  const SurfaceLocation off = sh.locate(from, Vec2(-0.2, 0.5));
+  CHECK(off.face == 0);
+  CHECK_FALSE(sh.contains(off));
+}
+
+TEST_CASE("shell: the sphere as 8 faces drapes the same net as the sphere as one face") {
+  const Face one = one_patch_sphere(20.0);
+  const Shell eight = make_shell("sphere-8", {{"R", 20.0}});
+  // A start at the corner of three faces; both sweeps; a bounded ply.
+  const Vec3 s3 = Vec3(1, 1, 1).normalized() * 20.0;
+  auto pb = support::problem(1.0, Vec2(15, 15), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)}, s3,
+                             Vec3(1, -1, 0).normalized().cross(s3).normalized(),
+                             {Vec3(0, 0, 1), Vec3(0, 0, -1)});
+  pb.ply.rect = Vec2(30, 30);
+  auto a = drape(one, pb);
+  auto b = drape(eight, pb);
+  REQUIRE(a.ok());
+  REQUIRE(b.ok());
+  INFO("one face: " << a->metrics.nodes.mapped << " mapped; 8 faces: " << b->metrics.nodes.mapped);
+  const std::size_t mapped = same_net(*a, *b, 1e-9 * pb.ply.d_weft);
+  CHECK(mapped > 800);
+  // The net crossed shared edges: nodes on several faces.
+  std::set<int> faces;
+  for (const DrapeNode& n : b->nodes)
+    if (n.mapped()) faces.insert(n.face);
+  CHECK(faces.size() >= 3);
+}
+
+TEST_CASE("shell: a cylinder split along generators drapes the same net as one face") {
+  for (const double angle : {180.0, 360.0}) {
+    INFO("angle " << angle);
+    auto fd = builtin_mold("cylinder", {{"R", 10}, {"H", 20}, {"angle", angle}});
+    REQUIRE(fd.ok());
+    const Face one = make_face(std::move(fd).value());
+    const Shell split = make_shell("cylinder-split", {{"angle", angle}, {"parts", 2}});
+    // Threads at 30 degrees to the axis, the start on the first face near the split.
+    auto pb =
+        support::problem(0.5, Vec2(0, 0), Vec2(std::cos(0.5), std::sin(0.5)),
+                         {Vec2(-std::sin(0.5), std::cos(0.5)), Vec2(std::sin(0.5), -std::cos(0.5))},
+                         Vec3(10 * std::cos(1.4), 10 * std::sin(1.4), 10), Vec3(0, 0, 1),
+                         {Vec3(0, 0, 1), Vec3(0, 0, -1)});
+    auto a = drape(one, pb);
+    auto b = drape(split, pb);
+    REQUIRE(a.ok());
+    REQUIRE(b.ok());
+    const std::size_t mapped = same_net(*a, *b, 1e-9 * 0.5);
+    CHECK(mapped > 500);
+  }
+}
