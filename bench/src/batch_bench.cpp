@@ -26,15 +26,6 @@ namespace fs = std::filesystem;
 constexpr int kScenes = 8;
 constexpr double kSceneSpacing = 0.6;
 
-std::string plyfit_binary() {
-  if (const char* env = std::getenv("PLYFIT_BIN")) return env;
-#ifdef PLYFIT_BIN
-  return PLYFIT_BIN;
-#else
-  return "plyfit";
-#endif
-}
-
 // Runs a shell command quietly; its exit status.
 int run_quiet(const std::string& cmd) {
   const int rc = std::system((cmd + " >/dev/null 2>&1").c_str());

@@ -7,6 +7,7 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <memory>
 #include <string>
@@ -23,6 +24,16 @@ inline std::string capture(const std::string& cmd) {
   while (std::fgets(buf.data(), buf.size(), p.get())) out += buf.data();
   while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
   return out;
+}
+
+/// The plyfit executable the benchmarks run: $PLYFIT_BIN, else the build's, else `plyfit`.
+inline std::string plyfit_binary() {
+  if (const char* env = std::getenv("PLYFIT_BIN")) return env;
+#ifdef PLYFIT_BIN
+  return PLYFIT_BIN;
+#else
+  return "plyfit";
+#endif
 }
 
 /// A plyfit-bench subcommand; `run` gets the arguments after its name and returns the exit

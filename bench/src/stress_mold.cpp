@@ -7,6 +7,7 @@
 // the arguments alone (a fixed pseudo-random sequence), so the file can be rebuilt anywhere.
 
 #include "bench.hpp"
+#include "tables.hpp"
 
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
@@ -129,37 +130,16 @@ int run_stress_mold(const std::vector<std::string>& args) {
     return 2;
   }
   const std::string out = args[0];
-  const int faces = std::stoi(option_value(args, "--faces", "60"));
+  const int faces = std::stoi(option_value(args, "--faces", "25"));
   const int poles = std::stoi(option_value(args, "--poles", "30"));
   const int holes = std::stoi(option_value(args, "--holes", "3"));
   if (faces < 1 || poles < 4 || holes < 0) {
     std::cerr << "plyfit-bench: stress-mold: need --faces >= 1, --poles >= 4, --holes >= 0\n";
     return 2;
   }
-  Message::DefaultMessenger()->ChangePrinters().Clear();
-  Lcg rng{12345};
-  TopoDS_Compound compound;
-  BRep_Builder builder;
-  builder.MakeCompound(compound);
-  for (int k = 0; k < faces; ++k) builder.Add(compound, stress_face(k, poles, holes, rng));
-  std::string ext = std::filesystem::path(out).extension().string();
-  bool ok = false;
-  if (ext == ".igs" || ext == ".iges") {
-    IGESControl_Controller::Init();
-    IGESControl_Writer writer("MM", 0);
-    ok = writer.AddShape(compound) && writer.Write(out.c_str());
-  } else if (ext == ".stp" || ext == ".step") {
-    STEPControl_Controller::Init();
-    Interface_Static::SetCVal("write.step.unit", "MM");
-    STEPControl_Writer writer;
-    ok = writer.Transfer(compound, STEPControl_AsIs) == IFSelect_RetDone &&
-         writer.Write(out.c_str()) == IFSelect_RetDone;
-  } else {
-    std::cerr << "plyfit-bench: stress-mold: " << out << ": extension must be .igs or .step\n";
-    return 2;
-  }
-  if (!ok) {
-    std::cerr << "plyfit-bench: stress-mold: could not write " << out << "\n";
+  if (!write_stress_mold(out, faces, poles, holes)) {
+    std::cerr << "plyfit-bench: stress-mold: could not write " << out
+              << " (the extension must be .igs, .iges, .stp or .step)\n";
     return 1;
   }
   std::error_code ec;
@@ -176,5 +156,28 @@ const BenchmarkRegistrar kRegisterStressMold{
               run_stress_mold}};
 
 }  // namespace
+
+bool write_stress_mold(const std::string& path, int faces, int poles, int holes) {
+  Message::DefaultMessenger()->ChangePrinters().Clear();
+  Lcg rng{12345};
+  TopoDS_Compound compound;
+  BRep_Builder builder;
+  builder.MakeCompound(compound);
+  for (int k = 0; k < faces; ++k) builder.Add(compound, stress_face(k, poles, holes, rng));
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".igs" || ext == ".iges") {
+    IGESControl_Controller::Init();
+    IGESControl_Writer writer("MM", 0);
+    return writer.AddShape(compound) && writer.Write(path.c_str());
+  }
+  if (ext == ".stp" || ext == ".step") {
+    STEPControl_Controller::Init();
+    Interface_Static::SetCVal("write.step.unit", "MM");
+    STEPControl_Writer writer;
+    return writer.Transfer(compound, STEPControl_AsIs) == IFSelect_RetDone &&
+           writer.Write(path.c_str()) == IFSelect_RetDone;
+  }
+  return false;
+}
 
 }  // namespace plyfit::bench
