@@ -108,25 +108,26 @@ class Evaluator {
   virtual ~Evaluator() = default;
   virtual void d1(double u, double v, Vec3& p, Vec3& du, Vec3& dv) const = 0;
   double density(double u, double v) const {
-    ++count;
     Vec3 p, a, b;
-    if (transposed)
-      d1(v, u, p, a, b);
-    else
-      d1(u, v, p, a, b);
+    at(u, v, p, a, b);
     return a.cross(b).norm();
   }
   Vec3 point(double u, double v) const {
-    ++count;
     Vec3 p, a, b;
-    if (transposed)
-      d1(v, u, p, a, b);
-    else
-      d1(u, v, p, a, b);
+    at(u, v, p, a, b);
     return p;
   }
   mutable long count = 0;
   bool transposed = false;
+
+ private:
+  void at(double u, double v, Vec3& p, Vec3& a, Vec3& b) const {
+    ++count;
+    if (transposed)
+      d1(v, u, p, a, b);
+    else
+      d1(u, v, p, a, b);
+  }
 };
 
 // OpenCASCADE's evaluation: analytic, swept, offset and periodic B-spline surfaces.
@@ -165,25 +166,7 @@ class KernelEvaluator final : public Evaluator {
 // The kernel copy of a non-periodic B-spline, or nothing.
 std::unique_ptr<Evaluator> kernel_evaluator(const Handle(Geom_BSplineSurface) & b) {
   if (b.IsNull() || b->IsUPeriodic() || b->IsVPeriodic()) return nullptr;
-  NurbsSurfaceData d;
-  d.degree_u = b->UDegree();
-  d.degree_v = b->VDegree();
-  d.count_u = b->NbUPoles();
-  d.count_v = b->NbVPoles();
-  TColStd_Array1OfReal ku(1, d.count_u + d.degree_u + 1), kv(1, d.count_v + d.degree_v + 1);
-  b->UKnotSequence(ku);
-  b->VKnotSequence(kv);
-  d.knots_u.assign(ku.begin(), ku.end());
-  d.knots_v.assign(kv.begin(), kv.end());
-  const bool rational = b->IsURational() || b->IsVRational();
-  d.poles.reserve(static_cast<size_t>(d.count_u) * d.count_v);
-  for (int i = 1; i <= d.count_u; ++i)
-    for (int j = 1; j <= d.count_v; ++j) {
-      const gp_Pnt& p = b->Pole(i, j);
-      d.poles.emplace_back(p.X(), p.Y(), p.Z());
-      if (rational) d.weights.push_back(b->Weight(i, j));
-    }
-  auto s = NurbsSurface::create(std::move(d));
+  auto s = NurbsSurface::create(nurbs_data(b));
   if (!s) return nullptr;
   return std::make_unique<KernelEvaluator>(std::move(s).value());
 }
@@ -678,6 +661,28 @@ BBox3 face_box(const Evaluator& eval, const std::vector<EdgeRef>& edges,
 }
 
 }  // namespace
+
+NurbsSurfaceData nurbs_data(const Handle(Geom_BSplineSurface) & b) {
+  NurbsSurfaceData d;
+  d.degree_u = b->UDegree();
+  d.degree_v = b->VDegree();
+  d.count_u = b->NbUPoles();
+  d.count_v = b->NbVPoles();
+  TColStd_Array1OfReal ku(1, d.count_u + d.degree_u + 1), kv(1, d.count_v + d.degree_v + 1);
+  b->UKnotSequence(ku);
+  b->VKnotSequence(kv);
+  d.knots_u.assign(ku.begin(), ku.end());
+  d.knots_v.assign(kv.begin(), kv.end());
+  const bool rational = b->IsURational() || b->IsVRational();
+  d.poles.reserve(static_cast<size_t>(d.count_u) * d.count_v);
+  for (int i = 1; i <= d.count_u; ++i)
+    for (int j = 1; j <= d.count_v; ++j) {
+      const gp_Pnt& p = b->Pole(i, j);
+      d.poles.emplace_back(p.X(), p.Y(), p.Z());
+      if (rational) d.weights.push_back(b->Weight(i, j));
+    }
+  return d;
+}
 
 std::vector<TopoDS_Edge> ordered_edges(const TopoDS_Wire& w, const TopoDS_Face& f) {
   std::vector<TopoDS_Edge> edges;

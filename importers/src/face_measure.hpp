@@ -14,7 +14,10 @@
 //
 // Private to plyfit_importers (OpenCASCADE types in the interface).
 
+#include <plyfit/kernel/nurbs_surface.hpp>
 #include <plyfit/kernel/types.hpp>
+
+#include <Geom_BSplineSurface.hxx>
 
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
@@ -50,6 +53,9 @@ constexpr int kBoxEdgeSamples = 64;
 /// `converged` is false and `bbox` comes from OpenCASCADE's BRepBndLib::AddOptimal.
 FaceMeasure measure_face(const TopoDS_Face& face, double rel_tol, bool with_box,
                          bool transposed = false);
+
+/// The kernel's plain data of an OpenCASCADE B-spline surface (same parametrization).
+NurbsSurfaceData nurbs_data(const Handle(Geom_BSplineSurface) & b);
 
 /// The edges of a wire of `f` in order along it, with their orientation in the wire
 /// (BRepTools_WireExplorer; the stored order when it cannot chain every edge).

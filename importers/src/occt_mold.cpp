@@ -434,23 +434,8 @@ Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const To
   const double tu = ad.UResolution(tol3d), tv = ad.VResolution(tol3d);
 
   FaceData fd;
-  auto& d = fd.surface;
-  d.degree_u = bs->UDegree();
-  d.degree_v = bs->VDegree();
-  d.count_u = bs->NbUPoles();
-  d.count_v = bs->NbVPoles();
-  TColStd_Array1OfReal ku(1, d.count_u + d.degree_u + 1), kv(1, d.count_v + d.degree_v + 1);
-  bs->UKnotSequence(ku);
-  bs->VKnotSequence(kv);
-  d.knots_u.assign(ku.begin(), ku.end());
-  d.knots_v.assign(kv.begin(), kv.end());
-  const bool rational = bs->IsURational() || bs->IsVRational();
-  d.poles.reserve(static_cast<size_t>(d.count_u) * d.count_v);
-  for (int i = 1; i <= d.count_u; ++i)
-    for (int j = 1; j <= d.count_v; ++j) {
-      d.poles.push_back(vec(bs->Pole(i, j)));
-      if (rational) d.weights.push_back(bs->Weight(i, j));
-    }
+  fd.surface = nurbs_data(bs);
+  const NurbsSurfaceData& d = fd.surface;
   fd.reversed = face.Orientation() == TopAbs_REVERSED;
   fd.closed_u = std::abs(fr.u0 - dom.u0) <= tu && std::abs(fr.u1 - dom.u1) <= tu &&
                 seam_closes(bs, true, tol3d);
