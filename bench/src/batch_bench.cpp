@@ -5,7 +5,6 @@
 #include "bench.hpp"
 #include "tables.hpp"
 
-#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -30,14 +29,6 @@ constexpr double kSceneSpacing = 0.6;
 int run_quiet(const std::string& cmd) {
   const int rc = std::system((cmd + " >/dev/null 2>&1").c_str());
   return (rc != -1 && WIFEXITED(rc)) ? WEXITSTATUS(rc) : -1;
-}
-
-// User + system CPU seconds of all waited-for child processes so far.
-double children_cpu_seconds() {
-  rusage u{};
-  getrusage(RUSAGE_CHILDREN, &u);
-  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
 std::string scene_text(int k) {

@@ -3,6 +3,8 @@
 // subcommand; shared timing helpers and the table type live here. Time figures are medians
 // of repeated runs; comparisons are ratios measured in the same run.
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -34,6 +36,14 @@ inline std::string plyfit_binary() {
 #else
   return "plyfit";
 #endif
+}
+
+/// User + system CPU seconds of all waited-for child processes so far.
+inline double children_cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_CHILDREN, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
 /// A plyfit-bench subcommand; `run` gets the arguments after its name and returns the exit

@@ -63,6 +63,18 @@ Table hard_case_table(int runs, bool* ok);
 /// speed-up of the most jobs against -j1 in `speedup` (0 if not measured).
 Table batch_table(bool* available, double* speedup = nullptr);
 
+/// plyfit optimize on the paper's sphere-octant cases: the lowest of the scenes' energies
+/// (the paper's best case), the highest of the best energies found from the three, the
+/// slowest run on all cores (seconds).
+struct OptimizeFigures {
+  double paper_best = 1e300;
+  double found_worst = 0.0;
+  double seconds = 0.0;
+  bool ok = true;
+};
+/// `plyfit optimize` with -j1 against all cores on the three sphere-octant cases.
+Table optimize_bench_table(bool* available, OptimizeFigures* figures = nullptr);
+
 /// Where the drape's time goes (perf record on the bicubic face, by part).
 Table profile_table(bool* available);
 

@@ -525,24 +525,9 @@ std::string dump_scene(const DrapeJob& job) {
   return os.str();
 }
 
-Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel, bool progress) {
-  const auto t0 = std::chrono::steady_clock::now();
-  auto ms_since = [](auto t) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-  };
-  exporters::RunInfo run;
-  run.mold = job.mold;
-  run.face = job.face;
-  run.flip_normal = job.flip_normal;
-  run.tolerance_rel = job.tolerance_rel;
-  run.max_iterations = job.max_iterations;
-  run.lock_angle_deg = job.lock_angle_deg;
-  run.guess = to_string(job.drape.guess);
-  run.max_nodes = job.drape.max_nodes;
-  run.ply_name = job.ply_name;
-  run.material = job.material;
-  run.outputs = job.outputs;
-  // Import: a built-in mold or one face of a file.
+Result<Face> load_face(const DrapeJob& job, exporters::RunInfo* run_out) {
+  exporters::RunInfo scratch;
+  exporters::RunInfo& run = run_out ? *run_out : scratch;
   FaceData data;
   if (job.mold.rfind("builtin:", 0) == 0) {
     auto spec = parse_builtin_spec(job.mold.substr(8));
@@ -574,6 +559,28 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   auto face = Face::create(std::move(data), job.drape.tol);
   if (!face)
     return Error{job.mold + ": face " + std::to_string(job.face) + ": " + face.error().message};
+  return face;
+}
+
+Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel, bool progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto ms_since = [](auto t) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+  };
+  exporters::RunInfo run;
+  run.mold = job.mold;
+  run.face = job.face;
+  run.flip_normal = job.flip_normal;
+  run.tolerance_rel = job.tolerance_rel;
+  run.max_iterations = job.max_iterations;
+  run.lock_angle_deg = job.lock_angle_deg;
+  run.guess = to_string(job.drape.guess);
+  run.max_nodes = job.drape.max_nodes;
+  run.ply_name = job.ply_name;
+  run.material = job.material;
+  run.outputs = job.outputs;
+  auto face = load_face(job, &run);
+  if (!face) return face.error();
   run.import_ms = ms_since(t0);
 
   DrapeOptions opt = job.drape;

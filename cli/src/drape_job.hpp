@@ -11,6 +11,10 @@
 #include <string>
 #include <vector>
 
+namespace plyfit::exporters {
+struct RunInfo;
+}
+
 namespace plyfit::cli {
 
 /// One option of the drape job: its key (flag --key, scene key `key`), value form, default
@@ -91,6 +95,11 @@ struct JobOutcome {
   double face_area = 0.0;
   double flat_outline_area = 0.0;
 };
+
+/// Imports the face a job drapes (a built-in mold or one face of a file), with the job's side
+/// applied; `run`, if given, gets what the report says of the mold. run_job's import, shared
+/// with `plyfit optimize` (which drapes one face many times).
+Result<Face> load_face(const DrapeJob& job, exporters::RunInfo* run = nullptr);
 
 /// Runs a job end to end; outputs are written atomically into job.outdir. `cancel` stops
 /// the drape (no files are written then). Progress goes to stderr when it is a terminal and

@@ -28,6 +28,7 @@
 #include <TColStd_Array1OfReal.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopTools_DataMapOfShapeShape.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Face.hxx>
@@ -263,11 +264,14 @@ FaceInfo describe_face(const TopoDS_Face& f, int index, double area_rel, std::st
 // Samples one edge's pcurve as a polyline in the edge's direction on the face. Segments are
 // halved until, at three interior fractions, both the 3D distance between the surface images
 // of the pcurve point and of the chord point, and the chord's (u, v) deviation weighted by the
-// surface's parametric speeds, are at most `tol3d`.
+// surface's parametric speeds, are at most `tol3d`. With `chords3d` (faces of a shell, whose
+// shared edges are matched in 3D), the straight 3D chord between the images of a segment's
+// ends must also be within `tol3d` of the pcurve's image: an edge straight in (u, v) but curved
+// in space (a circle along a cylinder's v = 0) is then refined too.
 class EdgeSampler {
  public:
-  EdgeSampler(const Handle(Geom_BSplineSurface) & s, double tol3d, Vec2 speeds)
-      : s_(s), tol_(tol3d), speeds_(std::move(speeds)) {}
+  EdgeSampler(const Handle(Geom_BSplineSurface) & s, double tol3d, Vec2 speeds, bool chords3d)
+      : s_(s), tol_(tol3d), speeds_(std::move(speeds)), chords3d_(chords3d) {}
 
   Status sample(const TopoDS_Edge& e, const TopoDS_Face& f, std::vector<Vec2>& out) {
     double a = 0, b = 0;
@@ -313,7 +317,10 @@ class EdgeSampler {
       const Vec2 d = q - lin;
       err = std::max(err, std::hypot(d.x() * speeds_.x(), d.y() * speeds_.y()));
       if (err > tol_) break;
-      err = std::max(err, (point(q) - point(lin)).norm());
+      const Vec3 on = point(q);
+      err = std::max(err, (on - point(lin)).norm());
+      if (err > tol_) break;
+      if (chords3d_) err = std::max(err, (on - (point(p0) + fr * (point(p1) - point(p0)))).norm());
       if (err > tol_) break;
     }
     if (err <= tol_ || depth >= kMaxRefineDepth || out.size() > kMaxLoopPoints) {
@@ -330,21 +337,28 @@ class EdgeSampler {
   Handle(Geom2d_Curve) c_;
   double tol_;
   Vec2 speeds_;
+  bool chords3d_;
 };
 
+// With `tag`, loop.edges[k] is the tag of the edge segment k was sampled from (a segment that
+// joins two edges' ends belongs to the edge it leads into).
 Result<std::vector<TrimLoop>> trim_loops(const TopoDS_Face& f,
                                          const Handle(Geom_BSplineSurface) & s, double tol3d,
-                                         const Vec2& speeds, double merge_u, double merge_v) {
+                                         const Vec2& speeds, double merge_u, double merge_v,
+                                         const EdgeTag* tag) {
   std::vector<TopoDS_Wire> wires;
   const TopoDS_Wire outer = BRepTools::OuterWire(f);
   if (!outer.IsNull()) wires.push_back(outer);
   for (TopExp_Explorer ex(f, TopAbs_WIRE); ex.More(); ex.Next())
     if (!ex.Current().IsSame(outer)) wires.push_back(TopoDS::Wire(ex.Current()));
-  EdgeSampler sampler(s, tol3d, speeds);
+  EdgeSampler sampler(s, tol3d, speeds, tag != nullptr);
   std::vector<TrimLoop> loops;
   size_t total = 0;
   for (const auto& w : wires) {
     TrimLoop loop;
+    // ends[k]: tag of the segment that ends at points[k] (ends[0]: of the closing segment).
+    std::vector<std::int32_t> ends;
+    std::int32_t first_tag = TrimLoop::kFreeEdge;
     for (const auto& e : ordered_edges(w, f)) {
       std::vector<Vec2> pts;
       auto st = sampler.sample(e, f, pts);
@@ -356,11 +370,26 @@ Result<std::vector<TrimLoop>> trim_loops(const TopoDS_Face& f,
           std::abs(pts.front().y() - loop.points.back().y()) <= merge_v)
         first = 1;
       loop.points.insert(loop.points.end(), pts.begin() + static_cast<long>(first), pts.end());
+      if (tag) {
+        const std::int32_t t = (*tag)(e);
+        if (ends.empty()) first_tag = t;
+        ends.resize(loop.points.size(), t);
+      }
     }
     if (loop.points.size() > 1 &&
         std::abs(loop.points.front().x() - loop.points.back().x()) <= merge_u &&
-        std::abs(loop.points.front().y() - loop.points.back().y()) <= merge_v)
+        std::abs(loop.points.front().y() - loop.points.back().y()) <= merge_v) {
       loop.points.pop_back();
+      if (tag) {
+        first_tag = ends.back();
+        ends.pop_back();
+      }
+    }
+    if (tag && !ends.empty()) {
+      ends[0] = first_tag;
+      loop.edges.resize(ends.size());
+      for (size_t k = 0; k < ends.size(); ++k) loop.edges[k] = ends[(k + 1) % ends.size()];
+    }
     total += loop.points.size();
     if (total > kMaxLoopPoints) return Error{"trim polylines exceed the point budget"};
     if (loop.points.size() >= 3) loops.push_back(std::move(loop));
@@ -398,10 +427,14 @@ bool seam_closes(const Handle(Geom_BSplineSurface) & s, bool along_u, double tol
   return true;
 }
 
-Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const Tolerances& tol) {
+Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const Tolerances& tol,
+                         const EdgeTag* tag) {
   Handle(Geom_Surface) s = BRep_Tool::Surface(face);
   if (s.IsNull()) return Error{"the face has no surface"};
   TopoDS_Face work = face;
+  // Tags of the converted face's edges: those of the edges of `face` they were made from.
+  TopTools_DataMapOfShapeShape original_edge;
+  EdgeTag work_tag;
   if (!is_nurbs_type(s)) {
     BRepBuilderAPI_NurbsConvert nc(face, Standard_True);
     if (!nc.IsDone()) return Error{"conversion of the " + info.kind + " surface to NURBS failed"};
@@ -410,6 +443,15 @@ Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const To
       return Error{"conversion of the " + info.kind + " surface to NURBS gave no face"};
     work = TopoDS::Face(converted);
     s = BRep_Tool::Surface(work);
+    if (tag) {
+      for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next())
+        original_edge.Bind(nc.ModifiedShape(ex.Current()), ex.Current());
+      work_tag = [&original_edge, tag](const TopoDS_Edge& e) {
+        const TopoDS_Shape* o = original_edge.Seek(e);
+        return o ? (*tag)(TopoDS::Edge(*o)) : TrimLoop::kFreeEdge;
+      };
+      tag = &work_tag;
+    }
   }
   Handle(Geom_BSplineSurface) bs;
   if (s->DynamicType() == STANDARD_TYPE(Geom_BSplineSurface))
@@ -447,12 +489,13 @@ Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const To
   // Whether the face is trimmed was decided on the original face (exact geometry); the
   // conversion maps the face's parameter range onto the NURBS domain, and an approximating
   // conversion (offset surfaces) may move the recomputed pcurves off the border by its error.
-  if (info.trimmed) {
+  // A face of a shell always has its loops: their segments carry the edges' tags.
+  if (info.trimmed || tag) {
     auto surf = NurbsSurface::create(d, tol);
     if (!surf) return Error{"invalid NURBS surface: " + surf.error().message};
     const Vec2 speeds(surf->speed_u(), surf->speed_v());
     auto loops = trim_loops(work, bs, tol3d, speeds, tol.param_rel * (dom.u1 - dom.u0),
-                            tol.param_rel * (dom.v1 - dom.v0));
+                            tol.param_rel * (dom.v1 - dom.v0), tag);
     if (!loops) return loops.error();
     fd.loops = std::move(loops).value();
   }
@@ -466,10 +509,11 @@ Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const To
 // of the others nor for a listing-accuracy area it does not use. Not thread-safe.
 class OcctMoldFile final : public MoldFile {
  public:
-  OcctMoldFile(Mold mold, TopTools_IndexedMapOfShape faces, ImportOptions options)
+  OcctMoldFile(Mold mold, TopTools_IndexedMapOfShape faces, ImportOptions options, double precision)
       : mold_(std::move(mold)),
         faces_(std::move(faces)),
         options_(std::move(options)),
+        precision_(precision),
         state_(static_cast<size_t>(faces_.Extent()), State::kPending),
         failure_(static_cast<size_t>(faces_.Extent())),
         note_(static_cast<size_t>(faces_.Extent())) {}
@@ -517,9 +561,18 @@ class OcctMoldFile final : public MoldFile {
       return Error{what + ": " + failure_[static_cast<size_t>(index)]};
     auto r = guarded(what, [&]() -> Result<FaceData> {
       return convert(TopoDS::Face(faces_(index + 1)), mold_.faces[static_cast<size_t>(index)],
-                     options_.tolerances);
+                     options_.tolerances, nullptr);
     });
     if (!r && r.error().message.rfind(what, 0) != 0) return Error{what + ": " + r.error().message};
+    return r;
+  }
+
+  Result<ShellData> convert_shell(const std::vector<int>& indices) override {
+    const ShellInput in{mold_.source, faces_, precision_, options_,
+                        [this](int i) { return describe(i); }};
+    std::vector<std::string> warnings;
+    auto r = sew_faces(in, indices, warnings);
+    for (auto& w : warnings) mold_.warnings.push_back(std::move(w));
     return r;
   }
 
@@ -575,6 +628,7 @@ class OcctMoldFile final : public MoldFile {
   mutable Mold mold_;
   TopTools_IndexedMapOfShape faces_;
   ImportOptions options_;
+  double precision_;
   mutable std::vector<State> state_;
   mutable std::vector<std::string> failure_;
   mutable std::vector<std::string> note_;  // the area's accuracy when short of the asked
@@ -602,6 +656,11 @@ bool looks_complete(Sniffed format, const std::string& tail) {
 }
 
 }  // namespace
+
+Result<FaceData> convert_face(const TopoDS_Face& face, const FaceInfo& info, const Tolerances& tol,
+                              const EdgeTag* tag) {
+  return convert(face, info, tol, tag);
+}
 
 Deadline::Deadline(double seconds)
     : end_(std::chrono::steady_clock::now() +
@@ -690,6 +749,7 @@ void transfer_roots(XSControl_Reader& reader, Deadline& deadline,
       out.warnings.push_back(w);
   out.shape = reader.OneShape();
   out.shape_names = shape_names(process, name_of);
+  out.precision = file_precision(reader);
 }
 
 std::string summarise_checks(const Interface_CheckIterator& checks, const std::string& stage) {
@@ -806,7 +866,7 @@ Result<std::unique_ptr<MoldFile>> open_with(const std::string& path, const std::
     if (k > 0 && mold.faces[k - 1].name.empty()) mold.faces[k - 1].name = name;
   }
   return std::unique_ptr<MoldFile>(
-      std::make_unique<OcctMoldFile>(std::move(mold), std::move(faces), options));
+      std::make_unique<OcctMoldFile>(std::move(mold), std::move(faces), options, ro.precision));
 }
 
 }  // namespace plyfit::importers::occt

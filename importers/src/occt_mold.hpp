@@ -16,11 +16,15 @@
 #include <Standard_ErrorHandler.hxx>
 #include <Standard_Failure.hxx>
 #include <TCollection_HAsciiString.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
 #include <TopoDS_Shape.hxx>
 #include <Transfer_TransientProcess.hxx>
 #include <XSControl_Reader.hxx>
 
 #include <chrono>
+#include <cstdint>
 #include <exception>
 #include <functional>
 #include <string>
@@ -57,6 +61,8 @@ struct ReadOutput {
   std::vector<std::string> warnings;  ///< summarised reader messages
   /// Names of the entities that produced transferred shapes (faces are looked up here).
   std::vector<std::pair<TopoDS_Shape, std::string>> shape_names;
+  /// The file's length precision in millimetres (see file_precision()).
+  double precision = 0.0;
 };
 
 /// A format's reading step: reads `path` into a shape (units converted to millimetres).
@@ -102,6 +108,37 @@ Status read_file(XSControl_Reader& reader, const std::string& path, const std::s
 void transfer_roots(XSControl_Reader& reader, Deadline& deadline,
                     const std::function<std::string(const Handle(Standard_Transient) &)>& name_of,
                     ReadOutput& out);
+
+/// The length precision (mm) a reader works to: a STEP file's uncertainty measure, an IGES
+/// file's global-section resolution, each in the file's unit converted to millimetres; the
+/// reader's default precision (read.precision.val) when the file states none. Defined in
+/// occt_shell.cpp.
+double file_precision(XSControl_Reader& reader);
+
+/// Tag of a face's edge in its trim loops (TrimLoop::edges).
+using EdgeTag = std::function<std::int32_t(const TopoDS_Edge&)>;
+
+/// Converts one face to kernel data (MoldFile::convert_face). With `tag`, the face has explicit
+/// trim loops even when its natural boundary bounds it, and loop segment k carries
+/// (*tag)(the edge of `face` it was sampled from) in TrimLoop::edges.
+Result<FaceData> convert_face(const TopoDS_Face& face, const FaceInfo& info, const Tolerances& tol,
+                              const EdgeTag* tag);
+
+/// What sewing a file's faces into a shell needs from the opened file.
+struct ShellInput {
+  const std::string& source;                ///< the file's path, for messages
+  const TopTools_IndexedMapOfShape& faces;  ///< the file's faces in index order (1-based map)
+  double precision;                         ///< the file's precision, mm (file_precision())
+  const ImportOptions& options;
+  /// The listing entry of face i, or an error naming the file and the face.
+  std::function<Result<FaceInfo>(int)> describe;
+};
+
+/// Sews faces `indices` of a file (empty: all) into a shell and converts them
+/// (MoldFile::convert_shell); what the sewing finds (several components, non-manifold edges,
+/// faces reoriented) is appended to `warnings`. Defined in occt_shell.cpp.
+Result<ShellData> sew_faces(const ShellInput& input, const std::vector<int>& indices,
+                            std::vector<std::string>& warnings);
 
 /// One-line summary of the fails and warnings of a check list, grouped by message
 /// ("load: 3 warnings (2x 'A', 1x 'B')"); empty when there are none.

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <numeric>
 
 namespace plyfit::importers {
 
@@ -101,6 +102,21 @@ Result<Face> load_face(const std::string& path, int index, const ImportOptions& 
   auto face = Face::create(std::move(data).value(), options.tolerances);
   if (!face) return Error{path + ": face " + std::to_string(index) + ": " + face.error().message};
   return face;
+}
+
+std::vector<int> MoldFile::all_faces() const {
+  std::vector<int> all(static_cast<size_t>(face_count()));
+  std::iota(all.begin(), all.end(), 0);
+  return all;
+}
+
+Result<ShellData> load_shell(const std::string& path, const std::vector<int>& indices,
+                             const ImportOptions& options, std::vector<std::string>* warnings) {
+  auto file = open_mold(path, options);
+  if (!file) return file.error();
+  auto shell = (*file)->convert_shell(indices);
+  if (warnings) *warnings = (*file)->summary().warnings;
+  return shell;
 }
 
 }  // namespace plyfit::importers

@@ -28,6 +28,12 @@ constexpr int kEstimateGridMax = 64;
 constexpr double kEstimateMargin = 1.05;
 constexpr double kEstimateRing = 8.0;
 constexpr double kEstimateMinNodes = 64.0;
+// The mapped cells (flat chords of the surface, inside it) cover at most its area; a little
+// more is the trim polylines' chord error. More is cloth lying on cloth: the drape tests
+// every node for overlap only on surfaces that close on themselves and where the net is
+// sheared past 60 degrees (a test of every node would cost half the speed), and an immersed
+// net can still come back over itself elsewhere on a long open face. The coverage shows it.
+constexpr double kCoverageSlack = 0.01;
 
 // Number of nodes the scan is expected to reach, to size the node vector once (no
 // reallocation copies, no doubled capacity): the face area on the swept side(s) of the base
@@ -142,6 +148,13 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
     res.partial = true;
     res.warnings.push_back("stopped at the node cap of " + std::to_string(opt.max_nodes) +
                            " nodes");
+  }
+  if (res.metrics.coverage > 1.0 + kCoverageSlack) {
+    res.partial = true;
+    res.warnings.push_back(
+        "the mapped cells cover " +
+        std::to_string(static_cast<int>(std::lround(100 * res.metrics.coverage))) +
+        "% of the surface: the cloth lies on itself somewhere");
   }
   if (res.metrics.nodes.failed > 0) {
     res.partial = true;

@@ -26,6 +26,12 @@ constexpr double kProjectMaxDamping = 1e16;
 // A boundary segment shorter than this in 3D, relative to the face size, is a collapsed edge
 // (a pole): no boundary of the face.
 constexpr double kCollapsedRel = 1e-9;
+// Face::compute_area: relative tolerance of the adaptive quadrature, the depth of cell
+// splitting and a cap on surface evaluations (trims make the integrand jump, where splitting
+// converges only to first order).
+constexpr double kAreaRel = 1e-10;
+constexpr int kAreaMaxDepth = 12;
+constexpr long kAreaMaxEvaluations = 4'000'000;
 // Grid over the trim loops' box for contains(): about this many cells per direction per
 // square root of the segment count, within bounds.
 constexpr double kCellsPerSegmentRoot = 4.0;
@@ -297,33 +303,88 @@ double Face::compute_area() const {
   const auto& d = s.domain();
   const auto bu = breakpoints(s.data().knots_u, d.u0, d.u1);
   const auto bv = breakpoints(s.data().knots_v, d.v0, d.v1);
-  // Sub-divide each span so that each direction has at least ~64 Gauss points in all
-  // (rational and trimmed faces need them), and at most ~512.
+  // Start from cells that give each direction at least ~64 Gauss points in all, and at most
+  // ~512; then refine each cell adaptively: a cell whose 5 x 5 Gauss rule disagrees with the
+  // same rule on its four quarters by more than its share of the tolerance is split (a
+  // rational surface with extreme weights varies its area element by orders of magnitude
+  // within a span; the trims make the integrand jump).
   const int su = std::clamp(64 / (5 * static_cast<int>(bu.size() - 1)) + 1, 1, 16);
   const int sv = std::clamp(64 / (5 * static_cast<int>(bv.size() - 1)) + 1, 1, 16);
   const int extra = loops_.empty() ? 1 : 4;
-  double area = 0.0;
-  for (size_t i = 0; i + 1 < bu.size(); ++i) {
+  long budget = kAreaMaxEvaluations;
+  auto rule = [&](double ua, double ub, double va, double vb) {
+    double cell = 0.0;
+    for (int gi = 0; gi < 5; ++gi) {
+      const double u = 0.5 * (ua + ub) + 0.5 * (ub - ua) * kGaussX[gi];
+      for (int gj = 0; gj < 5; ++gj) {
+        const double v = 0.5 * (va + vb) + 0.5 * (vb - va) * kGaussX[gj];
+        if (!loops_.empty() && !inside_trims(Vec2(u, v))) continue;
+        const SurfaceEval1 e = s.eval1(u, v);
+        --budget;
+        if (e.ok) cell += kGaussW[gi] * kGaussW[gj] * e.du.cross(e.dv).norm();
+      }
+    }
+    return cell * 0.25 * (ub - ua) * (vb - va);
+  };
+  // Global adaptive quadrature: every cell knows its rule's value and its quarters'; the cell
+  // whose two disagree most is split until the disagreements add up to the tolerance.
+  struct Cell {
+    double ua, ub, va, vb;
+    double q[4];  // the rule on the quarters
+    double fine, err;
+    int depth;
+  };
+  auto make = [&](double ua, double ub, double va, double vb, double whole, int depth) {
+    const double um = 0.5 * (ua + ub), vm = 0.5 * (va + vb);
+    Cell c{ua,
+           ub,
+           va,
+           vb,
+           {rule(ua, um, va, vm), rule(um, ub, va, vm), rule(ua, um, vm, vb), rule(um, ub, vm, vb)},
+           0.0,
+           0.0,
+           depth};
+    c.fine = c.q[0] + c.q[1] + c.q[2] + c.q[3];
+    c.err = std::abs(c.fine - whole);
+    return c;
+  };
+  auto worse = [](const Cell& x, const Cell& y) { return x.err < y.err; };
+  std::vector<Cell> heap;
+  double area = 0.0, err = 0.0;
+  for (size_t i = 0; i + 1 < bu.size(); ++i)
     for (int a = 0; a < su * extra; ++a) {
       const double ua = bu[i] + (bu[i + 1] - bu[i]) * a / (su * extra);
       const double ub = bu[i] + (bu[i + 1] - bu[i]) * (a + 1) / (su * extra);
-      for (size_t j = 0; j + 1 < bv.size(); ++j) {
+      for (size_t j = 0; j + 1 < bv.size(); ++j)
         for (int b = 0; b < sv * extra; ++b) {
           const double va = bv[j] + (bv[j + 1] - bv[j]) * b / (sv * extra);
           const double vb = bv[j] + (bv[j + 1] - bv[j]) * (b + 1) / (sv * extra);
-          double cell = 0.0;
-          for (int gi = 0; gi < 5; ++gi) {
-            const double u = 0.5 * (ua + ub) + 0.5 * (ub - ua) * kGaussX[gi];
-            for (int gj = 0; gj < 5; ++gj) {
-              const double v = 0.5 * (va + vb) + 0.5 * (vb - va) * kGaussX[gj];
-              if (!loops_.empty() && !inside_trims(Vec2(u, v))) continue;
-              const SurfaceEval1 e = s.eval1(u, v);
-              if (e.ok) cell += kGaussW[gi] * kGaussW[gj] * e.du.cross(e.dv).norm();
-            }
-          }
-          area += cell * 0.25 * (ub - ua) * (vb - va);
+          heap.push_back(make(ua, ub, va, vb, rule(ua, ub, va, vb), 0));
+          area += heap.back().fine;
+          err += heap.back().err;
         }
-      }
+    }
+  std::make_heap(heap.begin(), heap.end(), worse);
+  while (!heap.empty() && err > kAreaRel * std::abs(area) && budget > 0) {
+    std::pop_heap(heap.begin(), heap.end(), worse);
+    const Cell c = heap.back();
+    heap.pop_back();
+    area -= c.fine;
+    err -= c.err;
+    if (c.depth >= kAreaMaxDepth) {  // kept as it is, its error counted no more
+      area += c.fine;
+      continue;
+    }
+    const double um = 0.5 * (c.ua + c.ub), vm = 0.5 * (c.va + c.vb);
+    const Cell kids[4] = {make(c.ua, um, c.va, vm, c.q[0], c.depth + 1),
+                          make(um, c.ub, c.va, vm, c.q[1], c.depth + 1),
+                          make(c.ua, um, vm, c.vb, c.q[2], c.depth + 1),
+                          make(um, c.ub, vm, c.vb, c.q[3], c.depth + 1)};
+    for (const Cell& k : kids) {
+      area += k.fine;
+      err += k.err;
+      heap.push_back(k);
+      std::push_heap(heap.begin(), heap.end(), worse);
     }
   }
   return area;

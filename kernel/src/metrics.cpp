@@ -12,6 +12,8 @@ namespace plyfit::detail {
 
 namespace {
 
+constexpr double kHalfPi = 1.5707963267948966;
+
 double tri_area(const Vec3& a, const Vec3& b, const Vec3& c) {
   return 0.5 * (b - a).cross(c - a).norm();
 }
@@ -45,16 +47,24 @@ void thread_angles(DrapeResult& res) {
   }
 }
 
-// 2D and 3D area of the mapped cells (each part as a fan of triangles).
+// 2D and 3D area of the mapped cells (each part as a fan of triangles), and per face the 3D
+// area shared equally among each cell's corners.
 void cell_areas(DrapeResult& res) {
   double a2 = 0.0, a3 = 0.0;
+  auto& faces = res.metrics.faces;
   detail::visit_mapped_cells(res, [&](std::int32_t, std::int32_t, const std::uint32_t* v, int n) {
     const DrapeNode& o = res.nodes[v[0]];
+    double cell = 0.0;
     for (int k = 1; k + 1 < n; ++k) {
       const DrapeNode& b = res.nodes[v[k]];
       const DrapeNode& c = res.nodes[v[k + 1]];
       a2 += tri_area2(o.ply, b.ply, c.ply);
-      a3 += tri_area(o.point, b.point, c.point);
+      cell += tri_area(o.point, b.point, c.point);
+    }
+    a3 += cell;
+    for (int k = 0; k < n; ++k) {
+      const std::size_t f = res.nodes[v[k]].face;
+      if (f < faces.size()) faces[f].covered_area += cell / n;
     }
   });
   res.metrics.flat_area = a2;
@@ -65,6 +75,9 @@ void cell_areas(DrapeResult& res) {
 
 void compute_metrics(const DrapeSurface& s, DrapeResult& res) {
   DrapeMetrics& m = res.metrics;
+  m.faces.assign(static_cast<std::size_t>(std::max(s.face_count(), 1)), {});
+  for (std::size_t k = 0; k < m.faces.size(); ++k)
+    m.faces[k].area = s.face_area(static_cast<std::int32_t>(k));
   thread_angles(res);
   bool first = true;
   for (const DrapeNode& n : res.nodes) {
@@ -100,12 +113,20 @@ void compute_metrics(const DrapeSurface& s, DrapeResult& res) {
     }
   }
   m.area_mesh_points = m.nodes.mapped;
+  if (m.angles)
+    m.shear_max = std::max(std::abs(kHalfPi - m.gamma_min), std::abs(m.gamma_max - kHalfPi));
+  for (const DrapeNode& n : res.nodes)
+    if (n.mapped() && !n.id.is_path_only() && n.face < m.faces.size()) ++m.faces[n.face].mapped;
   cell_areas(res);
+  m.coverage = s.area() > 0.0 ? m.surface_area / s.area() : 0.0;
   // Independent residual checks.
   const double d = res.ply->d();
   for_each_link(res, [&](std::uint32_t a, std::uint32_t b, double rest, LinkKind) {
     const double len = (res.nodes[a].point - res.nodes[b].point).norm();
     m.edge_length_max_rel = std::max(m.edge_length_max_rel, std::abs(len - rest) / d);
+    const DrapeNode &na = res.nodes[a], &nb = res.nodes[b];
+    if (!s.same_chart(na.at(), nb.at()))
+      m.crease_angle_max = std::max(m.crease_angle_max, s.crease_angle(na.at(), nb.at()));
   });
   for (const DrapeNode& n : res.nodes) {
     if (!n.mapped()) continue;

@@ -187,6 +187,7 @@ Result<Shell> Shell::create(ShellData data, const Tolerances& tol) {
     sh.area_ += f->area();
   }
   sh.size_ = std::max(box.diagonal(), 1e-300);
+  sh.bbox_ = box;
   double measured = 0.0;
   sh.edges_.resize(static_cast<std::size_t>(data.edge_count));
   for (std::int32_t e = 0; e < data.edge_count; ++e) {

@@ -7,6 +7,7 @@
 #include <plyfit/kernel/face.hpp>
 #include <plyfit/kernel/mold.hpp>
 #include <plyfit/kernel/result.hpp>
+#include <plyfit/kernel/shell.hpp>
 #include <plyfit/kernel/tolerances.hpp>
 
 #include <functional>
@@ -25,6 +26,8 @@ struct ImportOptions {
   /// Reading stops with an error when transferring the file's entities takes longer than
   /// this (seconds): a corrupt file can make the reader's repairs run a very long time.
   double time_limit_s = 120.0;
+  /// Sewing tolerance for convert_shell (mm); 0: from the file (see MoldFile::convert_shell).
+  double sewing_tolerance = 0.0;
 };
 
 /// An opened mold file. Faces are indexed 0.. in the order of a depth-first walk of the file's
@@ -51,6 +54,23 @@ class MoldFile {
   /// tolerances.trim_chord_rel * face size (none for a face bounded by its surface's natural
   /// boundary), its orientation (reversed), area and name. Converts that face alone.
   virtual Result<FaceData> convert_face(int index) = 0;
+  /// Sews faces `indices` (each once, in any order; empty: every face of the file) into a
+  /// shell and converts them: faces[k] is face indices[k] converted as convert_face() does
+  /// (same NURBS, closed_u/v), but with explicit trim loops whose segments name the shared
+  /// edge they lie on (ShellData, TrimLoop::edges). OpenCASCADE's BRepBuilderAPI_Sewing
+  /// (manifold) joins edges closer than the sewing tolerance: options.sewing_tolerance, else the
+  /// larger of the file's precision (STEP uncertainty, IGES resolution) and the largest
+  /// tolerance of the faces' edges, clamped to [1e-7 mm, 1e-4 * shell size]. A shared edge
+  /// bounds exactly two of the faces; an edge of one face is free, so is a closed face's seam;
+  /// an edge of more than two faces is free with a warning. Faces are oriented consistently
+  /// across shared edges, each connected part of the shell keeping the file's orientation on
+  /// most of its faces (the others are reversed, with a warning). Several connected parts are
+  /// allowed, with a warning. Warnings are appended to summary().warnings. Errors (an index out
+  /// of range or repeated, a face that does not convert, sewing that fails) name the file and
+  /// the faces.
+  virtual Result<ShellData> convert_shell(const std::vector<int>& indices) = 0;
+  /// Every face index of the file, 0 .. face_count() - 1.
+  std::vector<int> all_faces() const;
 };
 
 /// A registered importer.
@@ -80,5 +100,11 @@ Result<std::unique_ptr<MoldFile>> open_mold(const std::string& path,
 
 /// Opens `path` and converts face `index` into a kernel Face.
 Result<Face> load_face(const std::string& path, int index, const ImportOptions& options = {});
+
+/// Opens `path` and sews faces `indices` (empty: all) into a shell (MoldFile::convert_shell).
+/// `warnings`, when given, receives the file's reader and sewing warnings.
+Result<ShellData> load_shell(const std::string& path, const std::vector<int>& indices,
+                             const ImportOptions& options = {},
+                             std::vector<std::string>* warnings = nullptr);
 
 }  // namespace plyfit::importers

@@ -182,6 +182,25 @@ struct DrapeMetrics {
   /// (links closed by no solve, where a node had more known neighbours than a solver uses,
   /// show in edge_length_max_rel, not here).
   double solve_residual_max_rel = 0.0;
+
+  // Figures derived from the above, owned here so that writers and commands do not compute
+  // them again.
+  /// Largest shear |pi/2 - gamma| over the nodes with a thread angle (radians; 0 if none).
+  double shear_max = 0.0;
+  /// surface_area over the area of the surface: the part of the face (or shell) the mapped
+  /// cells cover (more than 1 + kCoverageSlack: cloth on cloth, see DrapeResult::warnings).
+  double coverage = 0.0;
+  /// Largest crease angle (radians) of the shared edges that links between mapped nodes
+  /// cross (0 on one face, or where every join crossed is tangent).
+  double crease_angle_max = 0.0;
+  /// Per face of the surface (one for a single face).
+  struct FaceFigures {
+    double area = 0.0;          ///< the face's area
+    std::uint64_t mapped = 0;   ///< mapped regular nodes on the face
+    double covered_area = 0.0;  ///< 3D area of the mapped cells on it (each cell's area
+                                ///< shared equally among its corners' faces)
+  };
+  std::vector<FaceFigures> faces;
 };
 
 /// Everything the drape computed.

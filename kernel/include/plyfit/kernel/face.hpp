@@ -109,6 +109,17 @@ class DrapeSurface {
   /// The free boundary (see BoundaryLoop): trim loops, or a face's domain rectangle; never
   /// the edges shared by two faces of a shell.
   virtual std::vector<BoundaryLoop> boundary() const = 0;
+  /// Bounding box of the surface (points sampled on its faces).
+  virtual BBox3 bbox() const = 0;
+  /// Area of face k (0 <= k < face_count()).
+  virtual double face_area(std::int32_t k) const = 0;
+  /// Crease angle (radians) between the faces of two locations: the largest angle between
+  /// their outward normals along the shared edges joining them; 0 on one face.
+  virtual double crease_angle(const SurfaceLocation& a, const SurfaceLocation& b) const {
+    (void)a;
+    (void)b;
+    return 0.0;
+  }
 };
 
 /// A closed polyline in the (u, v) plane; the first point is not repeated at the end.
@@ -158,7 +169,7 @@ class Face final : public DrapeSurface {
   /// The face boundary as closed (u, v) polylines: the trim loops, or the domain rectangle.
   std::vector<std::vector<Vec2>> boundary_loops() const;
   /// Bounding box of points sampled on the face.
-  const BBox3& bbox() const { return bbox_; }
+  BBox3 bbox() const override { return bbox_; }
   /// Parameter domain of the face's surface.
   const ParamDomain& domain() const { return surface_->domain(); }
   /// Characteristic parametric speeds |dS/du|, |dS/dv|.
@@ -218,6 +229,7 @@ class Face final : public DrapeSurface {
   /// Area of the face (given, or by Gauss quadrature over the domain with the trims).
   double area() const override { return area_; }
   bool closes_on_itself() const override { return closed_u_ || closed_v_; }
+  double face_area(std::int32_t) const override { return area_; }
   std::int32_t face_count() const override { return 1; }
   std::vector<BoundaryLoop> boundary() const override;
 

@@ -100,6 +100,11 @@ class Shell final : public DrapeSurface {
   bool closes_on_itself() const override { return closes_; }
   std::int32_t face_count() const override { return static_cast<std::int32_t>(faces_.size()); }
   std::vector<BoundaryLoop> boundary() const override { return boundary_; }
+  BBox3 bbox() const override { return bbox_; }
+  double face_area(std::int32_t k) const override { return face(k).area(); }
+  double crease_angle(const SurfaceLocation& a, const SurfaceLocation& b) const override {
+    return a.face == b.face ? 0.0 : crease_angle(a.face, b.face);
+  }
 
   ~Shell() override;
   Shell(Shell&&) noexcept;
@@ -130,6 +135,7 @@ class Shell final : public DrapeSurface {
   std::vector<BoundaryLoop> boundary_;
   Tolerances tol_;
   double gap_ = 0.0, size_ = 1.0, area_ = 0.0;
+  BBox3 bbox_;
   int euler_ = 1;
   bool closes_ = false;
 };

@@ -1,0 +1,177 @@
+// Sewing faces of the shared CAD files (../shared/cad) into shells: the deflector's 18 faces
+// (occ22470.igs, a closed shell), the 4 parametric-spline patches of surf114.igs and the 4
+// panels of trj7_c2-td-203.stp (neither shares a border), and the cornetta's 110 faces.
+
+#include <plyfit/importers/importers.hpp>
+
+#include <BRepAdaptor_Curve.hxx>
+#include <ShapeAnalysis_FreeBounds.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
+
+#include <catch2/catch.hpp>
+
+#include "importers/shell_checks.hpp"
+
+using namespace plyfit;
+using namespace plyfit::test;
+
+namespace {
+
+/// The importer's documented cap on the sewing tolerance, relative to the shell's size.
+constexpr double kSewingCapRel = 1e-4;
+
+bool have_corpus() {
+  if (std::filesystem::is_directory(std::string(PLYFIT_SHARED_DIR) + "/cad")) return true;
+  WARN("../shared/cad is absent: test skipped");
+  return false;
+}
+
+// A shared file opened by plyfit and read by OpenCASCADE's own reader.
+struct SharedFile {
+  std::unique_ptr<importers::MoldFile> file;
+  Reference ref;
+  double cap = 0.0;  // the largest sewing tolerance the importer allows on all of it
+};
+
+SharedFile open_shared(const std::string& name, int faces) {
+  const std::string path = shared_cad(name);
+  auto file = importers::open_mold(path);
+  REQUIRE(file.ok());
+  SharedFile f{std::move(file).value(), read_reference(path, name.find(".igs") != name.npos)};
+  REQUIRE(f.ref.count() == faces);
+  Bnd_Box all;
+  BRepBndLib::Add(f.ref.shape, all);
+  f.cap = kSewingCapRel * std::sqrt(all.SquareExtent());
+  return f;
+}
+
+// Edges of a shape that bound two different faces, by OpenCASCADE.
+int occt_shared_edges(const TopoDS_Shape& shape) {
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
+  TopExp::MapShapesAndAncestors(shape, TopAbs_EDGE, TopAbs_FACE, edge_faces);
+  int shared = 0;
+  for (int e = 1; e <= edge_faces.Extent(); ++e)
+    shared += edge_faces(e).Extent() == 2 && !edge_faces(e).First().IsSame(edge_faces(e).Last());
+  return shared;
+}
+
+// Sews every face of a file whose faces share no edge: as many shells as faces, a warning;
+// the kernel's Shell finds `euler` and `free_loops` (check_kernel_shell).
+ShellCheck sew_apart(SharedFile& f, int euler, int free_loops) {
+  const int n = f.ref.count();
+  auto shell = f.file->convert_shell({});
+  REQUIRE(shell.ok());
+  CHECK(shell->edge_count == 0);
+  CHECK(shell->tolerance == 0.0);
+  CHECK(mentions(f.file->summary().warnings, "sewing: the " + std::to_string(n) + " faces form " +
+                                                 std::to_string(n) + " separate shells"));
+  auto [faces, sizes] = kernel_faces(*f.file, *shell);
+  const ShellCheck c = check_shell(*shell, faces, sizes);
+  check_faces_like_convert_face(*f.file, *shell, faces, f.ref, {}, 1000);
+  check_kernel_shell(*shell, euler, free_loops);
+  return c;
+}
+
+}  // namespace
+
+TEST_CASE("importers: the deflector's 18 faces (occ22470.igs) sew into one closed shell") {
+  if (!have_corpus()) return;
+  SharedFile f = open_shared("occ22470.igs", 18);
+  // OpenCASCADE's own analysis of the file's shell: every edge bounds two faces, no free
+  // boundary, and its Euler characteristic.
+  const int occt_shared = occt_shared_edges(f.ref.shape);
+  TopTools_IndexedMapOfShape vertices, edges;
+  TopExp::MapShapes(f.ref.shape, TopAbs_VERTEX, vertices);
+  TopExp::MapShapes(f.ref.shape, TopAbs_EDGE, edges);
+  const int occt_euler = vertices.Extent() - edges.Extent() + f.ref.count();
+  ShapeAnalysis_FreeBounds free_bounds(f.ref.shape);
+  TopTools_IndexedMapOfShape free_edges;
+  TopExp::MapShapes(free_bounds.GetClosedWires(), TopAbs_EDGE, free_edges);
+  TopExp::MapShapes(free_bounds.GetOpenWires(), TopAbs_EDGE, free_edges);
+  CHECK(free_edges.Extent() == 0);
+  CHECK(occt_shared == edges.Extent());
+  CHECK(occt_euler == 2);  // a closed shell of genus 0
+
+  auto shell = f.file->convert_shell(f.file->all_faces());
+  REQUIRE(shell.ok());
+  CHECK(shell->faces.size() == 18);
+  CHECK(shell->edge_count == occt_shared);
+  CHECK_FALSE(mentions(f.file->summary().warnings, "sewing"));
+  auto [faces, sizes] = kernel_faces(*f.file, *shell);
+  const ShellCheck c = check_shell(*shell, faces, sizes);
+  CHECK(c.shared == occt_shared);
+  CHECK(c.free_runs == free_edges.Extent());
+  CHECK(c.vertices - c.shared + 18 == occt_euler);
+  check_kernel_shell(*shell, occt_euler, 0);
+  // The gap closed is no larger than the tolerances OpenCASCADE's reader gave the edges.
+  double edge_tol = 0.0;
+  for (int e = 1; e <= edges.Extent(); ++e)
+    edge_tol = std::max(edge_tol, BRep_Tool::Tolerance(TopoDS::Edge(edges(e))));
+  CHECK(shell->tolerance <= 2 * edge_tol);
+  WARN("occ22470: " << c.shared << " shared edges, gap " << shell->tolerance
+                    << " mm, worst use-to-use distance " << c.worst_ratio << " of the allowed");
+  check_faces_like_convert_face(*f.file, *shell, faces, f.ref, {}, 1000);
+}
+
+TEST_CASE("importers: surf114's four patches cross each other but share no border") {
+  if (!have_corpus()) return;
+  SharedFile f = open_shared("surf114.igs", 4);
+  // Independently: no border of one patch runs along a border of another within the largest
+  // sewing tolerance the importer allows (1e-4 of the size), so no edge can be shared.
+  for (int i = 0; i < 4; ++i)
+    for (TopExp_Explorer ex(f.ref.face(i), TopAbs_EDGE); ex.More(); ex.Next()) {
+      const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
+      if (BRep_Tool::Degenerated(e)) continue;
+      BRepAdaptor_Curve c(e);
+      for (int j = 0; j < 4; ++j) {
+        if (j == i) continue;
+        double far = 0.0;
+        for (int s = 0; s <= 10; ++s) {
+          const gp_Pnt p =
+              c.Value(c.FirstParameter() + s * (c.LastParameter() - c.FirstParameter()) / 10);
+          BRepExtrema_DistShapeShape d(BRepBuilderAPI_MakeVertex(p).Vertex(),
+                                       BRepTools::OuterWire(f.ref.face(j)));
+          REQUIRE(d.IsDone());
+          far = std::max(far, d.Value());
+        }
+        CHECK(far > f.cap);
+      }
+    }
+  // ... though they cross: every patch touches the tube (face 1).
+  for (int i : {0, 2, 3}) {
+    BRepExtrema_DistShapeShape d(f.ref.face(1), f.ref.face(i));
+    REQUIRE(d.IsDone());
+    CHECK(d.Value() <= f.cap);
+  }
+  // The patches' own topology (tubes, a collapsed end) is not checked here.
+  CHECK(sew_apart(f, kUnchecked, kUnchecked).shared == 0);
+}
+
+TEST_CASE("importers: trj7's four panels lie apart: four shells, no shared edge") {
+  if (!have_corpus()) return;
+  SharedFile f = open_shared("trj7_c2-td-203.stp", 4);
+  for (int i = 0; i < 4; ++i)
+    for (int j = i + 1; j < 4; ++j) {
+      BRepExtrema_DistShapeShape d(f.ref.face(i), f.ref.face(j));
+      REQUIRE(d.IsDone());
+      CHECK(d.Value() > f.cap);
+    }
+  // One loop of free edges per panel: four discs.
+  CHECK(sew_apart(f, 4, 4).free_runs == 4);
+}
+
+TEST_CASE("importers: the cornetta's 110 faces sew into one shell like the file's own", "[slow]") {
+  if (!have_corpus()) return;
+  SharedFile f = open_shared("bug27693_cornetta-step.stp", 110);
+  auto shell = f.file->convert_shell({});
+  REQUIRE(shell.ok());
+  CHECK(shell->edge_count == occt_shared_edges(f.ref.shape));
+  CHECK_FALSE(mentions(f.file->summary().warnings, "sewing"));
+  auto [faces, sizes] = kernel_faces(*f.file, *shell);
+  const ShellCheck c = check_shell(*shell, faces, sizes);
+  WARN("cornetta: " << c.shared << " shared edges, " << c.free_runs << " free runs, gap "
+                    << shell->tolerance << " mm, worst use-to-use distance " << c.worst_ratio
+                    << " of the allowed");
+  check_faces_like_convert_face(*f.file, *shell, faces, f.ref, {}, 300);
+  check_kernel_shell(*shell, kUnchecked, kUnchecked);
+}
