@@ -6,6 +6,7 @@
 // (tests/exporters/*.py), and LibreCAD renders the DXF.
 
 #include <plyfit/exporters/exporters.hpp>
+#include <plyfit/exporters/step_curves.hpp>
 #include <plyfit/importers/importers.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
 #include <plyfit/kernel/cells.hpp>
@@ -340,6 +341,48 @@ TEST_CASE("exporters: net.step reads back in OpenCASCADE with named groups and n
     check_step(*c, 1);
     check_step(*c, 3);
   }
+}
+
+TEST_CASE(
+    "exporters: the STEP curve writer's closed polylines and names read back in "
+    "OpenCASCADE") {
+  // A set of closed 3D polylines (as the ply boundary in 3D will be) and a name that needs
+  // escaping, next to an open set.
+  const std::vector<std::vector<Vec3>> loops = {
+      {Vec3(0, 0, 0), Vec3(10, 0, 1), Vec3(10, 5, 2), Vec3(0, 5, 1)},
+      {Vec3(2, 2, 0.5), Vec3(4, 2, 0.5), Vec3(3, 3, 0.5)}};
+  auto closed = exporters::polyline_set("ply_boundary", loops, true);
+  REQUIRE(closed.ok());
+  auto open = exporters::polyline_set("it's a \\ test", {{Vec3(0, 0, 0), Vec3(1, 2, 3)}}, false);
+  REQUIRE(open.ok());
+  const fs::path dir = fresh_dir("step_curves");
+  exporters::StepFileInfo info;
+  info.file_name = "curves.step";
+  REQUIRE(
+      exporters::write_step_curves((dir / "curves.step").string(), {*closed, *open}, info).ok());
+  const auto groups = read_step(dir / "curves.step");
+  REQUIRE(groups.size() == 2);
+  REQUIRE(groups.count("ply_boundary") == 1);
+  CHECK(groups.count("it's a \\ test") == 1);
+  const StepGroup& g = groups.at("ply_boundary");
+  REQUIRE(g.curves.size() == loops.size());
+  for (std::size_t k = 0; k < loops.size(); ++k) {
+    const Handle(Geom_BSplineCurve) b = bspline_of(g.curves[k]);
+    REQUIRE(!b.IsNull());
+    CHECK(b->Degree() == 1);
+    // Every corner, and back to the first: the poles are the loop's points, exactly.
+    REQUIRE(b->NbPoles() == static_cast<int>(loops[k].size()) + 1);
+    for (int i = 1; i <= b->NbPoles(); ++i) {
+      const Vec3& p = loops[k][static_cast<std::size_t>(i - 1) % loops[k].size()];
+      CHECK(b->Pole(i).Distance(gp_Pnt(p.x(), p.y(), p.z())) == 0.0);
+    }
+  }
+  // A rational curve is refused, with the set named.
+  exporters::StepCurveSet rational = *open;
+  rational.curves[0].weights = {1.0, 2.0};
+  const auto st = exporters::step_curves_text({rational}, info);
+  REQUIRE_FALSE(st.ok());
+  CHECK(st.error().message.find("rational") != std::string::npos);
 }
 
 TEST_CASE("exporters: net.step reads back in DRAW (occt-draw) with its names and curve counts") {
