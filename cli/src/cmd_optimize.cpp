@@ -204,9 +204,16 @@ int run_optimize(const std::vector<std::string>& args) {
     return kExitFailure;
   }
   job->outdir.clear();
-  auto face = load_face(*job);
+  auto surface = load_surface(*job);
+  if (!surface) {
+    print_error("optimize: " + surface.error().message);
+    return kExitFailure;
+  }
+  // The search moves the seed over one face's (u, v); a shell's seed would also choose a face.
+  const auto* face = dynamic_cast<const Face*>(surface->get());
   if (!face) {
-    print_error("optimize: " + face.error().message);
+    print_error("optimize: " + path +
+                ": the scene drapes several faces (--faces); plyfit optimize searches one face");
     return kExitFailure;
   }
 

@@ -1,10 +1,12 @@
-// plyfit sample NAME[:k=v,...] -o FILE [--format F]: writes a built-in mold as a STEP or IGES
-// mold file (the sample molds under samples/ are made with it).
+// plyfit sample NAME[:k=v,...] -o FILE [--format F]: writes a built-in mold (one face) or a
+// built-in shell (several faces, sewn) as a STEP or IGES mold file (the sample molds under
+// samples/ are made with it).
 
 #include "commands.hpp"
 
 #include <plyfit/exporters/mold_writer.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
+#include <plyfit/kernel/builtin_shells.hpp>
 
 #include <boost/program_options.hpp>
 
@@ -36,11 +38,15 @@ int run_sample(const std::vector<std::string>& args) {
     return kExitUsage;
   }
   if (vm.count("help")) {
-    std::cout << "Writes a built-in mold as a one-face STEP or IGES file (exact NURBS, the face\n"
-                 "normal as plyfit's, 17 significant digits, a fixed header time stamp so that\n"
-                 "the bytes depend only on the inputs).\n\n"
+    std::cout << "Writes a built-in mold as a one-face STEP or IGES file (exact NURBS surface,\n"
+                 "trims and holes as exact curves on it, the face normal as plyfit's, 17\n"
+                 "significant digits, a fixed header time stamp so that the bytes depend only\n"
+                 "on the inputs), or a built-in shell as one file of several faces sewn along\n"
+                 "their shared edges.\n\n"
               << opts << "\nbuilt-in molds (see plyfit drape --help for their parameters):";
     for (const auto& b : builtin_molds()) std::cout << " " << b.name;
+    std::cout << "\nbuilt-in shells:";
+    for (const auto& b : builtin_shells()) std::cout << " " << b.name;
     std::cout << "\n";
     return kExitOk;
   }
@@ -55,9 +61,14 @@ int run_sample(const std::vector<std::string>& args) {
     print_error("sample: " + spec.error().message);
     return kExitUsage;
   }
-  auto face = builtin_mold(spec->first, spec->second);
-  if (!face) {
-    print_error("sample: " + face.error().message);
+  Result<ShellData> shell = ShellData{};
+  Result<BuiltinFace> face = BuiltinFace{};
+  if (is_builtin_shell(spec->first))
+    shell = builtin_shell(spec->first, spec->second);
+  else
+    face = builtin_face(spec->first, spec->second);
+  if (!shell || !face) {
+    print_error("sample: " + (shell ? face.error() : shell.error()).message);
     return kExitUsage;
   }
   exporters::MoldWriteOptions wo;
@@ -82,7 +93,9 @@ int run_sample(const std::vector<std::string>& args) {
       return kExitUsage;
     }
   }
-  if (auto st = exporters::write_mold(*face, path, wo); !st) {
+  const Status st = is_builtin_shell(spec->first) ? exporters::write_shell(*shell, path, wo)
+                                                  : exporters::write_mold(*face, path, wo);
+  if (!st) {
     print_error(st.error().message);
     return kExitFailure;
   }

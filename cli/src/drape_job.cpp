@@ -5,7 +5,9 @@
 #include <plyfit/exporters/exporters.hpp>
 #include <plyfit/importers/importers.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
+#include <plyfit/kernel/builtin_shells.hpp>
 #include <plyfit/kernel/flat_pattern.hpp>
+#include <plyfit/kernel/shell.hpp>
 
 #include <boost/program_options.hpp>
 
@@ -16,6 +18,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
+#include <optional>
 #include <sstream>
 
 namespace po = boost::program_options;
@@ -26,9 +30,6 @@ namespace plyfit::cli {
 namespace {
 
 constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
-// The mapped cells (flat chords of the surface, inside the face) cover at most the face; a
-// little more is the trim polylines' chord error. More is cloth lying on cloth.
-constexpr double kCoverageSlack = 0.01;
 // Without --warn-angle, cells are flagged at least this far (degrees) below the lock angle.
 constexpr double kWarnBelowLockDeg = 5.0;
 
@@ -45,6 +46,10 @@ const std::vector<OptionSpec>& drape_options() {
       {"mold", "FILE|builtin:NAME[:k=v,...]", "", "mold file (STEP, IGES) or a built-in mold",
        false, "mold"},
       {"face", "N", "0", "face index in the mold file (see plyfit info)", false, "mold"},
+      {"faces", "LIST|all", "",
+       "faces to drape as one shell (comma-separated indices, or all), sewn along their shared "
+       "edges; instead of --face",
+       false, "mold"},
       {"format", "KEY", "", "importer to use instead of the file extension (step, iges)", false,
        "mold"},
       {"flip-normal", "", "false", "drape on the other side of the surface", false, "mold"},
@@ -284,6 +289,27 @@ Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
     return Error{where + "missing the output folder (" +
                  (where.empty() ? "-o DIR" : "key 'output'") + ")"};
   job.mold = resolve("mold", *one("mold"));
+  if (get("faces")) {
+    if (get("face"))
+      return Error{name("faces") + ": give either " + name("face") + " or " + name("faces") +
+                   ", not both"};
+    const std::string list = *one("faces");
+    if (list == "all") {
+      job.all_faces = true;
+    } else {
+      std::stringstream ss(list);
+      std::string item;
+      while (std::getline(ss, item, ',')) {
+        auto f = parse_int(item, name("faces"), 0, 1 << 30);
+        if (!f) return f.error();
+        if (std::find(job.faces.begin(), job.faces.end(), *f) != job.faces.end())
+          return Error{name("faces") + ": face " + std::to_string(*f) + " is listed twice"};
+        job.faces.push_back(*f);
+      }
+      if (job.faces.empty())
+        return Error{name("faces") + ": '" + list + "' lists no face (indices, or all)"};
+    }
+  }
   if (auto f = parse_int(*one("face"), name("face"), 0, 1 << 30); f)
     job.face = *f;
   else
@@ -477,7 +503,15 @@ std::string dump_scene(const DrapeJob& job) {
   std::map<std::string, std::vector<std::string>> v;
   const auto& p = job.problem;
   v["mold"] = {job.mold};
-  v["face"] = {std::to_string(job.face)};
+  if (job.all_faces) {
+    v["faces"] = {"all"};
+  } else if (!job.faces.empty()) {
+    std::string list;
+    for (int f : job.faces) list += (list.empty() ? "" : ",") + std::to_string(f);
+    v["faces"] = {list};
+  } else {
+    v["face"] = {std::to_string(job.face)};
+  }
   if (!job.format.empty()) v["format"] = {job.format};
   v["flip-normal"] = {job.flip_normal ? "true" : "false"};
   if (p.ply.d_weft == p.ply.d_warp) {
@@ -525,41 +559,98 @@ std::string dump_scene(const DrapeJob& job) {
   return os.str();
 }
 
-Result<Face> load_face(const DrapeJob& job, exporters::RunInfo* run_out) {
+Result<std::unique_ptr<DrapeSurface>> load_surface(const DrapeJob& job,
+                                                   exporters::RunInfo* run_out) {
   exporters::RunInfo scratch;
   exporters::RunInfo& run = run_out ? *run_out : scratch;
-  FaceData data;
-  if (job.mold.rfind("builtin:", 0) == 0) {
-    auto spec = parse_builtin_spec(job.mold.substr(8));
-    if (!spec) return spec.error();
-    if (job.face != 0) return Error{job.mold + ": a built-in mold has only face 0"};
-    auto fd = builtin_mold(spec->first, spec->second);
-    if (!fd) return fd.error();
-    data = std::move(fd).value();
-    run.face_info.name = data.name;
-    run.face_info.kind = "builtin:" + spec->first;
-    run.mold_unit = "millimetre";
-  } else {
-    importers::ImportOptions io;
-    io.format = job.format;
-    io.tolerances = job.drape.tol;
-    auto file = importers::open_mold(job.mold, io);
-    if (!file) return file.error();
-    // Only this face is described and converted: the others are never listed.
-    auto info = (*file)->describe(job.face);
-    if (!info) return info.error();
-    run.face_info = *info;
-    run.mold_unit = (*file)->summary().unit;
-    run.warnings = (*file)->summary().warnings;
-    auto fd = (*file)->convert_face(job.face);
-    if (!fd) return fd.error();
-    data = std::move(fd).value();
+  std::unique_ptr<DrapeSurface> surface;
+  const bool builtin = job.mold.rfind("builtin:", 0) == 0;
+  std::optional<std::pair<std::string, std::map<std::string, double>>> spec;
+  if (builtin) {
+    auto sp = parse_builtin_spec(job.mold.substr(8));
+    if (!sp) return sp.error();
+    spec = std::move(sp).value();
+    if (job.face != 0 || !job.faces.empty())
+      return Error{job.mold + ": a built-in mold is draped whole (no --face or --faces list)"};
   }
-  if (job.flip_normal) data.reversed = !data.reversed;
-  auto face = Face::create(std::move(data), job.drape.tol);
-  if (!face)
-    return Error{job.mold + ": face " + std::to_string(job.face) + ": " + face.error().message};
-  return face;
+  const bool shell =
+      builtin ? is_builtin_shell(spec->first) : (job.all_faces || !job.faces.empty());
+  if (shell) {
+    ShellData data;
+    if (builtin) {
+      auto sd = builtin_shell(spec->first, spec->second);
+      if (!sd) return sd.error();
+      data = std::move(sd).value();
+      run.mold_unit = "millimetre";
+      for (std::size_t k = 0; k < data.faces.size(); ++k) {
+        FaceInfo fi;
+        fi.index = static_cast<int>(k);
+        fi.name = data.faces[k].name;
+        fi.kind = "builtin:" + spec->first;
+        run.faces_info.push_back(fi);
+      }
+    } else {
+      importers::ImportOptions io;
+      io.format = job.format;
+      io.tolerances = job.drape.tol;
+      auto file = importers::open_mold(job.mold, io);
+      if (!file) return file.error();
+      const std::vector<int> indices = job.all_faces ? (*file)->all_faces() : job.faces;
+      auto sd = (*file)->convert_shell(indices);
+      if (!sd) return sd.error();
+      data = std::move(sd).value();
+      for (int i : indices) {
+        auto info = (*file)->describe(i);
+        if (!info) return info.error();
+        run.faces_info.push_back(*info);
+      }
+      run.mold_unit = (*file)->summary().unit;
+      run.warnings = (*file)->summary().warnings;
+    }
+    if (job.flip_normal)
+      for (auto& f : data.faces) f.reversed = !f.reversed;
+    auto sh = Shell::create(std::move(data), job.drape.tol);
+    if (!sh) return Error{job.mold + ": " + sh.error().message};
+    for (std::int32_t k = 0; k < sh->face_count(); ++k)
+      run.faces.push_back(run.faces_info.size() > static_cast<std::size_t>(k)
+                              ? run.faces_info[static_cast<std::size_t>(k)].index
+                              : sh->source_face(k));
+    surface = std::make_unique<Shell>(std::move(sh).value());
+  } else {
+    FaceData data;
+    if (builtin) {
+      auto fd = builtin_mold(spec->first, spec->second);
+      if (!fd) return fd.error();
+      data = std::move(fd).value();
+      FaceInfo fi;
+      fi.name = data.name;
+      fi.kind = "builtin:" + spec->first;
+      run.faces_info.push_back(fi);
+      run.mold_unit = "millimetre";
+    } else {
+      importers::ImportOptions io;
+      io.format = job.format;
+      io.tolerances = job.drape.tol;
+      auto file = importers::open_mold(job.mold, io);
+      if (!file) return file.error();
+      // Only this face is described and converted: the others are never listed.
+      auto info = (*file)->describe(job.face);
+      if (!info) return info.error();
+      run.faces_info.push_back(*info);
+      run.mold_unit = (*file)->summary().unit;
+      run.warnings = (*file)->summary().warnings;
+      auto fd = (*file)->convert_face(job.face);
+      if (!fd) return fd.error();
+      data = std::move(fd).value();
+    }
+    if (job.flip_normal) data.reversed = !data.reversed;
+    auto face = Face::create(std::move(data), job.drape.tol);
+    if (!face)
+      return Error{job.mold + ": face " + std::to_string(job.face) + ": " + face.error().message};
+    run.faces.push_back(job.face);
+    surface = std::make_unique<Face>(std::move(face).value());
+  }
+  return surface;
 }
 
 Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel, bool progress) {
@@ -569,7 +660,6 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   };
   exporters::RunInfo run;
   run.mold = job.mold;
-  run.face = job.face;
   run.flip_normal = job.flip_normal;
   run.tolerance_rel = job.tolerance_rel;
   run.max_iterations = job.max_iterations;
@@ -579,8 +669,9 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   run.ply_name = job.ply_name;
   run.material = job.material;
   run.outputs = job.outputs;
-  auto face = load_face(job, &run);
-  if (!face) return face.error();
+  auto loaded = load_surface(job, &run);
+  if (!loaded) return loaded.error();
+  const std::unique_ptr<DrapeSurface> surface = std::move(loaded).value();
   run.import_ms = ms_since(t0);
 
   DrapeOptions opt = job.drape;
@@ -591,22 +682,12 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
       std::cerr << "\rplyfit: " << n << " nodes solved" << std::flush;
     };
   }
-  auto res = drape(*face, job.problem, opt);
+  auto res = drape(*surface, job.problem, opt);
   if (tty) std::cerr << "\r\033[K" << std::flush;
   if (!res) return res.error();
-  // The drape tests every node for overlap only on closed faces and where the net is sheared
-  // past 60 degrees (a test of every node would cost half the speed); an immersed net can
-  // still come back over itself elsewhere on a long open face. The coverage shows it.
-  if (face->area() > 0 && res->metrics.surface_area > (1 + kCoverageSlack) * face->area()) {
-    res->partial = true;
-    res->warnings.push_back("the mapped cells cover " +
-                            std::to_string(static_cast<int>(
-                                std::lround(100 * res->metrics.surface_area / face->area()))) +
-                            "% of the face: the cloth lies on itself somewhere");
-  }
   if (cancel && cancel->load()) return Error{"cancelled"};
   run.drape_ms = res->drape_ms;
-  const FlatPattern flat = flat_pattern(*face, *res);
+  const FlatPattern flat = flat_pattern(*surface, *res);
   exporters::ExportOptions eo;
   eo.warn_shear = job.warn_angle_deg * kDegToRad;
   eo.curve_degree = job.curve_degree;
@@ -616,7 +697,7 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   eo.material_label = job.material_label;
   eo.materials_file = job.materials_file;
   run.total_ms = ms_since(t0);
-  const exporters::ExportContext ctx{job.problem, *res, *face, &flat, run, eo};
+  const exporters::ExportContext ctx{job.problem, *res, *surface, &flat, run, eo};
   if (!job.outdir.empty()) {
     if (auto s = exporters::write_outputs(ctx, job.outdir, job.outputs); !s) return s.error();
   }
@@ -624,11 +705,9 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   out.status = res->partial ? "partial" : "ok";
   out.mapped = res->metrics.nodes.mapped;
   const auto& m = res->metrics;
-  out.shear_max_deg = m.angles ? std::max(std::abs(90.0 - m.gamma_min / kDegToRad),
-                                          std::abs(m.gamma_max / kDegToRad - 90.0))
-                               : 0.0;
+  out.shear_max_deg = m.shear_max / kDegToRad;
   out.metrics = m;
-  out.face_area = face->area();
+  out.face_area = surface->area();
   out.flat_outline_area = flat.area;
   for (const auto& k : job.outputs)
     if (const auto* e = exporters::find_exporter(k))

@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,7 +48,9 @@ struct RawOptions {
 struct DrapeJob {
   std::string mold;  ///< file path (resolved) or "builtin:NAME[:k=v,...]"
   int face = 0;
-  std::string format;  ///< importer override
+  std::vector<int> faces;  ///< --faces: file faces sewn into a shell (empty: --face)
+  bool all_faces = false;  ///< --faces all
+  std::string format;      ///< importer override
   DrapeProblem problem;
   DrapeOptions drape;  ///< lock angle, tolerances, guess rule, node cap
   double lock_angle_deg = 90.0;
@@ -96,10 +99,12 @@ struct JobOutcome {
   double flat_outline_area = 0.0;
 };
 
-/// Imports the face a job drapes (a built-in mold or one face of a file), with the job's side
-/// applied; `run`, if given, gets what the report says of the mold. run_job's import, shared
-/// with `plyfit optimize` (which drapes one face many times).
-Result<Face> load_face(const DrapeJob& job, exporters::RunInfo* run = nullptr);
+/// Imports the surface a job drapes: a built-in mold (one face, or a built-in shell), one face
+/// of a file (--face), or several faces of a file sewn into a shell (--faces), with the job's
+/// side applied; `run`, if given, gets what the report says of the mold. run_job's import,
+/// shared with `plyfit optimize` (which drapes one surface many times).
+Result<std::unique_ptr<DrapeSurface>> load_surface(const DrapeJob& job,
+                                                   exporters::RunInfo* run = nullptr);
 
 /// Runs a job end to end; outputs are written atomically into job.outdir. `cancel` stops
 /// the drape (no files are written then). Progress goes to stderr when it is a terminal and

@@ -355,9 +355,7 @@ std::string build_dxf(const ExportContext& ctx) {
 
   // Labels and the grain arrow, inside the outline.
   const DrapeMetrics& m = r.metrics;
-  const double shear_max_deg = m.angles ? std::max(std::abs(90.0 - m.gamma_min * detail::kRadToDeg),
-                                                   std::abs(m.gamma_max * detail::kRadToDeg - 90.0))
-                                        : 0.0;
+  const double shear_max_deg = m.shear_max * detail::kRadToDeg;
   const double lock_deg = ctx.run.lock_angle_deg;
   const std::string material =
       ctx.options.material_label.empty() || ctx.options.material_label == ctx.run.material
@@ -374,7 +372,7 @@ std::string build_dxf(const ExportContext& ctx) {
       "SHEAR: max " + degrees(shear_max_deg, 2) + ", warning " +
           degrees(warn * detail::kRadToDeg, 2) + ", limit " +
           (lock_deg >= 90.0 ? std::string("none") : degrees(lock_deg, 2)),
-      "MOLD: " + detail::mold_label(ctx.run.mold) + " face " + std::to_string(ctx.run.face),
+      "MOLD: " + detail::mold_label(ctx.run.mold) + " " + detail::faces_label(ctx.run.faces),
   };
   const LabelPlace place = place_labels(loops, block, extent, kMaxTextRel * extent, box.lo);
   const double text_h = place.h;

@@ -82,7 +82,11 @@ std::string report_json(const ExportContext& ctx) {
   j["warnings"] = r.warnings;
   json in;
   in["mold"] = ctx.run.mold;
-  in["face"] = ctx.run.face;
+  const bool shell = ctx.surface.face_count() > 1;
+  if (shell)
+    in["faces"] = ctx.run.faces;
+  else
+    in["face"] = ctx.run.faces.empty() ? 0 : ctx.run.faces.front();
   in["flip_normal"] = ctx.run.flip_normal;
   in["spacing_weft"] = p.ply.d_weft;
   in["spacing_warp"] = p.ply.d_warp;
@@ -112,15 +116,37 @@ std::string report_json(const ExportContext& ctx) {
   in["dxf_threads"] = ctx.options.dxf_threads;
   in["outputs"] = ctx.run.outputs;
   j["inputs"] = in;
+  // The surface draped (one face, or a shell's faces together), then face by face.
+  auto file_index = [&](std::size_t k) {
+    return k < ctx.run.faces.size() ? ctx.run.faces[k] : static_cast<int>(k);
+  };
   json face;
-  face["name"] = ctx.run.face_info.name;
-  face["kind"] = ctx.run.face_info.kind;
-  face["area"] = ctx.face.area();
-  face["bbox"] = {{"min", vec(ctx.face.bbox().min)}, {"max", vec(ctx.face.bbox().max)}};
-  j["mold"] = {
-      {"unit", unit_name(ctx.run.mold_unit)}, {"face", face}, {"warnings", ctx.run.warnings}};
-  j["start"] = {
-      {"point", vec(r.start_point)}, {"uv", vec(r.start_at.uv)}, {"moved", r.start_moved}};
+  const FaceInfo none;
+  const FaceInfo& first = ctx.run.faces_info.empty() ? none : ctx.run.faces_info.front();
+  face["name"] = shell ? "" : first.name;
+  face["kind"] = shell ? "shell" : first.kind;
+  face["area"] = ctx.surface.area();
+  const BBox3 box = ctx.surface.bbox();
+  face["bbox"] = {{"min", vec(box.min)}, {"max", vec(box.max)}};
+  json faces = json::array();
+  for (std::size_t k = 0; k < m.faces.size(); ++k) {
+    const FaceInfo& fi = k < ctx.run.faces_info.size() ? ctx.run.faces_info[k] : none;
+    faces.push_back({{"index", file_index(k)},
+                     {"name", fi.name},
+                     {"kind", fi.kind},
+                     {"area", m.faces[k].area},
+                     {"nodes_mapped", m.faces[k].mapped},
+                     {"covered_area", m.faces[k].covered_area}});
+  }
+  j["mold"] = {{"unit", unit_name(ctx.run.mold_unit)},
+               {"face", face},
+               {"faces", faces},
+               {"crease_angle_max_deg", m.crease_angle_max * kRadToDeg},
+               {"warnings", ctx.run.warnings}};
+  j["start"] = {{"point", vec(r.start_point)},
+                {"face", file_index(static_cast<std::size_t>(r.start_at.face))},
+                {"uv", vec(r.start_at.uv)},
+                {"moved", r.start_moved}};
   j["base_tangent"] = vec(r.base_tangent);
   j["nodes"] = {{"mapped", m.nodes.mapped},           {"auxiliary", m.nodes.auxiliary},
                 {"outside", m.nodes.outside},         {"off_ply", m.nodes.off_ply},
@@ -129,15 +155,12 @@ std::string report_json(const ExportContext& ctx) {
   j["area_mesh_points"] = m.area_mesh_points;
   j["flat_area"] = m.flat_area;
   j["surface_area"] = m.surface_area;
-  j["coverage"] = ctx.face.area() > 0 ? m.surface_area / ctx.face.area() : 0.0;
+  j["coverage"] = m.coverage;
   j["thread_angle"] = {{"min", m.gamma_min},
                        {"max", m.gamma_max},
                        {"min_deg", m.gamma_min * kRadToDeg},
                        {"max_deg", m.gamma_max * kRadToDeg}};
-  const double shear_max = m.angles ? std::max(std::abs(90.0 - m.gamma_min * kRadToDeg),
-                                               std::abs(m.gamma_max * kRadToDeg - 90.0))
-                                    : 0.0;
-  j["shear_max_deg"] = shear_max;
+  j["shear_max_deg"] = m.shear_max * kRadToDeg;
   j["shear_energy"] = m.shear_energy;
   j["residual"] = {{"edge_length_max_rel", m.edge_length_max_rel},
                    {"surface_distance_max", m.surface_distance_max},

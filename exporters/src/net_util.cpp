@@ -230,6 +230,15 @@ std::string mold_label(const std::string& mold) {
   return name.empty() ? mold : name;
 }
 
+std::string faces_label(const std::vector<int>& faces) {
+  constexpr std::size_t kListedFaces = 6;  // more are counted, not listed
+  if (faces.size() <= 1) return "face " + std::to_string(faces.empty() ? 0 : faces.front());
+  if (faces.size() > kListedFaces) return std::to_string(faces.size()) + " faces";
+  std::string out = "faces ";
+  for (std::size_t k = 0; k < faces.size(); ++k) out += (k ? ", " : "") + std::to_string(faces[k]);
+  return out;
+}
+
 std::u32string utf8_decode(const std::string& s) {
   constexpr char32_t kReplacement = 0xFFFD;
   std::u32string out;

@@ -101,6 +101,9 @@ inline Rgb no_shear_colour() {
 
 /// The mold as labels show it: a file's name without its folder, or "builtin:..." as given.
 std::string mold_label(const std::string& mold);
+/// The faces draped, for labels: "face 3", "faces 3, 4, 7", or "18 faces" for many (an empty
+/// list is the default face 0).
+std::string faces_label(const std::vector<int>& faces);
 
 /// Unicode code points of UTF-8 text; invalid bytes become U+FFFD.
 std::u32string utf8_decode(const std::string& s);

@@ -50,8 +50,6 @@ constexpr double kMinGridPitch = 3.0;  // px: a denser grid is left out
 constexpr double kMaxTicks = 6.0;      // intervals of the shear colour scale
 // A view direction within this angle (radians) of Z looks down Z: Y is up on the page then.
 constexpr double kViewAlongZ = 1e-6;
-// uv points within this fraction of the domain width of a closed face's seam lie on it.
-constexpr double kSeamParamRel = 1e-9;
 // flat.svg is drawn in millimetres (1 user unit = 1 mm, printable 1:1); its annotation keeps
 // the size it has in the pixel pictures: one CSS pixel is 1/96 inch.
 constexpr double kMmPerPx = 25.4 / 96.0;
@@ -325,9 +323,7 @@ std::string sym_line(const std::string& colour, double w, const std::string& das
 
 std::string shear_summary(const ExportContext& ctx) {
   const DrapeMetrics& m = ctx.result.metrics;
-  const double shear_max = m.angles ? std::max(std::abs(90.0 - m.gamma_min * kRadToDeg),
-                                               std::abs(m.gamma_max * kRadToDeg - 90.0))
-                                    : 0.0;
+  const double shear_max = m.shear_max * kRadToDeg;
   return "max shear " + fixed_text(shear_max, 2) + "\u00b0, \u03b3 " +
          fixed_text(m.gamma_min * kRadToDeg, 2) + "\u00b0 \u2026 " +
          fixed_text(m.gamma_max * kRadToDeg, 2) + "\u00b0";
@@ -336,8 +332,8 @@ std::string shear_summary(const ExportContext& ctx) {
 std::string source_line(const ExportContext& ctx) {
   const std::string& material =
       ctx.options.material_label.empty() ? ctx.run.material : ctx.options.material_label;
-  return ctx.run.ply_name + " (" + material + ") on " + detail::mold_label(ctx.run.mold) +
-         ", face " + std::to_string(ctx.run.face);
+  return ctx.run.ply_name + " (" + material + ") on " + detail::mold_label(ctx.run.mold) + ", " +
+         detail::faces_label(ctx.run.faces);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -569,38 +565,28 @@ struct Camera {
 
 std::string drape_svg(const ExportContext& ctx) {
   const DrapeResult& r = ctx.result;
-  const Face& face = ctx.face;
+  const DrapeSurface& surface = ctx.surface;
   const Camera cam = Camera::from(ctx.options.view);
   const ShearScale scale = shear_scale(r);
   const double top = scale.top;
   const double warn = ctx.options.warn_shear;
   const double d = std::min(ctx.problem.ply.d_weft, ctx.problem.ply.d_warp);
 
-  // The face boundary in 3D: each boundary segment split into pieces; seams of closed faces
-  // (not boundaries) left out.
+  // The free boundary in 3D (the kernel's: seams of closed faces, collapsed pole edges and
+  // the edges a shell's faces share are no boundary): each segment split into pieces.
   constexpr int kBoundaryPieces = 48;
-  const ParamDomain& dom = face.domain();
-  const double seam_tol_u = kSeamParamRel * dom.width_u(),
-               seam_tol_v = kSeamParamRel * dom.width_v();
-  auto on_seam = [&](const Vec2& a, const Vec2& b) {
-    auto at = [](double x, double v, double tol) { return std::abs(x - v) <= tol; };
-    if (face.closed_u() && ((at(a.x(), dom.u0, seam_tol_u) && at(b.x(), dom.u0, seam_tol_u)) ||
-                            (at(a.x(), dom.u1, seam_tol_u) && at(b.x(), dom.u1, seam_tol_u))))
-      return true;
-    if (face.closed_v() && ((at(a.y(), dom.v0, seam_tol_v) && at(b.y(), dom.v0, seam_tol_v)) ||
-                            (at(a.y(), dom.v1, seam_tol_v) && at(b.y(), dom.v1, seam_tol_v))))
-      return true;
-    return false;
-  };
   std::vector<std::pair<Vec3, Vec3>> boundary;
-  for (const auto& loop : face.boundary_loops()) {
-    for (std::size_t k = 0; k < loop.size(); ++k) {
-      const Vec2 a = loop[k], b = loop[(k + 1) % loop.size()];
-      if (on_seam(a, b)) continue;
-      const int pieces = loop.size() > 64 ? 1 : kBoundaryPieces;
-      Vec3 prev = face.eval1(a).p;
+  for (const auto& loop : surface.boundary()) {
+    const std::size_t n = loop.points.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      if (loop.kinds[k] != BoundaryLoop::kEdge) continue;
+      const SurfaceLocation& a = loop.points[k];
+      const SurfaceLocation& b = loop.points[(k + 1) % n];
+      const int pieces = n > 64 ? 1 : kBoundaryPieces;
+      Vec3 prev = surface.eval1(a).p;
       for (int m = 1; m <= pieces; ++m) {
-        const Vec3 q = face.eval1(a + (b - a) * (static_cast<double>(m) / pieces)).p;
+        const Vec3 q =
+            surface.eval1(a.with_uv(a.uv + (b.uv - a.uv) * (static_cast<double>(m) / pieces))).p;
         boundary.emplace_back(prev, q);
         prev = q;
       }

@@ -3,15 +3,145 @@
 
 #include "builtin_params.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <sstream>
 
 namespace plyfit {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
+/// The dish's square domain reaches this many times its trim radius from the axis (the
+/// surface extends past the trim so that the trim is a real one, not the natural boundary).
+constexpr double kDishDomainMargin = 1.25;
+/// Trim polylines: a chord is halved at most this many times (2^20 pieces of a knot span is
+/// far below any tolerance reachable in double precision).
+constexpr int kMaxTrimRefineDepth = 20;
+/// Interior fractions of a trim chord where its distance from the curve is measured.
+constexpr double kTrimChordFractions[3] = {0.25, 0.5, 0.75};
+
 double rad(double deg) {
   return deg * kPi / 180.0;
+}
+
+// A straight segment from a to b in (u, v), as a degree-1 curve.
+NurbsCurveData2 line2(const Vec2& a, const Vec2& b) {
+  NurbsCurveData2 c;
+  c.degree = 1;
+  c.knots = {0.0, 0.0, 1.0, 1.0};
+  c.poles = {a, b};
+  return c;
+}
+
+// The closed polygon through `corners` as degree-1 curves.
+std::vector<NurbsCurveData2> polygon2(const std::vector<Vec2>& corners) {
+  std::vector<NurbsCurveData2> loop;
+  for (size_t k = 0; k < corners.size(); ++k)
+    loop.push_back(line2(corners[k], corners[(k + 1) % corners.size()]));
+  return loop;
+}
+
+// The full circle of `radius` about `centre` in (u, v), exact (rational quadratic).
+std::vector<NurbsCurveData2> circle2(const Vec2& centre, double radius) {
+  NurbsCurveData2 c = circle_arc(radius, 0.0, 2 * kPi);
+  for (auto& p : c.poles) p += centre;
+  return {c};
+}
+
+// The border of a surface's domain, counter-clockwise in (u, v).
+std::vector<NurbsCurveData2> domain_border(const NurbsSurfaceData& s) {
+  const double u0 = s.knots_u.front(), u1 = s.knots_u.back();
+  const double v0 = s.knots_v.front(), v1 = s.knots_v.back();
+  return polygon2({Vec2(u0, v0), Vec2(u1, v0), Vec2(u1, v1), Vec2(u0, v1)});
+}
+
+// Samples the curves of one loop as a polyline whose chords' surface images lie within tol3d of
+// the surface images of the curves (checked at interior fractions, chords halved until they do).
+Result<TrimLoop> sample_loop(const NurbsSurface& surface,
+                             const std::vector<NurbsCurveData2>& curves, double tol3d) {
+  TrimLoop loop;
+  for (const auto& data : curves) {
+    auto curve = NurbsCurve2::create(data);
+    if (!curve) return Error{"invalid trim curve: " + curve.error().message};
+    const auto at = [&](double t) { return Vec2(curve->point(t)); };
+    const auto on_surface = [&](const Vec2& uv) { return surface.point(uv.x(), uv.y()); };
+    std::vector<double> ts;  // the distinct knots inside the domain, ends included
+    for (double k : data.knots)
+      if (k >= curve->t0() && k <= curve->t1() && (ts.empty() || k > ts.back())) ts.push_back(k);
+    const std::function<void(double, const Vec2&, double, const Vec2&, int)> refine =
+        [&](double t0, const Vec2& p0, double t1, const Vec2& p1, int depth) {
+          double err = 0.0;
+          for (double f : kTrimChordFractions)
+            err = std::max(
+                err, (on_surface(at(t0 + f * (t1 - t0))) - on_surface(p0 + f * (p1 - p0))).norm());
+          if (err > tol3d && depth < kMaxTrimRefineDepth) {
+            const double tm = 0.5 * (t0 + t1);
+            const Vec2 pm = at(tm);
+            refine(t0, p0, tm, pm, depth + 1);
+            refine(tm, pm, t1, p1, depth + 1);
+          } else {
+            loop.points.push_back(p1);
+          }
+        };
+    Vec2 p = at(ts.front());
+    if (loop.points.empty()) loop.points.push_back(p);
+    for (size_t k = 0; k + 1 < ts.size(); ++k) {
+      const Vec2 q = at(ts[k + 1]);
+      refine(ts[k], p, ts[k + 1], q, 0);
+      p = q;
+    }
+  }
+  loop.points.pop_back();  // the loop's end is its start
+  if (loop.points.size() < 3) return Error{"a trim loop has fewer than three points"};
+  return loop;
+}
+
+// Fills face.loops from the exact loops: sampled once against the untrimmed face's size, then
+// again against the trimmed face's (smaller) size.
+Status sample_loops(BuiltinFace& b, const Tolerances& tol) {
+  if (b.exact_loops.empty()) return ok_status();
+  auto surface = NurbsSurface::create(b.face.surface, tol);
+  if (!surface) return surface.error();
+  FaceData probe = b.face;
+  for (int pass = 0; pass < 2; ++pass) {
+    auto face = Face::create(probe, tol);
+    if (!face) return face.error();
+    const double tol3d = tol.trim_chord_rel * face->size();
+    probe.loops.clear();
+    for (const auto& curves : b.exact_loops) {
+      auto loop = sample_loop(*surface, curves, tol3d);
+      if (!loop) return loop.error();
+      probe.loops.push_back(std::move(loop).value());
+    }
+  }
+  b.face.loops = std::move(probe.loops);
+  return ok_status();
+}
+
+// The dish: z = (x^2 + y^2) / (2 rho) over [-a, a]^2 as a biquadratic Bezier patch with u = x,
+// v = y (its knots are the coordinates); normal towards +Z.
+NurbsSurfaceData paraboloid_patch(double a, double rho) {
+  const double c[3] = {1.0, -1.0, 1.0};  // Bernstein coefficients of x^2 / a^2 on [-a, a]
+  const double x[3] = {-a, 0.0, a};
+  NurbsSurfaceData s;
+  s.degree_u = s.degree_v = 2;
+  s.count_u = s.count_v = 3;
+  s.knots_u = s.knots_v = {-a, -a, -a, a, a, a};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) s.poles.emplace_back(x[i], x[j], a * a * (c[i] + c[j]) / (2 * rho));
+  return s;
+}
+
+// The plate [0, W] x [0, H] with u = x, v = y; normal +Z.
+NurbsSurfaceData plate_patch(double w, double h) {
+  NurbsSurfaceData s;
+  s.degree_u = s.degree_v = 1;
+  s.count_u = s.count_v = 2;
+  s.knots_u = {0, 0, w, w};
+  s.knots_v = {0, 0, h, h};
+  s.poles = {Vec3(0, 0, 0), Vec3(0, h, 0), Vec3(w, 0, 0), Vec3(w, h, 0)};
+  return s;
 }
 }  // namespace
 
@@ -36,8 +166,13 @@ const std::vector<BuiltinInfo>& builtin_molds() {
         {"angle", 120.0, "sector angle, degrees"}}},
       {"cylinder",
        "x^2 + y^2 = R^2, 0 <= z <= H, from the +X axis counter-clockwise by `angle`; closed "
-       "when angle = 360",
-       {{"R", 10.0, "radius"}, {"H", 20.0, "height"}, {"angle", 90.0, "sector angle, degrees"}}},
+       "when angle = 360; with window_angle > 0 a window (a hole bounded by two generators and "
+       "two circles) of that angle and window_height about the middle (angle / 2, H / 2)",
+       {{"R", 10.0, "radius"},
+        {"H", 20.0, "height"},
+        {"angle", 90.0, "sector angle, degrees"},
+        {"window_angle", 0.0, "window angle, degrees (0: no window)"},
+        {"window_height", 0.0, "window height"}}},
       {"cone",
        "cone frustum about Z with radius r0 at z = 0 and r1 at z = H, from the +X axis "
        "counter-clockwise by `angle` (r1 = 0 gives the apex)",
@@ -48,6 +183,21 @@ const std::vector<BuiltinInfo>& builtin_molds() {
       {"plane",
        "rectangle [0, W] x [0, H] in the plane z = 0, normal +Z",
        {{"W", 100.0, "size along X"}, {"H", 100.0, "size along Y"}}},
+      {"plate",
+       "rectangle [0, W] x [0, H] in the plane z = 0, normal +Z, u = x and v = y; with hole_r > "
+       "0 a circular hole of radius hole_r about (hole_x, hole_y)",
+       {{"W", 100.0, "size along X"},
+        {"H", 60.0, "size along Y"},
+        {"hole_r", 0.0, "hole radius (0: no hole)"},
+        {"hole_x", 50.0, "hole centre x"},
+        {"hole_y", 30.0, "hole centre y"}}},
+      {"dish",
+       "paraboloid z = (x^2 + y^2) / (2 rho) trimmed to the disc x^2 + y^2 <= R^2 (a trimmed "
+       "face: the surface is the square patch |x|, |y| <= 1.25 R, u = x and v = y), with "
+       "hole_r > 0 a central hole of that radius; normal towards +Z",
+       {{"R", 30.0, "trim radius"},
+        {"rho", 40.0, "radius of curvature at the apex"},
+        {"hole_r", 0.0, "central hole radius (0: no hole)"}}},
       {"saddle",
        "hyperbolic paraboloid z = (x^2 - y^2) / (2 rho) over [-size/2, size/2]^2, normal "
        "towards +Z",
@@ -71,8 +221,9 @@ const std::vector<BuiltinInfo>& builtin_molds() {
   return list;
 }
 
-Result<FaceData> builtin_mold(const std::string& name,
-                              const std::map<std::string, double>& params) {
+Result<BuiltinFace> builtin_face(const std::string& name,
+                                 const std::map<std::string, double>& params,
+                                 const Tolerances& tol) {
   auto resolved = detail::builtin_params(builtin_molds(), "mold", name, params);
   if (!resolved) return resolved.error();
   std::map<std::string, double>& v = resolved->second;
@@ -86,7 +237,8 @@ Result<FaceData> builtin_mold(const std::string& name,
       return Error{"parameter '" + std::string(k) + "' of '" + name + "' must be in (0, 360]"};
     return ok_status();
   };
-  FaceData fd;
+  BuiltinFace b;
+  FaceData& fd = b.face;
   fd.name = name;
   if (name == "sphere-octant") {
     if (auto s = positive("R"); !s) return s.error();
@@ -107,6 +259,25 @@ Result<FaceData> builtin_mold(const std::string& name,
     if (auto s = angle("angle"); !s) return s.error();
     fd.surface = cylinder_patch(v["R"], 0.0, rad(v["angle"]), 0.0, v["H"]);
     fd.closed_v = v["angle"] == 360.0;
+    if (v["window_angle"] != 0.0 || v["window_height"] != 0.0) {
+      if (!(v["window_angle"] > 0.0 && v["window_angle"] < v["angle"] && v["window_height"] > 0.0 &&
+            v["window_height"] < v["H"]))
+        return Error{
+            "the window of 'cylinder' needs 0 < window_angle < angle and 0 < "
+            "window_height < H"};
+      // The window's corners in (u, v): u runs along z, v around the axis; the v of an angle
+      // is found by projecting the point at that angle onto the face.
+      auto face = Face::create(fd, tol);
+      if (!face) return face.error();
+      const double r = v["R"], mid = rad(v["angle"]) / 2, half = rad(v["window_angle"]) / 2;
+      const double z0 = (v["H"] - v["window_height"]) / 2, z1 = z0 + v["window_height"];
+      auto uv_at = [&](double a, double z) {
+        return face->project(Vec3(r * std::cos(a), r * std::sin(a), z)).at.uv;
+      };
+      const Vec2 c0 = uv_at(mid - half, z0), c1 = uv_at(mid + half, z1);
+      b.exact_loops.push_back(domain_border(fd.surface));
+      b.exact_loops.push_back(polygon2({c0, Vec2(c0.x(), c1.y()), c1, Vec2(c1.x(), c0.y())}));
+    }
   } else if (name == "cone") {
     if (auto s = positive("H"); !s) return s.error();
     if (!(v["r0"] >= 0.0) || !(v["r1"] >= 0.0) || !(v["r0"] + v["r1"] > 0.0))
@@ -118,6 +289,26 @@ Result<FaceData> builtin_mold(const std::string& name,
     for (const char* k : {"W", "H"})
       if (auto s = positive(k); !s) return s.error();
     fd.surface = plane_patch(Vec3::Zero(), Vec3(v["W"], 0, 0), Vec3(0, v["H"], 0));
+  } else if (name == "plate") {
+    for (const char* k : {"W", "H"})
+      if (auto s = positive(k); !s) return s.error();
+    fd.surface = plate_patch(v["W"], v["H"]);
+    if (v["hole_r"] != 0.0) {
+      const double r = v["hole_r"], x = v["hole_x"], y = v["hole_y"];
+      if (!(r > 0.0 && x - r > 0.0 && x + r < v["W"] && y - r > 0.0 && y + r < v["H"]))
+        return Error{"the hole of 'plate' (hole_r, hole_x, hole_y) must lie inside the plate"};
+      b.exact_loops.push_back(domain_border(fd.surface));
+      b.exact_loops.push_back(circle2(Vec2(x, y), r));
+    }
+  } else if (name == "dish") {
+    for (const char* k : {"R", "rho"})
+      if (auto s = positive(k); !s) return s.error();
+    if (!(v["hole_r"] >= 0.0 && v["hole_r"] < v["R"]))
+      return Error{"the hole radius hole_r of 'dish' must be in [0, R)"};
+    fd.surface = paraboloid_patch(kDishDomainMargin * v["R"], v["rho"]);
+    b.natural_outer = false;
+    b.exact_loops.push_back(circle2(Vec2(0, 0), v["R"]));
+    if (v["hole_r"] > 0.0) b.exact_loops.push_back(circle2(Vec2(0, 0), v["hole_r"]));
   } else if (name == "saddle") {
     for (const char* k : {"size", "rho"})
       if (auto s = positive(k); !s) return s.error();
@@ -139,7 +330,16 @@ Result<FaceData> builtin_mold(const std::string& name,
     fd.closed_v = v["angle"] == 360.0;
     fd.closed_u = v["t1"] - v["t0"] == 360.0;
   }
-  return fd;
+  if (auto st = sample_loops(b, tol); !st)
+    return Error{"built-in mold '" + name + "': " + st.error().message};
+  return b;
+}
+
+Result<FaceData> builtin_mold(const std::string& name,
+                              const std::map<std::string, double>& params) {
+  auto b = builtin_face(name, params);
+  if (!b) return b.error();
+  return std::move(b->face);
 }
 
 Result<std::pair<std::string, std::map<std::string, double>>> parse_builtin_spec(

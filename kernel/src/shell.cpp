@@ -363,10 +363,17 @@ Result<Shell> Shell::create(ShellData data, const Tolerances& tol) {
   // in its face's loop to the neighbouring face, round the vertex face by face until a free
   // run starts there.
   {
+    // A run is a maximal piece of a face's loop of one class: a shared edge (its index), or
+    // free segments that are a boundary (-1), a closed face's seam (-2) or collapsed (-3).
     struct Run {
       std::int32_t face;
       int first, count;  // segments in T.segs
       std::int32_t edge;
+      int cls;
+    };
+    auto cls_of = [](const Topology::Seg& sg) {
+      if (sg.edge >= 0) return static_cast<int>(sg.edge);
+      return sg.kind == BoundaryLoop::kSeam ? -2 : sg.kind == BoundaryLoop::kCollapsed ? -3 : -1;
     };
     std::vector<Run> runs;
     std::vector<std::vector<int>> runs_of(n);  // per face, run indices in loop order
@@ -380,22 +387,21 @@ Result<Shell> Shell::create(ShellData data, const Tolerances& tol) {
             ++m;
           }
         if (m == 0) continue;
-        // Start at a tag change so that no run wraps round the loop's start.
+        // Start at a class change so that no run wraps round the loop's start.
+        auto cls_at = [&](int i) { return cls_of(T.segs[static_cast<std::size_t>(base + i)]); };
         int start = 0;
         for (int i = 0; i < m; ++i)
-          if (T.segs[static_cast<std::size_t>(base + i)].edge !=
-              T.segs[static_cast<std::size_t>(base + (i + m - 1) % m)].edge) {
+          if (cls_at(i) != cls_at((i + m - 1) % m)) {
             start = i;
             break;
           }
         for (int g = 0; g < m;) {
           const int i0 = (start + g) % m;
-          const std::int32_t tag = T.segs[static_cast<std::size_t>(base + i0)].edge;
+          const int cls = cls_at(i0);
           int c = 0;
-          while (g + c < m &&
-                 T.segs[static_cast<std::size_t>(base + (start + g + c) % m)].edge == tag)
-            ++c;
-          Run r{static_cast<std::int32_t>(k), base + i0, c, tag};
+          while (g + c < m && cls_at((start + g + c) % m) == cls) ++c;
+          Run r{static_cast<std::int32_t>(k), base + i0, c, cls >= 0 ? cls : TrimLoop::kFreeEdge,
+                cls};
           // A run that wraps (the whole loop is one run) keeps its segment order via modulo.
           runs_of[k].push_back(static_cast<int>(runs.size()));
           runs.push_back(r);
@@ -442,18 +448,16 @@ Result<Shell> Shell::create(ShellData data, const Tolerances& tol) {
         if ((verts[i] - p).norm() <= merge) return;
       verts.push_back(p);
     };
-    int free_edges = 0;
+    // Edges counted twice: a shared edge once per side, a free edge twice, a seam (whose two
+    // sides are both in its face's loop) once per side.
+    int edges2 = 0;
     for (const Run& r : runs) {
-      bool collapsed = true;
-      for (int g = 0; g < r.count; ++g)
-        collapsed = collapsed && seg_at(r, g).kind == BoundaryLoop::kCollapsed;
-      if (collapsed) continue;
-      if (r.edge < 0) ++free_edges;
+      if (r.cls == -3) continue;  // a collapsed edge is a vertex
+      edges2 += r.cls == -1 ? 2 : 1;
       vertex(point3(r.face, run_start(r, false)));
       vertex(point3(r.face, run_end(r, false)));
     }
-    sh.euler_ =
-        static_cast<int>(verts.size()) - (data.edge_count + free_edges) + static_cast<int>(n);
+    sh.euler_ = static_cast<int>(verts.size()) - edges2 / 2 + static_cast<int>(n);
     for (std::size_t ri = 0; ri < runs.size(); ++ri) {
       if (used[ri] || runs[ri].edge >= 0) continue;
       BoundaryLoop loop;
@@ -496,20 +500,18 @@ Result<Shell> Shell::create(ShellData data, const Tolerances& tol) {
           dir = at_front ? -1 : 1;
         }
         if (next < 0) break;  // malformed: close the loop here
+        // The next run starts where this one ends: on this face (a run of another class in
+        // the same loop) the loop goes straight on; on another face (a corner of the shell) a
+        // junction joins the two faces' copies of the vertex.
         const Vec2 last = run_end(r, rev);
         const Run& nr = runs[static_cast<std::size_t>(next)];
-        loop.points.emplace_back(last, r.face);
-        loop.kinds.push_back(nr.face == r.face && next == static_cast<int>(ri)
-                                 ? BoundaryLoop::kEdge
-                                 : BoundaryLoop::kJunction);
+        if (nr.face != r.face || run_start(nr, next_rev) != last) {
+          loop.points.emplace_back(last, r.face);
+          loop.kinds.push_back(BoundaryLoop::kJunction);
+        }
         if (next == static_cast<int>(ri) || used[static_cast<std::size_t>(next)]) break;
         cur = next;
         rev = next_rev;
-      }
-      // A loop that closes on its own start within one face needs no junction point.
-      if (loop.points.size() >= 2 && loop.kinds.back() == BoundaryLoop::kEdge) {
-        loop.points.pop_back();
-        loop.kinds.pop_back();
       }
       bool real = false;
       for (auto k : loop.kinds) real = real || k == BoundaryLoop::kEdge;

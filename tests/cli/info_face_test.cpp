@@ -1,5 +1,6 @@
 // plyfit info FILE --face N: a point of the face near its middle (inside its trims), its
-// outward normal, and drape flags that start a drape there.
+// outward normal, and drape flags that start a drape there. On the real faces of the CAD
+// corpus: info_face_corpus_test.cpp.
 
 #include <plyfit/importers/importers.hpp>
 
@@ -8,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include "cli/cli_util.hpp"
+#include "cli/info_face_checks.hpp"
 #include "test_util.hpp"
 
 #include <cmath>
@@ -16,26 +18,6 @@
 using namespace plyfit;
 using namespace plyfit::test;
 using nlohmann::json;
-
-namespace {
-
-Vec3 vec(const json& j) {
-  return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
-}
-
-// The plyfit info --face flags run as a drape: it must map nodes from a start on the face.
-void drape_from(const std::string& file, const std::string& flags, const Scratch& tmp) {
-  const CliRun r = plyfit_run("drape --mold '" + file + "' " + flags +
-                                  " --spacing 1 --outputs json --quiet -o '" + tmp.file("d") + "'",
-                              tmp);
-  INFO(r.err);
-  REQUIRE(r.code == 0);
-  const json rep = json::parse(slurp(tmp.file("d") + "/report.json"));
-  CHECK(rep["nodes"]["mapped"].get<int>() > 0);
-  CHECK(rep["start"]["moved"].get<double>() <= 1e-6);  // the point is on the face (9 digits)
-}
-
-}  // namespace
 
 TEST_CASE("cli: plyfit info --face gives the octant's middle, its outward normal and flags") {
   Scratch tmp("info_face");
@@ -67,28 +49,17 @@ TEST_CASE("cli: plyfit info --face gives the octant's middle, its outward normal
   CHECK(text.out.find("flags: " + j["flags"].get<std::string>() + "\n") != std::string::npos);
 }
 
-TEST_CASE("cli: plyfit info --face finds a point inside the trims of real faces") {
-  const std::string dir = std::string(PLYFIT_SHARED_DIR) + "/cad";
-  if (!std::filesystem::exists(dir + "/PRO20359-L1.igs")) {
-    WARN("skipped: " << dir << " (the shared CAD corpus) is absent");
-    return;
-  }
-  Scratch tmp("info_face_cad");
-  for (const auto& [name, face] :
-       std::vector<std::pair<std::string, int>>{{"PRO20359-L1.igs", 0},
-                                                {"surf114.igs", 3},
-                                                {"trj7_c2-td-203.stp", 2},
-                                                {"example_45_faces.iges", 7},
-                                                {"bug27693_cornetta-step.stp", 20}}) {
-    const std::string file = dir + "/" + name;
-    if (!std::filesystem::exists(file)) continue;
-    INFO(name << " face " << face);
-    const CliRun r =
-        plyfit_run("info '" + file + "' --face " + std::to_string(face) + " --json", tmp);
+TEST_CASE("cli: plyfit info --face finds a point inside the trims of the trimmed samples") {
+  // The plate's middle (50, 30) is the centre of its hole; the dish's middle is in its hole.
+  Scratch tmp("info_face_samples");
+  for (const std::string name : {"plate-hole.igs", "dish.step", "tube-window.step"}) {
+    const std::string file = std::string(PLYFIT_SOURCE_DIR) + "/samples/molds/" + name;
+    INFO(name);
+    const CliRun r = plyfit_run("info '" + file + "' --face 0 --json", tmp);
     INFO(r.err);
     REQUIRE(r.code == 0);
     const json j = json::parse(r.out);
-    auto f = importers::load_face(file, face);
+    auto f = importers::load_face(file, 0);
     REQUIRE(f.ok());
     const Vec2 uv(j["uv"][0].get<double>(), j["uv"][1].get<double>());
     CHECK(f->contains(uv));

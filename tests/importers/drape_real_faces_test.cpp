@@ -10,6 +10,8 @@
 
 #include <catch2/catch.hpp>
 
+#include "corpus.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -30,7 +32,7 @@ struct Case {
 };
 
 Face load(const Case& c) {
-  auto f = importers::load_face(std::string(PLYFIT_SHARED_DIR) + "/cad/" + c.file, c.face);
+  auto f = importers::load_face(test::shared_cad(c.file), c.face);
   REQUIRE(f.ok());
   return std::move(f).value();
 }

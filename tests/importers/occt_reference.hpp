@@ -19,10 +19,12 @@
 #include <GCPnts_QuasiUniformDeflection.hxx>
 #include <GProp_GProps.hxx>
 #include <Geom2dAdaptor_Curve.hxx>
+#include <GeomAPI_ProjectPointOnCurve.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <GeomLProp_SLProps.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_BezierSurface.hxx>
+#include <Geom_Curve.hxx>
 #include <Geom_Plane.hxx>
 #include <IGESControl_Reader.hxx>
 #include <Message.hxx>
@@ -75,9 +77,14 @@ constexpr double kBoundaryBandRel = 1e-3;
 /// (u, v) box diagonal.
 constexpr double kBoundarySamplingRel = 1e-5;
 
-/// The shared CAD folder.
-inline std::string shared_cad(const std::string& name) {
-  return std::string(PLYFIT_SHARED_DIR) + "/cad/" + name;
+/// A sample mold written by plyfit (samples/molds, committed).
+inline std::string sample_mold(const std::string& name) {
+  return std::string(PLYFIT_SOURCE_DIR) + "/samples/molds/" + name;
+}
+
+/// True for an IGES file name (.igs, .iges).
+inline bool is_iges(const std::string& name) {
+  return name.find(".igs") != std::string::npos || name.find(".iges") != std::string::npos;
 }
 
 /// A file read by OCCT's own reader, its faces in TopExp::MapShapes order.
@@ -288,6 +295,63 @@ inline TopoDS_Face face_in_converted_parameters(const TopoDS_Face& original) {
   if (keeps_parameters(original)) return original;
   BRepBuilderAPI_NurbsConvert nc(original, Standard_True);
   return TopoDS::Face(nc.ModifiedShape(original));
+}
+
+/// The surface images of points along the trim polylines of every trimmed face of `path` lie
+/// within trim_chord_rel of the face size (plus the edge's own tolerance: OCCT's 3D edge curve
+/// and its pcurve agree only to it) of the face's edges, OCCT's 3D curves. Returns the worst
+/// distance over the allowed one.
+inline double check_trim_accuracy(const std::string& path) {
+  INFO(path);
+  auto file = importers::open_mold(path);
+  REQUIRE(file.ok());
+  const Reference ref = read_reference(path, is_iges(path));
+  const Tolerances tol;
+  double worst = 0.0;
+  for (int i = 0; i < ref.count(); ++i) {
+    INFO("face " << i);
+    auto data = (*file)->convert_face(i);
+    REQUIRE(data.ok());
+    if (data->loops.empty()) continue;
+    auto face = Face::create(data.value());
+    REQUIRE(face.ok());
+    struct EdgeCurve {
+      Handle(Geom_Curve) c;
+      double a, b, tol;
+    };
+    std::vector<EdgeCurve> edges;
+    for (TopExp_Explorer ex(ref.face(i), TopAbs_EDGE); ex.More(); ex.Next()) {
+      const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
+      EdgeCurve ec;
+      ec.c = BRep_Tool::Curve(e, ec.a, ec.b);
+      ec.tol = BRep_Tool::Tolerance(e);
+      if (!ec.c.IsNull()) edges.push_back(ec);
+    }
+    const double allowed_base = tol.trim_chord_rel * occt_size(ref.face(i));
+    GeomAPI_ProjectPointOnCurve proj;
+    for (const auto& loop : face->loops()) {
+      const size_t n = loop.points.size();
+      const size_t stride = std::max<size_t>(1, n / 60);  // about 60 segments per loop
+      for (size_t k = 0; k < n; k += stride) {
+        const Vec2 mid = 0.5 * (loop.points[k] + loop.points[(k + 1) % n]);
+        const Vec3 p = face->eval1(mid).p;
+        const gp_Pnt P(p.x(), p.y(), p.z());
+        double best = 1e300, best_allowed = allowed_base;
+        for (const auto& ec : edges) {
+          double d = std::min(P.Distance(ec.c->Value(ec.a)), P.Distance(ec.c->Value(ec.b)));
+          proj.Init(P, ec.c, ec.a, ec.b);
+          if (proj.NbPoints() > 0) d = std::min(d, proj.LowerDistance());
+          if (d < best) {
+            best = d;
+            best_allowed = allowed_base + ec.tol;
+          }
+        }
+        worst = std::max(worst, best / best_allowed);
+        CHECK(best <= best_allowed);
+      }
+    }
+  }
+  return worst;
 }
 
 /// A fresh temporary folder, removed with the object.

@@ -6,11 +6,10 @@
 
 #include <catch2/catch.hpp>
 
+#include "corpus.hpp"
 #include "importers/occt_reference.hpp"
 
 #include <BRepMesh_IncrementalMesh.hxx>
-#include <GeomAPI_ProjectPointOnCurve.hxx>
-#include <Geom_Curve.hxx>
 
 using namespace plyfit;
 using namespace plyfit::test;
@@ -26,7 +25,7 @@ struct Expected {
 
 // key=value pairs of the fourth and fifth columns of PROPERTIES.txt.
 std::map<std::string, Expected> read_properties() {
-  std::ifstream in(std::string(PLYFIT_SHARED_DIR) + "/cad/PROPERTIES.txt");
+  std::ifstream in(shared_cad("PROPERTIES.txt"));
   REQUIRE(in);
   std::map<std::string, Expected> out;
   std::string line;
@@ -101,10 +100,6 @@ void check_box(const BBox3& listed, const TopoDS_Face& f) {
   CHECK(short_of <= kBoxSampledRel * diag);
 }
 
-bool is_iges(const std::string& name) {
-  return name.find(".igs") != std::string::npos || name.find(".iges") != std::string::npos;
-}
-
 const std::vector<std::string> kFiles = {"BUC50025.igs",          "PRO20359-L1.igs",
                                          "occ22470.igs",          "surf114.igs",
                                          "example_45_faces.iges", "bug27693_cornetta-step.stp",
@@ -158,68 +153,12 @@ void check_file_contains(const std::string& name) {
   WARN(name << ": " << trimmed << " trimmed faces compared with the classifier");
 }
 
-// The surface images of points along the trim polylines lie within trim_chord_rel of the face
-// size (plus the edge's own tolerance: OCCT's 3D edge curve and its pcurve agree only to it)
-// of the face's edges, OCCT's 3D curves. Returns the worst distance over the allowed one.
-double check_trim_accuracy(const std::string& name) {
-  INFO(name);
-  auto file = importers::open_mold(shared_cad(name));
-  REQUIRE(file.ok());
-  const Reference ref = read_reference(shared_cad(name), is_iges(name));
-  const Tolerances tol;
-  double worst = 0.0;
-  for (int i = 0; i < ref.count(); ++i) {
-    INFO("face " << i);
-    auto data = (*file)->convert_face(i);
-    REQUIRE(data.ok());
-    if (data->loops.empty()) continue;
-    auto face = Face::create(data.value());
-    REQUIRE(face.ok());
-    struct EdgeCurve {
-      Handle(Geom_Curve) c;
-      double a, b, tol;
-    };
-    std::vector<EdgeCurve> edges;
-    for (TopExp_Explorer ex(ref.face(i), TopAbs_EDGE); ex.More(); ex.Next()) {
-      const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
-      EdgeCurve ec;
-      ec.c = BRep_Tool::Curve(e, ec.a, ec.b);
-      ec.tol = BRep_Tool::Tolerance(e);
-      if (!ec.c.IsNull()) edges.push_back(ec);
-    }
-    const double allowed_base = tol.trim_chord_rel * occt_size(ref.face(i));
-    GeomAPI_ProjectPointOnCurve proj;
-    for (const auto& loop : face->loops()) {
-      const size_t n = loop.points.size();
-      const size_t stride = std::max<size_t>(1, n / 60);  // about 60 segments per loop
-      for (size_t k = 0; k < n; k += stride) {
-        const Vec2 mid = 0.5 * (loop.points[k] + loop.points[(k + 1) % n]);
-        const Vec3 p = face->eval1(mid).p;
-        const gp_Pnt P(p.x(), p.y(), p.z());
-        double best = 1e300, best_allowed = allowed_base;
-        for (const auto& ec : edges) {
-          double d = std::min(P.Distance(ec.c->Value(ec.a)), P.Distance(ec.c->Value(ec.b)));
-          proj.Init(P, ec.c, ec.a, ec.b);
-          if (proj.NbPoints() > 0) d = std::min(d, proj.LowerDistance());
-          if (d < best) {
-            best = d;
-            best_allowed = allowed_base + ec.tol;
-          }
-        }
-        worst = std::max(worst, best / best_allowed);
-        CHECK(best <= best_allowed);
-      }
-    }
-  }
-  return worst;
-}
-
 }  // namespace
 
 TEST_CASE("importers: trim polylines follow the face edges within the trim tolerance") {
   for (const std::string name :
        {"bug27693_cornetta-step.stp", "occ22470.igs", "example_45_faces.iges", "PRO20359-L1.igs"}) {
-    const double worst = check_trim_accuracy(name);
+    const double worst = check_trim_accuracy(shared_cad(name));
     WARN(name << ": worst trim deviation " << worst << " of the allowed");
   }
 }

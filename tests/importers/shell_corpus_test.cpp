@@ -10,6 +10,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "corpus.hpp"
 #include "importers/shell_checks.hpp"
 
 using namespace plyfit;
@@ -19,12 +20,6 @@ namespace {
 
 /// The importer's documented cap on the sewing tolerance, relative to the shell's size.
 constexpr double kSewingCapRel = 1e-4;
-
-bool have_corpus() {
-  if (std::filesystem::is_directory(std::string(PLYFIT_SHARED_DIR) + "/cad")) return true;
-  WARN("../shared/cad is absent: test skipped");
-  return false;
-}
 
 // A shared file opened by plyfit and read by OpenCASCADE's own reader.
 struct SharedFile {
@@ -75,7 +70,6 @@ ShellCheck sew_apart(SharedFile& f, int euler, int free_loops) {
 }  // namespace
 
 TEST_CASE("importers: the deflector's 18 faces (occ22470.igs) sew into one closed shell") {
-  if (!have_corpus()) return;
   SharedFile f = open_shared("occ22470.igs", 18);
   // OpenCASCADE's own analysis of the file's shell: every edge bounds two faces, no free
   // boundary, and its Euler characteristic.
@@ -114,7 +108,6 @@ TEST_CASE("importers: the deflector's 18 faces (occ22470.igs) sew into one close
 }
 
 TEST_CASE("importers: surf114's four patches cross each other but share no border") {
-  if (!have_corpus()) return;
   SharedFile f = open_shared("surf114.igs", 4);
   // Independently: no border of one patch runs along a border of another within the largest
   // sewing tolerance the importer allows (1e-4 of the size), so no edge can be shared.
@@ -148,7 +141,6 @@ TEST_CASE("importers: surf114's four patches cross each other but share no borde
 }
 
 TEST_CASE("importers: trj7's four panels lie apart: four shells, no shared edge") {
-  if (!have_corpus()) return;
   SharedFile f = open_shared("trj7_c2-td-203.stp", 4);
   for (int i = 0; i < 4; ++i)
     for (int j = i + 1; j < 4; ++j) {
@@ -161,7 +153,6 @@ TEST_CASE("importers: trj7's four panels lie apart: four shells, no shared edge"
 }
 
 TEST_CASE("importers: the cornetta's 110 faces sew into one shell like the file's own", "[slow]") {
-  if (!have_corpus()) return;
   SharedFile f = open_shared("bug27693_cornetta-step.stp", 110);
   auto shell = f.file->convert_shell({});
   REQUIRE(shell.ok());

@@ -178,11 +178,9 @@ TEST_CASE("importers: a cylinder's seam is not a shared edge; its two circles ar
   check_faces_like_convert_face(**file, *shell, faces, ref, {}, 300);
 }
 
-// The kernel's Shell (kernel/src/shell.cpp, Euler characteristic) counts the two sides of a
-// face's seam as two free edges, where they are one edge: it gives 1 for a closed cylinder.
-// Marked !mayfail until the kernel counts a seam once.
-TEST_CASE("importers: a sewn cylinder's Euler characteristic in the kernel is OpenCASCADE's",
-          "[!mayfail]") {
+// The kernel's Shell counts the two sides of a face's seam as one edge (both are in the
+// face's loop): 2 for a closed cylinder with its caps, as OpenCASCADE counts.
+TEST_CASE("importers: a sewn cylinder's Euler characteristic in the kernel is OpenCASCADE's") {
   TempDir dir("shell_cylinder_euler");
   const std::string path = dir.file("cylinder.step");
   write_cylinder(path);

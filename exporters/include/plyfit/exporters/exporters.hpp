@@ -20,9 +20,12 @@ namespace plyfit::exporters {
 
 /// Inputs of a run that are not part of the DrapeProblem, echoed in the report.
 struct RunInfo {
-  std::string mold;       ///< file path or "builtin:..." as given
-  int face = 0;           ///< face index
-  FaceInfo face_info;     ///< what the mold says about the face
+  std::string mold;  ///< file path or "builtin:..." as given
+  /// The faces draped, by their index in the mold file: one face, or the faces of a shell
+  /// in the order of the surface's faces (DrapeNode::face, DrapeMetrics::faces).
+  std::vector<int> faces;
+  /// What the mold says about each of them.
+  std::vector<FaceInfo> faces_info;
   std::string mold_unit;  ///< the file's unit (geometry is in mm)
   bool flip_normal = false;
   double tolerance_rel = 0;  ///< Newton tolerance relative to d
@@ -54,8 +57,8 @@ struct ExportOptions {
 struct ExportContext {
   const DrapeProblem& problem;
   const DrapeResult& result;
-  const Face& face;
-  const FlatPattern* flat;  ///< may be null
+  const DrapeSurface& surface;  ///< one face or a shell
+  const FlatPattern* flat;      ///< may be null
   const RunInfo& run;
   const ExportOptions& options;
 };

@@ -1,0 +1,143 @@
+#pragma once
+// Regression over the sample scenes (samples/*.ini): each is draped by the built plyfit and
+// its report.json figures are compared with samples/golden/<scene>.json. Counts must match
+// exactly; angles, areas, energies and the start's move to kGoldenRel relative; residuals
+// are only bounded. PLYFIT_UPDATE_GOLDENS=1 rewrites the goldens instead (see
+// scripts/update-goldens); every change of a golden figure is explained in its commit.
+// Scenes on plyfit's own molds run in golden_test.cpp, scenes on the CAD corpus
+// (../shared/cad) in golden_corpus_test.cpp.
+
+#include <nlohmann/json.hpp>
+
+#include <catch2/catch.hpp>
+
+#include "cli/cli_util.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace plyfit::test {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+/// Relative agreement of the real-valued golden figures.
+inline constexpr double kGoldenRel = 1e-9;
+/// Bounds of the residuals: thread and base-path links keep their length, and the base path
+/// its plane, to this fraction of the spacing; mapped points lie on the face to this fraction
+/// of the face size.
+inline constexpr double kLinkResidualRel = 1e-9;
+inline constexpr double kSurfaceResidualRel = 1e-9;
+/// Figures that are zero in exact arithmetic come out as round-off (a developable face's shear
+/// energy ~1e-24, a start on the face moving ~1e-15): a relative test is meaningless there, so
+/// these absolute floors are added to the tolerance: energy (a sum of cos^2) and the start's
+/// move as a fraction of the face size.
+inline constexpr double kEnergyRoundoff = 1e-18;
+inline constexpr double kMoveRoundoffRel = 1e-12;
+
+inline const std::vector<std::string> kExact = {
+    "/status",        "/nodes/mapped",      "/nodes/auxiliary", "/nodes/outside",
+    "/nodes/off_ply", "/nodes/shear_limit", "/nodes/failed",    "/area_mesh_points"};
+inline const std::vector<std::string> kRelative = {
+    "/flat_area",        "/surface_area", "/coverage",          "/thread_angle/min",
+    "/thread_angle/max", "/shear_energy", "/flat_outline/area", "/flat_outline/perimeter",
+    "/mold/face/area",   "/start/moved"};
+
+inline std::string samples_dir() {
+  return std::string(PLYFIT_SOURCE_DIR) + "/samples";
+}
+
+inline std::vector<fs::path> sample_scenes() {
+  std::vector<fs::path> v;
+  for (const auto& e : fs::directory_iterator(samples_dir()))
+    if (e.path().extension() == ".ini") v.push_back(e.path());
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+/// The compared figures of a report, keyed by JSON pointer.
+inline json golden_of(const json& report) {
+  json g = json::object();
+  for (const auto& p : kExact) g[p] = report.at(json::json_pointer(p));
+  for (const auto& p : kRelative) g[p] = report.at(json::json_pointer(p));
+  return g;
+}
+
+inline json drape_report(const fs::path& scene, const Scratch& tmp) {
+  const std::string out = tmp.file(scene.stem().string());
+  const CliRun r =
+      plyfit_run("drape '" + scene.string() + "' -o '" + out + "' --outputs json --quiet", tmp);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  return json::parse(slurp(out + "/report.json"));
+}
+
+/// True when the scene's mold is a file of the CAD corpus (a `mold =` path into shared/cad).
+inline bool scene_uses_corpus(const fs::path& scene) {
+  std::istringstream in(slurp(scene.string()));
+  for (std::string line; std::getline(in, line);) {
+    const auto eq = line.find('=');
+    if (eq == std::string::npos || line.compare(0, 4, "mold") != 0) continue;
+    if (line.find("shared/cad/", eq) != std::string::npos) return true;
+  }
+  return false;
+}
+
+/// The sample scenes on the corpus (corpus true) or on plyfit's own molds (false).
+inline std::vector<fs::path> scenes_of(bool corpus) {
+  std::vector<fs::path> v;
+  for (const auto& s : sample_scenes())
+    if (scene_uses_corpus(s) == corpus) v.push_back(s);
+  return v;
+}
+
+/// Drapes every scene of `scenes` and compares its report with its golden (or rewrites the
+/// golden when PLYFIT_UPDATE_GOLDENS is set).
+inline void check_goldens(const std::vector<fs::path>& scenes) {
+  Scratch tmp("goldens");
+  const bool update = std::getenv("PLYFIT_UPDATE_GOLDENS") != nullptr;
+  const std::string golden_dir = samples_dir() + "/golden";
+  for (const auto& scene : scenes) {
+    const std::string name = scene.stem().string();
+    INFO("scene " << name);
+    const json report = drape_report(scene, tmp);
+    const std::string golden_path = golden_dir + "/" + name + ".json";
+    if (update) {
+      fs::create_directories(golden_dir);
+      json g = golden_of(report);
+      g["scene"] = scene.filename().string();
+      spit(golden_path, g.dump(2) + "\n");
+      continue;
+    }
+    REQUIRE(fs::exists(golden_path));
+    const json golden = json::parse(slurp(golden_path));
+    for (const auto& p : kExact) {
+      INFO(p);
+      CHECK(report.at(json::json_pointer(p)) == golden.at(p));
+    }
+    const json& box = report["mold"]["face"]["bbox"];
+    double size2 = 0.0;
+    for (int k = 0; k < 3; ++k)
+      size2 += std::pow(box["max"][k].get<double>() - box["min"][k].get<double>(), 2);
+    const double size = std::sqrt(size2);
+    for (const auto& p : kRelative) {
+      INFO(p);
+      const double a = report.at(json::json_pointer(p)).get<double>();
+      const double g = golden.at(p).get<double>();
+      const double floor = p == "/shear_energy"  ? kEnergyRoundoff
+                           : p == "/start/moved" ? kMoveRoundoffRel * size
+                                                 : 0.0;
+      CHECK(std::abs(a - g) <= kGoldenRel * std::abs(g) + floor);
+    }
+    CHECK(report["residual"]["edge_length_max_rel"].get<double>() <= kLinkResidualRel);
+    CHECK(report["residual"]["base_plane_max_rel"].get<double>() <= kLinkResidualRel);
+    CHECK(report["residual"]["surface_distance_max"].get<double>() <= kSurfaceResidualRel * size);
+  }
+}
+
+}  // namespace plyfit::test
