@@ -3,7 +3,10 @@
 // it). Each maximal run of consecutive mapped nodes of a thread (DrapeResult::threads()) is one
 // curve, and the base path is one curve through its mapped nodes in path order. The curves are
 // grouped into named sets, each a product: `weft`, `warp` and `base_path` (net_curve_sets()); a
-// set without curves is left out.
+// set without curves is left out. With a flat pattern, the 3D ply boundary follows (the exact
+// outline's loops on the mold, OutlineLoop::points3d, e.g. for laser projection): the outer
+// loops as closed polylines in the set `ply_boundary`, each hole as a closed polyline in its
+// own set `ply_hole_N` (N = 1, 2, ... in outline order) (boundary_sets()).
 //
 // Curves are the kernel's: polyline_curve() (degree 1, through the nodes) by default, or
 // interpolate_cubic() for ExportOptions::curve_degree 3; a run the cubic interpolation rejects
@@ -13,18 +16,64 @@
 
 #include <plyfit/exporters/exporters.hpp>
 #include <plyfit/exporters/step_curves.hpp>
+#include <plyfit/kernel/flat_pattern.hpp>
 #include <plyfit/kernel/nurbs_curve.hpp>
 
 #include "plugins.hpp"
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 namespace plyfit::exporters {
 
 namespace {
 
-// The named curve sets of net.step, in file order. Another set (e.g. the ply boundary in 3D,
-// polyline_set(..., closed = true)) is one more entry here.
+// Consecutive outline points closer than this fraction of the loop's length are one point of
+// the boundary polyline: a degree-1 curve needs distinct points, and its knots (chord-length
+// parameters) must stay apart by more than OpenCASCADE's knot resolution (about 1e-15 of the
+// range) to read back. 1e-9 of a 1 m loop is 1 nm, far below any projector's resolution.
+constexpr double kBoundaryMergeRel = 1e-9;
+
+// The 3D points of `loop` without (near-)repeats, the first point not repeated at the end.
+std::vector<Vec3> boundary_points(const OutlineLoop& loop) {
+  double length = 0.0;
+  for (size_t k = 0; k < loop.points3d.size(); ++k)
+    length += (loop.points3d[(k + 1) % loop.points3d.size()] - loop.points3d[k]).norm();
+  const double merge = kBoundaryMergeRel * length;
+  std::vector<Vec3> pts;
+  for (const Vec3& p : loop.points3d)
+    if (pts.empty() || (p - pts.back()).norm() > merge) pts.push_back(p);
+  while (pts.size() > 1 && (pts.back() - pts.front()).norm() <= merge) pts.pop_back();
+  return pts;
+}
+
+// The 3D ply boundary as closed polylines: `ply_boundary` (the outer loops), `ply_hole_N`.
+Result<std::vector<StepCurveSet>> boundary_sets(const FlatPattern& flat) {
+  std::vector<std::vector<Vec3>> outer;
+  std::vector<StepCurveSet> sets;
+  int holes = 0;
+  for (const OutlineLoop& loop : flat.outline) {
+    std::vector<Vec3> pts = boundary_points(loop);
+    const std::string name = loop.hole ? "ply_hole_" + std::to_string(++holes) : "ply_boundary";
+    if (pts.size() < 3)
+      return Error{"cannot build the " + name + " curve: the loop has fewer than 3 distinct " +
+                   "points on the mold"};
+    if (!loop.hole) {
+      outer.push_back(std::move(pts));
+      continue;
+    }
+    auto set = polyline_set(name, {pts}, true);
+    if (!set) return Error{"cannot build the " + set.error().message};
+    sets.push_back(std::move(set).value());
+  }
+  auto set = polyline_set("ply_boundary", outer, true);
+  if (!set) return Error{"cannot build the " + set.error().message};
+  sets.insert(sets.begin(), std::move(set).value());
+  return sets;
+}
+
+// The named curve sets of net.step, in file order.
 Result<std::vector<StepCurveSet>> net_curve_sets(const ExportContext& ctx) {
   const DrapeResult& r = ctx.result;
   struct Group {
@@ -49,6 +98,11 @@ Result<std::vector<StepCurveSet>> net_curve_sets(const ExportContext& ctx) {
     }
     sets.push_back(std::move(set));
   }
+  if (ctx.flat) {
+    auto boundary = boundary_sets(*ctx.flat);
+    if (!boundary) return boundary.error();
+    for (auto& set : *boundary) sets.push_back(std::move(set));
+  }
   return sets;
 }
 
@@ -66,7 +120,7 @@ Status write_step(const ExportContext& ctx, const std::string& path) {
 Exporter make_step_exporter() {
   return {"step",
           {"net.step"},
-          "net.step: draped weft, warp and base path as 3D curves (AP214)",
+          "net.step: draped weft, warp and base path, and the ply boundary, as 3D curves (AP214)",
           [](const ExportContext& ctx, const std::string& outdir) {
             return write_step(ctx, (std::filesystem::path(outdir) / "net.step").string());
           }};
