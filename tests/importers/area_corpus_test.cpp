@@ -53,7 +53,10 @@ TEST_CASE(
     }
     WARN(name << ": largest |u - v| " << worst << " of the area; " << unconverged
               << " integrations short of their accuracy");
-    // Only surf114's blob (three faces, at 1e-9 only) does not converge.
-    CHECK(unconverged <= (name == "surf114.igs" ? 6 : 0));
+    // Every integration converges but surf114's face 3 along v at 1e-9 (5e-8 reached: its
+    // bands in v, the surface's u, meet the edges where |S_u| vanishes). With the inner rule's
+    // columns in equal parts, three surf114 faces fell short at 1e-9 along u as well; the
+    // importer integrates along u.
+    CHECK(unconverged <= (name == "surf114.igs" ? 1 : 0));
   }
 }
