@@ -82,6 +82,30 @@ Table optimize_bench_table(bool* available, OptimizeFigures* figures = nullptr);
 /// Where the drape's time goes (perf record on the bicubic face, by part).
 Table profile_table(bool* available);
 
+/// Writes a large mold file of `faces` trimmed bicubic B-spline faces with poles x poles poles
+/// and `holes` holes each (IGES or STEP by the extension; stress_mold.cpp); false on failure.
+bool write_stress_mold(const std::string& path, int faces, int poles, int holes);
+
+/// Import speed: per file (the shared CAD files, stress files written by write_stress_mold()
+/// into `stress_dir`), OpenCASCADE's own read time against plyfit's open, listing and import
+/// of one face, and the `plyfit info` process (also with `baseline`, another plyfit binary,
+/// when not empty). `max_ratio` gets the largest import / OpenCASCADE read ratio and
+/// `max_info_s` the longest plyfit info (medians).
+struct ImportReport {
+  Table table;
+  double max_ratio = 0.0, max_info_s = 0.0;
+  bool ok = true;
+};
+ImportReport import_report(int runs, const std::string& stress_dir, const std::string& baseline);
+
+/// Face areas: plyfit's integration against OpenCASCADE's, per file: time, agreement of the
+/// listing with the described areas, of the two integration directions, with OpenCASCADE.
+Table area_table(const std::string& stress_dir);
+
+/// Small jobs: process time of a small drape on a built-in mold (with OpenCASCADE loaded at
+/// start as the comparison, and `baseline`'s when given) and of small file jobs.
+Table small_jobs_table(int runs, const std::string& baseline);
+
 /// Writes an SVG plot of drape time against link-length error (one series per face).
 std::string time_error_svg(const std::vector<TolerancePoint>& points, double default_tol);
 

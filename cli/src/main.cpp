@@ -2,9 +2,15 @@
 
 #include "commands.hpp"
 
+#include <plyfit/importers/occt_module.hpp>
+
 #include <algorithm>
+#include <cstdlib>
 #include <exception>
+#include <fstream>
 #include <iostream>
+#include <set>
+#include <string>
 
 namespace plyfit::cli {
 
@@ -36,9 +42,26 @@ void usage(std::ostream& os) {
   }
 }
 
-}  // namespace
+// Debugging and tests: when PLYFIT_DEBUG_LIBRARIES names a file, the shared objects mapped into
+// the process at the end of the command (from /proc/self/maps), one path a line, are written
+// there; e.g. a drape on a built-in mold lists no OpenCASCADE library.
+void write_loaded_libraries() {
+  const char* out = std::getenv("PLYFIT_DEBUG_LIBRARIES");
+  if (!out || !*out) return;
+  std::ifstream maps("/proc/self/maps");
+  std::set<std::string> libs;
+  std::string line;
+  while (std::getline(maps, line)) {
+    const auto slash = line.find('/');
+    if (slash == std::string::npos) continue;
+    const std::string path = line.substr(slash);
+    if (path.find(".so") != std::string::npos) libs.insert(path);
+  }
+  std::ofstream os(out);
+  for (const auto& l : libs) os << l << "\n";
+}
 
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   using namespace plyfit::cli;
   if (argc < 2) {
     usage(std::cerr);
@@ -66,4 +89,16 @@ int main(int argc, char** argv) {
   }
   print_error("unknown command '" + name + "' (try plyfit --help)");
   return kExitUsage;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Benchmarks: PLYFIT_DEBUG_PRELOAD_OCCT=1 loads the OpenCASCADE module at the start, as
+  // linking OpenCASCADE did before it was loaded lazily (plyfit-bench small-jobs).
+  if (const char* p = std::getenv("PLYFIT_DEBUG_PRELOAD_OCCT"); p && *p == '1')
+    static_cast<void>(plyfit::importers::occt_module_symbol("plyfit_occt_importers"));
+  const int code = run(argc, argv);
+  write_loaded_libraries();
+  return code;
 }

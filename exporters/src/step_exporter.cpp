@@ -1,140 +1,118 @@
-// net.step: the draped threads as 3D B-spline curves in an AP214 (AP214IS) STEP file,
-// millimetres. Each maximal run of consecutive mapped nodes of a thread (DrapeResult::
-// threads()) is one curve (one edge), and the base path is one curve through its mapped nodes
-// in path order. The curves are grouped into three compounds, each a product named `weft`,
-// `warp` and `base_path` (XDE document: the names are TDataStd_Name attributes that
-// STEPCAFControl_Writer writes as PRODUCT names). A group without curves is left out.
+// net.step: the draped threads as 3D B-spline curves in an AP214 STEP file, millimetres,
+// written by plyfit's own STEP writer (step_curves.hpp; no OpenCASCADE, so a drape does not load
+// it). Each maximal run of consecutive mapped nodes of a thread (DrapeResult::threads()) is one
+// curve, and the base path is one curve through its mapped nodes in path order. The curves are
+// grouped into named sets, each a product: `weft`, `warp` and `base_path` (net_curve_sets()); a
+// set without curves is left out. With a flat pattern, the 3D ply boundary follows (the exact
+// outline's loops on the mold, OutlineLoop::points3d, e.g. for laser projection): the outer
+// loops as closed polylines in the set `ply_boundary`, each hole as a closed polyline in its
+// own set `ply_hole_N` (N = 1, 2, ... in outline order) (boundary_sets()).
 //
 // Curves are the kernel's: polyline_curve() (degree 1, through the nodes) by default, or
-// interpolate_cubic() for ExportOptions::curve_degree 3; a run the cubic interpolation
-// rejects (two coincident nodes) is written as a polyline.
-//
-// OpenCASCADE writes into the AtomicFile's temporary file, which is then renamed into place.
-// Its messages are not printed (the default messenger's printers are removed). The header's
-// FILE_NAME time stamp is fixed (2000-01-01T00:00:00), its name is "net.step" and its author
-// and organisation are "plyfit", so equal inputs give equal bytes.
+// interpolate_cubic() for ExportOptions::curve_degree 3; a run the cubic interpolation rejects
+// (two coincident nodes) is written as a polyline. The header's FILE_NAME time stamp is fixed
+// (2000-01-01T00:00:00), its name is "net.step" and its author and organisation are "plyfit",
+// so equal inputs give equal bytes.
 
-#include <plyfit/exporters/atomic_file.hpp>
 #include <plyfit/exporters/exporters.hpp>
+#include <plyfit/exporters/step_curves.hpp>
+#include <plyfit/kernel/flat_pattern.hpp>
 #include <plyfit/kernel/nurbs_curve.hpp>
 
-#include "occt_geometry.hpp"
 #include "plugins.hpp"
 
-#include <APIHeaderSection_MakeHeader.hxx>
-#include <BRepBuilderAPI_MakeEdge.hxx>
-#include <BRep_Builder.hxx>
-#include <Geom_BSplineCurve.hxx>
-#include <IFSelect_ReturnStatus.hxx>
-#include <Interface_Static.hxx>
-#include <Message.hxx>
-#include <Message_Messenger.hxx>
-#include <STEPCAFControl_Writer.hxx>
-#include <STEPControl_StepModelType.hxx>
-#include <Standard_Failure.hxx>
-#include <StepData_StepModel.hxx>
-#include <TColStd_Array1OfInteger.hxx>
-#include <TColStd_Array1OfReal.hxx>
-#include <TColgp_Array1OfPnt.hxx>
-#include <TCollection_HAsciiString.hxx>
-#include <TDataStd_Name.hxx>
-#include <TDocStd_Document.hxx>
-#include <TopoDS_Compound.hxx>
-#include <TopoDS_Edge.hxx>
-#include <XCAFApp_Application.hxx>
-#include <XCAFDoc_DocumentTool.hxx>
-#include <XCAFDoc_ShapeTool.hxx>
-
 #include <filesystem>
-#include <mutex>
+#include <string>
+#include <vector>
 
 namespace plyfit::exporters {
 
 namespace {
-using occt::to_occt;
 
-constexpr const char* kFixedTimeStamp = "2000-01-01T00:00:00";
+// Consecutive outline points closer than this fraction of the loop's length are one point of
+// the boundary polyline: a degree-1 curve needs distinct points, and its knots (chord-length
+// parameters) must stay apart by more than OpenCASCADE's knot resolution (about 1e-15 of the
+// range) to read back. 1e-9 of a 1 m loop is 1 nm, far below any projector's resolution.
+constexpr double kBoundaryMergeRel = 1e-9;
 
-// OpenCASCADE's messages are never printed raw.
-void silence_occt() {
-  static std::once_flag once;
-  std::call_once(once, [] { Message::DefaultMessenger()->ChangePrinters().Clear(); });
+// The 3D points of `loop` without (near-)repeats, the first point not repeated at the end.
+std::vector<Vec3> boundary_points(const OutlineLoop& loop) {
+  double length = 0.0;
+  for (size_t k = 0; k < loop.points3d.size(); ++k)
+    length += (loop.points3d[(k + 1) % loop.points3d.size()] - loop.points3d[k]).norm();
+  const double merge = kBoundaryMergeRel * length;
+  std::vector<Vec3> pts;
+  for (const Vec3& p : loop.points3d)
+    if (pts.empty() || (p - pts.back()).norm() > merge) pts.push_back(p);
+  while (pts.size() > 1 && (pts.back() - pts.front()).norm() <= merge) pts.pop_back();
+  return pts;
 }
 
-struct Group {
-  const char* name;
-  std::vector<std::vector<std::uint32_t>> runs;
-};
+// The 3D ply boundary as closed polylines: `ply_boundary` (the outer loops), `ply_hole_N`.
+Result<std::vector<StepCurveSet>> boundary_sets(const FlatPattern& flat) {
+  std::vector<std::vector<Vec3>> outer;
+  std::vector<StepCurveSet> sets;
+  int holes = 0;
+  for (const OutlineLoop& loop : flat.outline) {
+    std::vector<Vec3> pts = boundary_points(loop);
+    const std::string name = loop.hole ? "ply_hole_" + std::to_string(++holes) : "ply_boundary";
+    if (pts.size() < 3)
+      return Error{"cannot build the " + name + " curve: the loop has fewer than 3 distinct " +
+                   "points on the mold"};
+    if (!loop.hole) {
+      outer.push_back(std::move(pts));
+      continue;
+    }
+    auto set = polyline_set(name, {pts}, true);
+    if (!set) return Error{"cannot build the " + set.error().message};
+    sets.push_back(std::move(set).value());
+  }
+  auto set = polyline_set("ply_boundary", outer, true);
+  if (!set) return Error{"cannot build the " + set.error().message};
+  sets.insert(sets.begin(), std::move(set).value());
+  return sets;
+}
 
-Status write_step(const ExportContext& ctx, const std::string& path) {
+// The named curve sets of net.step, in file order.
+Result<std::vector<StepCurveSet>> net_curve_sets(const ExportContext& ctx) {
   const DrapeResult& r = ctx.result;
+  struct Group {
+    const char* name;
+    std::vector<std::vector<std::uint32_t>> runs;
+  };
   std::vector<Group> groups = {
       {"weft", r.threads(true)}, {"warp", r.threads(false)}, {"base_path", {}}};
   if (r.base_path.size() >= 2) groups[2].runs.push_back(r.base_path);
-
-  // OpenCASCADE's data exchange keeps global state (Interface_Static): one writer at a time.
-  static std::mutex occt_mutex;
-  const std::lock_guard<std::mutex> lock(occt_mutex);
-  silence_occt();
-  try {
-    Handle(TDocStd_Document) doc;
-    XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc);
-    struct DocCloser {
-      Handle(TDocStd_Document) doc;
-      ~DocCloser() {
-        if (!doc.IsNull() && doc->IsOpened()) XCAFApp_Application::GetApplication()->Close(doc);
-      }
-    } closer{doc};
-    const Handle(XCAFDoc_ShapeTool) shapes = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
-    BRep_Builder builder;
-    for (const Group& g : groups) {
-      if (g.runs.empty()) continue;
-      TopoDS_Compound compound;
-      builder.MakeCompound(compound);
-      for (const auto& run : g.runs) {
-        std::vector<Vec3> pts;
-        for (const std::uint32_t k : run) pts.push_back(r.nodes[k].point);
-        auto curve = ctx.options.curve_degree == 3 ? interpolate_cubic(pts) : polyline_curve(pts);
-        if (!curve) curve = polyline_curve(pts);
-        if (!curve)
-          return Error{path + ": cannot build a " + g.name + " curve: " + curve.error().message};
-        BRepBuilderAPI_MakeEdge edge(to_occt(curve->data()));
-        if (!edge.IsDone()) return Error{path + ": cannot build a " + g.name + " edge"};
-        builder.Add(compound, edge.Edge());
-      }
-      const TDF_Label label = shapes->AddShape(compound, Standard_False);
-      TDataStd_Name::Set(label, TCollection_ExtendedString(g.name));
+  std::vector<StepCurveSet> sets;
+  for (const Group& g : groups) {
+    StepCurveSet set{g.name, {}};
+    for (const auto& run : g.runs) {
+      std::vector<Vec3> pts;
+      pts.reserve(run.size());
+      for (const std::uint32_t k : run) pts.push_back(r.nodes[k].point);
+      auto curve = ctx.options.curve_degree == 3 ? interpolate_cubic(pts) : polyline_curve(pts);
+      if (!curve) curve = polyline_curve(pts);
+      if (!curve)
+        return Error{std::string("cannot build a ") + g.name + " curve: " + curve.error().message};
+      set.curves.push_back(curve->data());
     }
-
-    Interface_Static::SetCVal("write.step.schema", "AP214IS");
-    Interface_Static::SetCVal("write.step.unit", "MM");
-    STEPCAFControl_Writer writer;
-    writer.SetNameMode(Standard_True);
-    writer.SetColorMode(Standard_False);
-    writer.SetLayerMode(Standard_False);
-    writer.SetPropsMode(Standard_False);
-    if (!writer.Transfer(doc, STEPControl_AsIs))
-      return Error{path + ": OpenCASCADE could not convert the net to STEP"};
-    APIHeaderSection_MakeHeader header(writer.ChangeWriter().Model());
-    header.SetName(new TCollection_HAsciiString("net.step"));
-    header.SetTimeStamp(new TCollection_HAsciiString(kFixedTimeStamp));
-    header.SetAuthorValue(1, new TCollection_HAsciiString("plyfit"));
-    header.SetOrganizationValue(1, new TCollection_HAsciiString("plyfit"));
-    header.SetOriginatingSystem(new TCollection_HAsciiString("plyfit"));
-    header.SetAuthorisation(new TCollection_HAsciiString(""));
-
-    AtomicFile file(path);
-    if (!file.ok())
-      return Error{path + ": cannot create the file (folder missing or not writable?)"};
-    const IFSelect_ReturnStatus st = writer.Write(file.temp_path().c_str());
-    if (st != IFSelect_RetDone) {
-      file.discard();
-      return Error{path + ": OpenCASCADE's STEP writer failed"};
-    }
-    return file.commit();
-  } catch (const Standard_Failure& e) {
-    return Error{path + ": OpenCASCADE failed: " + std::string(e.GetMessageString())};
+    sets.push_back(std::move(set));
   }
+  if (ctx.flat) {
+    auto boundary = boundary_sets(*ctx.flat);
+    if (!boundary) return boundary.error();
+    for (auto& set : *boundary) sets.push_back(std::move(set));
+  }
+  return sets;
+}
+
+Status write_step(const ExportContext& ctx, const std::string& path) {
+  auto sets = net_curve_sets(ctx);
+  if (!sets) return Error{path + ": " + sets.error().message};
+  StepFileInfo info;
+  info.file_name = "net.step";
+  info.description = "plyfit draped thread net";
+  return write_step_curves(path, *sets, info);
 }
 
 }  // namespace
@@ -142,7 +120,7 @@ Status write_step(const ExportContext& ctx, const std::string& path) {
 Exporter make_step_exporter() {
   return {"step",
           {"net.step"},
-          "net.step: draped weft, warp and base path as 3D curves (AP214)",
+          "net.step: draped weft, warp and base path, and the ply boundary, as 3D curves (AP214)",
           [](const ExportContext& ctx, const std::string& outdir) {
             return write_step(ctx, (std::filesystem::path(outdir) / "net.step").string());
           }};

@@ -95,17 +95,8 @@ Result<occt::ReadOutput> read_iges(const std::string& path, occt::Deadline& dead
 
 }  // namespace
 
-Importer make_iges_importer() {
-  Importer imp;
-  imp.key = "iges";
-  imp.extensions = {"iges", "igs"};
-  imp.description =
-      "IGES (5.x: 128/114 surfaces, 144 trimmed surfaces, 186/514/510 solids) "
-      "via OpenCASCADE";
-  imp.open = [](const std::string& path, const ImportOptions& options) {
-    return occt::open_with(path, "iges", options, read_iges);
-  };
-  return imp;
+Result<std::unique_ptr<MoldFile>> open_iges(const std::string& path, const ImportOptions& options) {
+  return occt::open_with(path, "iges", options, read_iges);
 }
 
 }  // namespace plyfit::importers

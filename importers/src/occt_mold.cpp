@@ -1,13 +1,10 @@
 #include "occt_mold.hpp"
 
-#include <BRepBndLib.hxx>
+#include "face_measure.hpp"
+
 #include <BRepBuilderAPI_NurbsConvert.hxx>
-#include <BRepGProp.hxx>
 #include <BRepTools.hxx>
-#include <BRepTools_WireExplorer.hxx>
 #include <BRep_Tool.hxx>
-#include <Bnd_Box.hxx>
-#include <GProp_GProps.hxx>
 #include <Geom2dAdaptor_Curve.hxx>
 #include <Geom2d_Curve.hxx>
 #include <GeomAdaptor_Surface.hxx>
@@ -35,7 +32,6 @@
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Face.hxx>
-#include <TopoDS_Iterator.hxx>
 #include <TopoDS_Wire.hxx>
 #include <TransferBRep.hxx>
 #include <XSControl_TransferReader.hxx>
@@ -44,6 +40,7 @@
 #include <algorithm>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -54,11 +51,16 @@
 namespace plyfit::importers::occt {
 
 namespace {
-// Tolerance asked of OpenCASCADE's adaptive surface integration for face areas. It reaches
-// far less than it is asked: 1e-9 gives ~8e-8 relative on a rational sphere, 1e-12 gives
-// ~2e-10 (measured on the sample sphere octant and hemisphere; its fixed-order default is
-// 0.17% off on the hemisphere).
-constexpr double kAreaRelAccuracy = 1e-12;
+// Face areas are plyfit's own integration (face_measure.hpp), to an estimated relative error
+// of at most kAreaRelListing in the listing (plyfit info: enough to tell faces apart) and of
+// kAreaRelPrecise for a face that is draped, whose area report.json gives and divides the
+// covered area by (coverage). OpenCASCADE's adaptive integration (BRepGProp), used before, was
+// asked for 1e-12 and took seconds per face on large B-spline faces; on the shared files it is
+// off by up to 2e-4 (faces of bug27693_cornetta-step.stp, trj7_c2-td-203.stp face 1), where
+// plyfit's integration in u and in v agree to 1e-11 and, on untrimmed faces, the kernel's
+// tensor Gauss quadrature agrees to 2e-12 (BENCHMARKS.md, "Face areas").
+constexpr double kAreaRelListing = 1e-6;
+constexpr double kAreaRelPrecise = 1e-9;
 }  // namespace
 
 namespace {
@@ -89,6 +91,19 @@ Vec3 vec(const gp_Pnt& p) {
 
 // ---------------------------------------------------------------------------------------------
 // Listing: surface kind, degrees, range, natural boundary.
+
+// Empty when `m` reached the relative accuracy `rel`, else what it reached.
+std::string area_accuracy_note(const FaceMeasure& m, double rel) {
+  if (m.converged) return {};
+  char buf[160];
+  if (m.area > 0.0 && m.error > 0.0)
+    std::snprintf(buf, sizeof buf, "area to %.1e relative (estimated), not the %.0e asked",
+                  m.error / m.area, rel);
+  else
+    std::snprintf(buf, sizeof buf,
+                  "area by OpenCASCADE's integration (no pcurves), accuracy unknown");
+  return buf;
+}
 
 // Strips rectangular trims to find the kind of surface a face lies on.
 Handle(Geom_Surface) basis_of(Handle(Geom_Surface) s) {
@@ -221,7 +236,9 @@ bool natural_boundary(const TopoDS_Face& f, const Handle(Geom_Surface) & s, cons
   return true;
 }
 
-FaceInfo describe_face(const TopoDS_Face& f, int index) {
+// The listing entry of a face: kind, degrees, orientation, area (to `area_rel`, estimated),
+// bounding box and trim status. `area_note` is set when the area misses `area_rel`.
+FaceInfo describe_face(const TopoDS_Face& f, int index, double area_rel, std::string& area_note) {
   FaceInfo info;
   info.index = index;
   info.reversed = f.Orientation() == TopAbs_REVERSED;
@@ -231,19 +248,10 @@ FaceInfo describe_face(const TopoDS_Face& f, int index) {
     return info;
   }
   describe_surface(s, info);
-  // Adaptive integration to a relative accuracy: the fixed-order default is 0.17% off on a
-  // rational hemisphere.
-  GProp_GProps props;
-  BRepGProp::SurfaceProperties(f, props, kAreaRelAccuracy);
-  info.area = props.Mass();
-  Bnd_Box box;
-  BRepBndLib::AddOptimal(f, box, Standard_False, Standard_False);
-  if (!box.IsVoid()) {
-    double x0, y0, z0, x1, y1, z1;
-    box.Get(x0, y0, z0, x1, y1, z1);
-    info.bbox.add(Vec3(x0, y0, z0));
-    info.bbox.add(Vec3(x1, y1, z1));
-  }
+  const FaceMeasure m = measure_face(f, area_rel, true);
+  info.area = m.area;
+  info.bbox = m.bbox;
+  area_note = area_accuracy_note(m, area_rel);
   const int wires = count_wires(f);
   info.holes = std::max(0, wires - 1);
   info.trimmed = !natural_boundary(f, s, nurbs_range(f, s), info.bbox.diagonal());
@@ -331,21 +339,6 @@ class EdgeSampler {
   Vec2 speeds_;
   bool chords3d_;
 };
-
-// The edges of a wire in order along it, with their orientation in the wire.
-std::vector<TopoDS_Edge> ordered_edges(const TopoDS_Wire& w, const TopoDS_Face& f) {
-  std::vector<TopoDS_Edge> edges;
-  int count = 0;
-  for (TopoDS_Iterator it(w); it.More(); it.Next()) ++count;
-  for (BRepTools_WireExplorer we(w, f); we.More(); we.Next()) edges.push_back(we.Current());
-  if (static_cast<int>(edges.size()) == count) return edges;
-  // The explorer could not chain every edge (a wire OpenCASCADE finds ill-connected): keep the
-  // stored order, which readers write along the wire.
-  edges.clear();
-  for (TopoDS_Iterator it(w); it.More(); it.Next())
-    if (it.Value().ShapeType() == TopAbs_EDGE) edges.push_back(TopoDS::Edge(it.Value()));
-  return edges;
-}
 
 // With `tag`, loop.edges[k] is the tag of the edge segment k was sampled from (a segment that
 // joins two edges' ends belongs to the edge it leads into).
@@ -483,23 +476,8 @@ Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const To
   const double tu = ad.UResolution(tol3d), tv = ad.VResolution(tol3d);
 
   FaceData fd;
-  auto& d = fd.surface;
-  d.degree_u = bs->UDegree();
-  d.degree_v = bs->VDegree();
-  d.count_u = bs->NbUPoles();
-  d.count_v = bs->NbVPoles();
-  TColStd_Array1OfReal ku(1, d.count_u + d.degree_u + 1), kv(1, d.count_v + d.degree_v + 1);
-  bs->UKnotSequence(ku);
-  bs->VKnotSequence(kv);
-  d.knots_u.assign(ku.begin(), ku.end());
-  d.knots_v.assign(kv.begin(), kv.end());
-  const bool rational = bs->IsURational() || bs->IsVRational();
-  d.poles.reserve(static_cast<size_t>(d.count_u) * d.count_v);
-  for (int i = 1; i <= d.count_u; ++i)
-    for (int j = 1; j <= d.count_v; ++j) {
-      d.poles.push_back(vec(bs->Pole(i, j)));
-      if (rational) d.weights.push_back(bs->Weight(i, j));
-    }
+  fd.surface = nurbs_data(bs);
+  const NurbsSurfaceData& d = fd.surface;
   fd.reversed = face.Orientation() == TopAbs_REVERSED;
   fd.closed_u = std::abs(fr.u0 - dom.u0) <= tu && std::abs(fr.u1 - dom.u1) <= tu &&
                 seam_closes(bs, true, tol3d);
@@ -524,10 +502,11 @@ Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const To
   return fd;
 }
 
-// An opened file. Reading and transferring happen at open; each face's listing entry (kind,
-// degrees, area, box, trim status) is computed when first needed: all of them on the first call
-// to mold(), only face i by convert_face(i), so that importing one face does not pay for the
-// listing of the others. Not thread-safe.
+// An opened file. Reading and transferring happen at open; each face's entry (kind, degrees,
+// area, box, trim status) is computed when first needed: all of them, with areas to
+// kAreaRelListing, on the first call to mold(); face i alone, with its area to kAreaRelPrecise,
+// by describe(i) or convert_face(i), so that importing one face pays neither for the listing
+// of the others nor for a listing-accuracy area it does not use. Not thread-safe.
 class OcctMoldFile final : public MoldFile {
  public:
   OcctMoldFile(Mold mold, TopTools_IndexedMapOfShape faces, ImportOptions options, double precision)
@@ -536,18 +515,28 @@ class OcctMoldFile final : public MoldFile {
         options_(std::move(options)),
         precision_(precision),
         state_(static_cast<size_t>(faces_.Extent()), State::kPending),
-        failure_(static_cast<size_t>(faces_.Extent())) {}
+        failure_(static_cast<size_t>(faces_.Extent())),
+        note_(static_cast<size_t>(faces_.Extent())) {}
 
   const Mold& mold() const override {
     if (!listed_) {
-      int failed = 0;
-      std::string first;
+      int failed = 0, short_areas = 0;
+      std::string first, first_short;
       for (int i = 0; i < faces_.Extent(); ++i) {
-        if (!describe_once(i) && failed++ == 0) first = failure_[static_cast<size_t>(i)];
+        const size_t k = static_cast<size_t>(i);
+        if (!describe_once(i, false)) {
+          if (failed++ == 0) first = failure_[k];
+        } else if (!note_[k].empty() && state_[k] == State::kListed && short_areas++ == 0) {
+          first_short = "face " + std::to_string(i) + ": " + note_[k];
+        }
       }
       if (failed)
         mold_.warnings.push_back("listing: " + std::to_string(failed) +
                                  " faces could not be described (first: " + first + ")");
+      if (short_areas)
+        mold_.warnings.push_back("listing: " + std::to_string(short_areas) +
+                                 " face areas short of the accuracy asked (first: " + first_short +
+                                 ")");
       listed_ = true;
     }
     return mold_;
@@ -556,12 +545,8 @@ class OcctMoldFile final : public MoldFile {
   int face_count() const override { return faces_.Extent(); }
 
   Result<FaceInfo> describe(int index) const override {
-    const int n = faces_.Extent();
-    if (index < 0 || index >= n)
-      return Error{mold_.source + ": face " + std::to_string(index) +
-                   " out of range (the file has " + std::to_string(n) + " faces, 0.." +
-                   std::to_string(n - 1) + ")"};
-    if (!describe_once(index))
+    if (auto st = check_index(index); !st) return st.error();
+    if (!describe_once(index, true))
       return Error{mold_.source + ": face " + std::to_string(index) + ": " +
                    failure_[static_cast<size_t>(index)]};
     return mold_.faces[static_cast<size_t>(index)];
@@ -570,13 +555,10 @@ class OcctMoldFile final : public MoldFile {
   const Mold& summary() const override { return mold_; }
 
   Result<FaceData> convert_face(int index) override {
-    const int n = faces_.Extent();
-    if (index < 0 || index >= n)
-      return Error{mold_.source + ": face " + std::to_string(index) +
-                   " out of range (the file has " + std::to_string(n) + " faces, 0.." +
-                   std::to_string(n - 1) + ")"};
+    if (auto st = check_index(index); !st) return st.error();
     const std::string what = mold_.source + ": face " + std::to_string(index);
-    if (!describe_once(index)) return Error{what + ": " + failure_[static_cast<size_t>(index)]};
+    if (!describe_once(index, true))
+      return Error{what + ": " + failure_[static_cast<size_t>(index)]};
     auto r = guarded(what, [&]() -> Result<FaceData> {
       return convert(TopoDS::Face(faces_(index + 1)), mold_.faces[static_cast<size_t>(index)],
                      options_.tolerances, nullptr);
@@ -595,25 +577,52 @@ class OcctMoldFile final : public MoldFile {
   }
 
  private:
-  enum class State { kPending, kDone, kFailed };
+  // kListed: area to kAreaRelListing; kPrecise: to kAreaRelPrecise.
+  enum class State { kPending, kListed, kPrecise, kFailed };
 
-  // Fills mold_.faces[i] (once); false when OpenCASCADE failed on the face.
-  bool describe_once(int i) const {
+  Status check_index(int index) const {
+    const int n = faces_.Extent();
+    if (index >= 0 && index < n) return ok_status();
+    return Error{mold_.source + ": face " + std::to_string(index) + " out of range (the file has " +
+                 std::to_string(n) + " faces, 0.." + std::to_string(n - 1) + ")"};
+  }
+
+  // Fills mold_.faces[i], with its area to kAreaRelPrecise when `precise` (a listed face gets
+  // its area computed again); false when OpenCASCADE failed on the face. A precise area short
+  // of its accuracy is a warning of the file.
+  bool describe_once(int i, bool precise) const {
     const size_t k = static_cast<size_t>(i);
+    const TopoDS_Face& f = TopoDS::Face(faces_(i + 1));
     if (state_[k] == State::kPending) {
       auto info = guarded("could not be described", [&]() -> Result<FaceInfo> {
-        return describe_face(TopoDS::Face(faces_(i + 1)), i);
+        return describe_face(f, i, precise ? kAreaRelPrecise : kAreaRelListing, note_[k]);
       });
       if (info) {
         info->name = mold_.faces[k].name;
         mold_.faces[k] = std::move(info).value();
-        state_[k] = State::kDone;
+        state_[k] = precise ? State::kPrecise : State::kListed;
       } else {
         failure_[k] = info.error().message;
         state_[k] = State::kFailed;
       }
+    } else if (state_[k] == State::kListed && precise) {
+      auto m = guarded("could not be measured", [&]() -> Result<FaceMeasure> {
+        return measure_face(f, kAreaRelPrecise, false);
+      });
+      if (!m) {
+        failure_[k] = m.error().message;
+        state_[k] = State::kFailed;
+        return false;
+      }
+      mold_.faces[k].area = m->area;
+      note_[k] = area_accuracy_note(*m, kAreaRelPrecise);
+      state_[k] = State::kPrecise;
+    } else {
+      return state_[k] != State::kFailed;
     }
-    return state_[k] == State::kDone;
+    if (state_[k] == State::kPrecise && !note_[k].empty())
+      mold_.warnings.push_back("face " + std::to_string(i) + ": " + note_[k]);
+    return state_[k] != State::kFailed;
   }
 
   mutable Mold mold_;
@@ -622,6 +631,7 @@ class OcctMoldFile final : public MoldFile {
   double precision_;
   mutable std::vector<State> state_;
   mutable std::vector<std::string> failure_;
+  mutable std::vector<std::string> note_;  // the area's accuracy when short of the asked
   mutable bool listed_ = false;
 };
 

@@ -9,6 +9,8 @@
 
 #include <plyfit/importers/importers.hpp>
 
+#include "face_measure.hpp"
+
 #include <Interface_CheckIterator.hxx>
 #include <Message_ProgressIndicator.hxx>
 #include <Standard_ErrorHandler.hxx>

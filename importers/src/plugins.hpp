@@ -1,12 +1,18 @@
 #pragma once
-// Importer plugins: each format is one file defining one make_*_importer() function, listed
-// once in registry.cpp.
+// The readers of the OpenCASCADE module: each format is one file defining one open_*()
+// function, listed once in occt_module_entry.cpp (and once, with its extensions, in the
+// registry: registry.cpp).
 
 #include <plyfit/importers/importers.hpp>
 
+#include <memory>
+#include <string>
+
 namespace plyfit::importers {
 
-Importer make_step_importer();
-Importer make_iges_importer();
+/// Opens a STEP file (step_importer.cpp).
+Result<std::unique_ptr<MoldFile>> open_step(const std::string& path, const ImportOptions& options);
+/// Opens an IGES file (iges_importer.cpp).
+Result<std::unique_ptr<MoldFile>> open_iges(const std::string& path, const ImportOptions& options);
 
 }  // namespace plyfit::importers

@@ -1,6 +1,11 @@
-#include <plyfit/importers/importers.hpp>
+// The importer registry. The readers are in the OpenCASCADE module (occt_module.hpp), loaded
+// by the first open(): listing the importers, finding one by extension or validating a --format
+// does not load OpenCASCADE.
 
-#include "plugins.hpp"
+#include <plyfit/importers/importers.hpp>
+#include <plyfit/importers/occt_module.hpp>
+
+#include "occt_module_api.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -14,13 +19,42 @@ std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
   return s;
 }
+
+// The module's importers, loading the module on first use.
+Result<const OcctImporterApi*> occt_importers() {
+  auto entry = occt_module_symbol(kImportersEntry);
+  if (!entry) return entry.error();
+  const OcctImporterApi* api = reinterpret_cast<OcctImporterEntry>(*entry)();
+  if (!api || api->abi != kOcctModuleAbi)
+    return Error{std::string("plyfit's OpenCASCADE module ") + kOcctModuleFile +
+                 " is from another build of plyfit (interface " +
+                 std::to_string(api ? api->abi : -1) + ", expected " +
+                 std::to_string(kOcctModuleAbi) + ")"};
+  return api;
+}
+
+// An importer whose reader is in the OpenCASCADE module.
+Importer occt_importer(std::string key, std::vector<std::string> extensions,
+                       std::string description) {
+  Importer imp{key, std::move(extensions), std::move(description), {}};
+  imp.open = [key](const std::string& path,
+                   const ImportOptions& options) -> Result<std::unique_ptr<MoldFile>> {
+    auto api = occt_importers();
+    if (!api) return Error{path + ": " + api.error().message};
+    return (*api)->open(key, path, options);
+  };
+  return imp;
+}
 }  // namespace
 
 const std::vector<Importer>& registry() {
-  // One registration line per format.
+  // One registration line per format (its reader: occt_module_entry.cpp).
   static const std::vector<Importer> list = {
-      make_step_importer(),
-      make_iges_importer(),
+      occt_importer("step", {"step", "stp"},
+                    "STEP (ISO 10303-21: AP203, AP214, AP242) via OpenCASCADE"),
+      occt_importer("iges", {"iges", "igs"},
+                    "IGES (5.x: 128/114 surfaces, 144 trimmed surfaces, 186/514/510 solids) "
+                    "via OpenCASCADE"),
   };
   return list;
 }

@@ -64,15 +64,8 @@ Result<occt::ReadOutput> read_step(const std::string& path, occt::Deadline& dead
 
 }  // namespace
 
-Importer make_step_importer() {
-  Importer imp;
-  imp.key = "step";
-  imp.extensions = {"step", "stp"};
-  imp.description = "STEP (ISO 10303-21: AP203, AP214, AP242) via OpenCASCADE";
-  imp.open = [](const std::string& path, const ImportOptions& options) {
-    return occt::open_with(path, "step", options, read_step);
-  };
-  return imp;
+Result<std::unique_ptr<MoldFile>> open_step(const std::string& path, const ImportOptions& options) {
+  return occt::open_with(path, "step", options, read_step);
 }
 
 }  // namespace plyfit::importers

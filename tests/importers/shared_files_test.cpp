@@ -9,6 +9,8 @@
 #include "corpus.hpp"
 #include "importers/occt_reference.hpp"
 
+#include <BRepMesh_IncrementalMesh.hxx>
+
 using namespace plyfit;
 using namespace plyfit::test;
 
@@ -61,6 +63,41 @@ std::map<std::string, Expected> read_properties() {
     out[file] = e;
   }
   return out;
+}
+
+// OpenCASCADE's areas (BRepGProp asked for 1e-12) are off by up to 2.2e-4 on these files
+// (bug27693_cornetta-step.stp faces 4 to 104, trj7 face 1: against plyfit's integration along u
+// and along v, which agree to 1e-11, area_test.cpp); they still tell the faces apart.
+constexpr double kOcctAreaRel = 5e-4;
+// The listed box is the box of points sampled on the face (its boundary, 64 points per edge,
+// and a 32 x 32 grid inside): it lies within the true box and misses extremes between samples
+// by at most this fraction of its diagonal (1.7e-3 at worst on the test files).
+constexpr double kBoxSampledRel = 3e-3;
+// Deflection of the reference mesh, relative to the face's diagonal.
+constexpr double kMeshDeflectionRel = 1e-4;
+
+// The listed box against the box of OpenCASCADE's mesh of the face (its nodes lie on the face
+// and the face within the deflection of its triangles): not beyond the mesh box by more than
+// the deflection, not short of it by more than kBoxSampledRel.
+void check_box(const BBox3& listed, const TopoDS_Face& f) {
+  REQUIRE_FALSE(listed.empty);
+  const double diag = listed.diagonal(), defl = kMeshDeflectionRel * diag;
+  TopoDS_Face copy = TopoDS::Face(f.Located(f.Location()));
+  BRepTools::Clean(copy);
+  BRepMesh_IncrementalMesh mesh(copy, defl, Standard_False, 0.1, Standard_False);
+  Bnd_Box b;
+  BRepBndLib::Add(copy, b, Standard_True);
+  REQUIRE_FALSE(b.IsVoid());
+  b.SetGap(0.0);
+  double x0, y0, z0, x1, y1, z1;
+  b.Get(x0, y0, z0, x1, y1, z1);
+  const Vec3 lo(x0, y0, z0), hi(x1, y1, z1);
+  const double beyond = std::max((lo - listed.min).maxCoeff(), (listed.max - hi).maxCoeff());
+  const double short_of = std::max((listed.min - lo).maxCoeff(), (hi - listed.max).maxCoeff());
+  INFO("listed box beyond the mesh's by " << beyond / diag << ", short of it by " << short_of / diag
+                                          << " of its diagonal");
+  CHECK(beyond <= defl);
+  CHECK(short_of <= kBoxSampledRel * diag);
 }
 
 const std::vector<std::string> kFiles = {"BUC50025.igs",          "PRO20359-L1.igs",
@@ -164,13 +201,14 @@ TEST_CASE("importers: every shared CAD file lists the faces PROPERTIES.txt descr
     const Reference ref = read_reference(shared_cad(name), is_iges(name));
     REQUIRE(ref.count() == e.faces);
     for (int i = 0; i < ref.count(); ++i) {
+      INFO("face " << i);
       GProp_GProps g;
-      // The same adaptive integration as the listing (tolerance 1e-12): the areas identify
-      // the faces here; their accuracy is checked against exact areas in tests/samples.
+      // OpenCASCADE's adaptive integration identifies the faces here (the listing is plyfit's
+      // own integration; its accuracy is checked in area_test.cpp).
       BRepGProp::SurfaceProperties(ref.face(i), g, 1e-12);
       CHECK(m.faces[i].index == i);
-      CHECK(m.faces[i].area == Approx(g.Mass()).epsilon(kRoundoffRel));
-      CHECK(m.faces[i].bbox.diagonal() == Approx(occt_size(ref.face(i))).epsilon(kRoundoffRel));
+      CHECK(m.faces[i].area == Approx(g.Mass()).epsilon(kOcctAreaRel));
+      check_box(m.faces[i].bbox, ref.face(i));
     }
   }
 }

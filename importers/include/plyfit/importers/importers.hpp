@@ -38,12 +38,15 @@ class MoldFile {
  public:
   virtual ~MoldFile() = default;
   /// The file's faces and metadata, listed without converting surfaces (the per-face entries
-  /// are computed on the first call; convert_face() alone does not compute the others).
+  /// are computed on the first call; convert_face() alone does not compute the others). Areas
+  /// are plyfit's integration to 1e-6 relative (estimated; a face short of it is named in the
+  /// warnings), except for faces already described, whose areas are to 1e-9.
   virtual const Mold& mold() const = 0;
   /// Number of faces (no listing computed).
   virtual int face_count() const = 0;
-  /// The listing entry of face `index` alone (computed once), or an error naming the file
-  /// and the face.
+  /// The entry of face `index` alone (computed once), with its area to 1e-9 relative
+  /// (estimated: the area a drape reports; short of it, the file's warnings say so), or an
+  /// error naming the file and the face.
   virtual Result<FaceInfo> describe(int index) const = 0;
   /// The file's metadata (source, format, schema, unit, reader warnings) without computing
   /// the face entries (those not described yet are placeholders of kind "unknown").
