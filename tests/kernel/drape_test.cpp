@@ -630,3 +630,86 @@ TEST_CASE("drape: a lock angle bounds the paper's thread angle, the one eq. (12)
     CHECK(r.metrics.paper.shear_max > opt.lock_angle - 5 * kPi / 180);
   }
 }
+
+TEST_CASE("drape: a drape that covers nothing, or starts far from the face, is partial") {
+  const double R = 20;
+  const Face f = builtin("sphere-octant", {{"R", R}});
+  const DrapeProblem a = problem(1.0, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)}, Vec3(0, 0, R),
+                                 Vec3(0, 1, 0), {Vec3(0, 1, 0)});
+  const DrapeResult ra = run(f, a);
+  REQUIRE_FALSE(ra.partial);
+  REQUIRE(ra.warnings.empty());
+  auto says = [](const DrapeResult& r, const std::string& what) {
+    for (const auto& w : r.warnings)
+      if (w.find(what) != std::string::npos) return true;
+    return false;
+  };
+  SECTION("a sweep pointing off the face maps no cell") {
+    // Case (a) swept to -y: the base path lies on the octant's edge y = 0.
+    auto pb = a;
+    pb.ply.sweeps = {Vec2(0, -1)};
+    pb.sweeps = {Vec3(0, -1, 0)};
+    const DrapeResult r = run(f, pb);
+    CHECK(r.metrics.flat_area == 0.0);
+    CHECK(r.partial);
+    CHECK(says(r, "maps no cell"));
+  }
+  SECTION("of two sweeps, one that maps nothing is a note, not partial") {
+    auto pb = a;
+    pb.ply.sweeps = {Vec2(0, 1), Vec2(0, -1)};
+    pb.sweeps = {Vec3(0, 1, 0), Vec3(0, -1, 0)};
+    const DrapeResult r = run(f, pb);
+    CHECK_FALSE(r.partial);
+    CHECK(r.metrics.nodes.mapped == ra.metrics.nodes.mapped);
+    REQUIRE(r.warnings.size() == 1);
+    CHECK(says(r, "sweep direction 2 maps no node"));
+  }
+  SECTION("a start far from the face is projected, and the drape is partial") {
+    // 846 mm above the octant's pole: the same net as case (a), but not what was asked for.
+    auto pb = a;
+    pb.start = Vec3(0, 0, R + 846);
+    const DrapeResult r = run(f, pb);
+    CHECK(r.start_moved == 846.0);
+    CHECK(r.metrics.nodes.mapped == ra.metrics.nodes.mapped);
+    CHECK(r.partial);
+    CHECK(says(r, "846 mm from the surface"));
+    // The threshold: Tolerances::start_far_rel of the face's size.
+    const double far = Tolerances().start_far_rel * f.size();
+    pb.start = Vec3(0, 0, R + 0.99 * far);
+    CHECK_FALSE(run(f, pb).partial);
+    pb.start = Vec3(0, 0, R + 1.01 * far);
+    CHECK(run(f, pb).partial);
+    // The paper's case (b) starts 5.9 mm off the sphere (a sixth of the octant's size): ok.
+    pb = a;
+    pb.ply.start = Vec2(20, 0);
+    pb.start = Vec3(R / 2, 0, R / 2);
+    const DrapeResult b = run(f, pb);
+    CHECK(b.start_moved > 5.8);
+    CHECK_FALSE(b.partial);
+  }
+}
+
+TEST_CASE("drape: a sweep within a degree of the base path or the normal is an error") {
+  const Face f = builtin("sphere-octant");
+  const DrapeProblem ok = problem(1.0, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)}, Vec3(0, 0, 20),
+                                  Vec3(0, 1, 0), {Vec3(0, 1, 0)});
+  // The base path runs along -X at the pole (the 2D base direction +x maps to it); the normal
+  // is +Z. t = tan(0.5 degrees), tan(2 degrees).
+  const double t05 = std::tan(0.5 * kPi / 180), t2 = std::tan(2 * kPi / 180);
+  auto bad = ok;
+  bad.ply.sweeps = {Vec2(1, t05)};  // 2D: half a degree off the base path
+  CHECK_THAT(drape(f, bad).error().message,
+             Catch::Contains("sweep direction 1 is parallel to the base path"));
+  bad.ply.sweeps = {Vec2(1, t2)};
+  CHECK(drape(f, bad).ok());
+  bad = ok;
+  bad.sweeps = {Vec3(-1, t05, 0)};  // 3D: half a degree off the base path
+  CHECK_THAT(drape(f, bad).error().message,
+             Catch::Contains("3D sweep direction 1 is parallel to the base path"));
+  bad.sweeps = {Vec3(0, t05, 1)};  // half a degree off the normal
+  CHECK_THAT(drape(f, bad).error().message, Catch::Contains("normal to the surface"));
+  bad.sweeps = {Vec3(-1, t2, 0)};
+  CHECK(drape(f, bad).ok());
+  bad.sweeps = {Vec3(0, t2, 1)};
+  CHECK(drape(f, bad).ok());
+}
