@@ -185,7 +185,10 @@ TEST_CASE("cli: compare refuses scenes on different molds unless --force") {
   r = plyfit_run("compare --force '" + a + "' '" + r3 + "'", tmp);
   CHECK(r.code == 0);
   CHECK(r.err.find("warning: comparing scenes on different molds") != std::string::npos);
-  CHECK(lines(r.out) == 4);
+  // Header, two rows, the note that revolution-third-a's outline covers less (75% of its face,
+  // the paper's case (a) leaves regions uncalculated) and the legend.
+  CHECK(lines(r.out) == 5);
+  CHECK(r.out.find("revolution-third-a: not compared: its outline covers ") != std::string::npos);
   // The same mold through another path is the same mold.
   spit(tmp.file("a.ini"), slurp(a));
   std::string text = slurp(a);
@@ -250,4 +253,37 @@ TEST_CASE("cli: compare never marks as best a fitting that covers less of the fa
   CHECK(t.out.find("far: partial, not compared: the 3D start lies 846 mm") != std::string::npos);
   CHECK(t.out.find("small: not compared: its outline covers ") != std::string::npos);
   CHECK(t.out.find("covers the face as well as the best, within 0.5%") != std::string::npos);
+}
+
+TEST_CASE("cli: compare on the paper's Table 4 cases leaves out the two that cover less") {
+  // Cases (a) and (b) on the third of a surface of revolution leave regions of the face
+  // uncalculated (their outlines cover 75% and 92% of it): they have the fewest mesh points but
+  // are not the best fittings; among (c) to (f) the smallest area is the goldens' smallest.
+  Scratch tmp("compare_rev");
+  std::string args;
+  std::vector<json> goldens;
+  for (const char c : std::string("abcdef")) {
+    args += " '" + sample(std::string("revolution-third-") + c + ".ini") + "'";
+    goldens.push_back(
+        json::parse(slurp(sample(std::string("golden/revolution-third-") + c + ".json"))));
+  }
+  const CliRun r = plyfit_run("compare --csv" + args, tmp);
+  INFO(r.out << r.err);
+  REQUIRE(r.code == 0);
+  const auto rows = parse_csv(r.out);
+  REQUIRE(rows.size() == 7);
+  CHECK(std::stod(rows[1][13]) < 99.0);
+  CHECK(std::stod(rows[2][13]) < 99.0);
+  CHECK(rows[1][15].empty());
+  CHECK(rows[2][15].empty());
+  double least = 1e300;
+  for (std::size_t k = 2; k < 6; ++k)
+    least = std::min(least, goldens[k]["/area_mesh_points"].get<double>());
+  CHECK(least > goldens[0]["/area_mesh_points"].get<double>());
+  for (std::size_t k = 2; k < 6; ++k) {
+    INFO(rows[k + 1][0]);
+    CHECK(std::stod(rows[k + 1][13]) > 99.0);
+    const bool marked = (";" + rows[k + 1][15] + ";").find(";area;") != std::string::npos;
+    CHECK(marked == (goldens[k]["/area_mesh_points"].get<double>() == least));
+  }
 }
