@@ -106,13 +106,13 @@ void judge_drape(const DrapeSurface& s, const DrapeProblem& pb, const Tolerances
   if (res.start_moved > far) {
     res.partial = true;
     const Vec3& p = res.start_point;
-    res.warnings.push_back("the 3D start lies " + brief(res.start_moved) +
-                           " mm from the surface, more than " + brief(tol.start_far_rel) +
-                           " of its size (" + brief(s.size()) +
-                           " mm): the drape starts at the nearest point of the surface, (" +
-                           brief(p.x()) + ", " + brief(p.y()) + ", " + brief(p.z()) +
-                           "), far from where it was asked to; check the start, the face and "
-                           "the unit");
+    res.warnings.push_back(
+        "the 3D start lies " + brief(res.start_moved) + " mm from the surface, more than " +
+        brief(tol.start_far_rel) + " times its size (" + brief(s.size()) +
+        " mm, the bounding-box diagonal): the drape starts at the nearest point of the surface, (" +
+        brief(p.x()) + ", " + brief(p.y()) + ", " + brief(p.z()) +
+        "), far from where it was asked to; check the start, the face and "
+        "the unit");
   }
   if (!complete) return;
   if (!(res.metrics.flat_area > 0.0)) {
