@@ -22,6 +22,10 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kGapFactor = 2.0;
 // The two sides of a shared edge may be at most this far apart, relative to the shell size.
 constexpr double kMaxGapRel = 1e-2;
+// A path that leaves its face's domain through a pole shared by several faces goes on on the
+// face that holds its 3D point (the face extended past the pole) within this fraction of the
+// step's 3D length (the extension of a surface of revolution past its pole is the surface).
+constexpr double kPoleReachRel = 1e-3;
 // A path in a face's parameters crosses at most this many shared edges in one locate().
 constexpr int kMaxEdgeCrossings = 8;
 // Points sampled along a shared edge for its crease angle and orientation.
@@ -82,6 +86,7 @@ struct Shell::Topology {
     // How far (3D) a point may lie off a shared edge and still be on the shell: the sewing
     // gap, and at least the rounding margin contains() grants at the face's domain.
     double near = 0.0;
+    bool pole = false;  // has a collapsed edge shared with other faces (see neighbours_)
   };
   std::vector<FaceTopo> faces;
 };
@@ -518,6 +523,47 @@ Result<Shell> Shell::create(ShellData data, const Tolerances& tol) {
       if (real && loop.points.size() >= 3) sh.boundary_.push_back(std::move(loop));
     }
   }
+  // Neighbours for settle(): across each shared edge (seeds: its polyline points, a few), and
+  // round each pole (a collapsed run's middle) that several faces share.
+  sh.neighbours_.assign(n, {});
+  auto add_neighbour = [&](std::int32_t f, std::int32_t g, const Vec2& seed) {
+    auto& list = sh.neighbours_[static_cast<std::size_t>(f)];
+    for (auto& nb : list)
+      if (nb.face == g) {
+        nb.seeds.push_back(seed);
+        return;
+      }
+    list.push_back({g, {seed}});
+  };
+  for (const Edge& E : sh.edges_)
+    for (int u = 0; u < 2; ++u) {
+      const auto& pts = E.uv[1 - u];
+      for (std::size_t i = 0; i < pts.size(); i += std::max<std::size_t>(1, pts.size() / 4))
+        add_neighbour(E.face[u], E.face[1 - u], pts[i]);
+      add_neighbour(E.face[u], E.face[1 - u], pts.back());
+    }
+  {
+    struct Pole {
+      std::int32_t face;
+      Vec2 uv;
+      Vec3 p;
+    };
+    std::vector<Pole> poles;
+    for (std::size_t k = 0; k < n; ++k)
+      for (const auto& sg : sh.topo_->faces[k].segs)
+        if (sg.kind == BoundaryLoop::kCollapsed) {
+          const Vec2 mid = 0.5 * (sg.a + sg.b);
+          poles.push_back({static_cast<std::int32_t>(k), mid, sh.faces_[k]->eval1(mid).p});
+        }
+    const double merge = sh.gap_ + tol.roundoff_rel * sh.size_;
+    for (const Pole& a : poles)
+      for (const Pole& b : poles)
+        if (a.face != b.face && (a.p - b.p).norm() <= merge) {
+          add_neighbour(a.face, b.face, b.uv);
+          sh.topo_->faces[static_cast<std::size_t>(a.face)].pole = true;
+        }
+  }
+
   bool seams = false;
   for (const auto& f : sh.faces_) seams = seams || f->closed_u() || f->closed_v();
   sh.closes_ = seams || sh.euler_ != 1 || sh.boundary_.size() != 1;
@@ -568,6 +614,33 @@ bool Shell::near_shared_edge(std::int32_t face, const Vec2& uv, int* segment) co
   return found >= 0;
 }
 
+SurfaceLocation Shell::settle(const SurfaceLocation& at, const Vec3& p, double reach) const {
+  if (contains(at)) return at;
+  // The neighbour that holds p nearest: a projection from each of its seeds.
+  SurfaceLocation best = at;
+  double best_d = reach;
+  for (const Neighbour& nb : neighbours_[static_cast<std::size_t>(at.face)]) {
+    const Face& G = *faces_[static_cast<std::size_t>(nb.face)];
+    // The seed nearest p in 3D first.
+    const Vec2* seed = &nb.seeds.front();
+    double sd = INFINITY;
+    for (const Vec2& q : nb.seeds) {
+      const SurfaceEval1 e = G.eval1(q);
+      if (e.ok && (e.p - p).norm() < sd) {
+        sd = (e.p - p).norm();
+        seed = &q;
+      }
+    }
+    const Projection pr = G.project_from(p, *seed, false);
+    const SurfaceLocation g(pr.at.uv, nb.face);
+    if (pr.ok && pr.distance <= best_d && contains(g)) {
+      best = g;
+      best_d = pr.distance;
+    }
+  }
+  return best;
+}
+
 SurfaceLocation Shell::locate(const SurfaceLocation& from, const Vec2& uv) const {
   return locate_from(from, uv, TrimLoop::kFreeEdge, 0);
 }
@@ -612,9 +685,22 @@ SurfaceLocation Shell::locate_from(const SurfaceLocation& from, const Vec2& uv, 
   });
   if (seg < 0) {
     // No shared edge crossed: `from` may lie past one already, within the sewing gap (then
-    // cross it here, if the path goes on outwards); else the path stays on this face.
-    if (!near_shared_edge(from.face, p, &seg) || !outward(seg)) return {uv, from.face};
-    t = 0.0;
+    // cross it here, if the path goes on outwards); a path that leaves the face's domain
+    // through a pole several faces share goes on where its 3D point lies; else the path
+    // stays on this face.
+    if (near_shared_edge(from.face, p, &seg) && outward(seg)) {
+      t = 0.0;
+    } else {
+      if (T.pole && !F.domain().contains(q.x(), q.y())) {
+        const SurfaceEval1 eq = F.eval1(q), ep = F.eval1(p);
+        if (eq.ok && ep.ok) {
+          const double reach = T.near + kPoleReachRel * (eq.p - ep.p).norm();
+          const SurfaceLocation g = settle(SurfaceLocation(q, from.face), eq.p, reach);
+          if (g.face != from.face) return g;
+        }
+      }
+      return {uv, from.face};
+    }
   }
   const auto& s = T.segs[static_cast<std::size_t>(seg)];
   if (s.edge < 0 || s.edge == except) return {uv, from.face};

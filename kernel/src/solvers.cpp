@@ -30,6 +30,9 @@ constexpr int kMarchSteps[] = {4, 16};
 // Sine of the angle between base plane and tangent plane below which the plane is taken
 // as tangent to the surface (no intersection curve direction).
 constexpr double kTangentPlaneSin = 1e-6;
+// A solution off its face is solved again on a face within this fraction of d of it (3D),
+// from the point's projection there (DrapeSurface::settle).
+constexpr double kSettleReachRel = 0.1;
 // A Newton step proposing to leave the domain margin this many times in a row, from an
 // iterate already past the domain edge, ends the solve with "left the face".
 constexpr int kOutsideStrikes = 2;
@@ -215,10 +218,25 @@ double residual_tolerance(const DrapeSurface& s, const SolverSettings& st, const
 // Finishes a converged solve: in-face test (one contains() query). A solution a hair past
 // a domain edge (a path along the edge, or a pole reached from the extension beyond it) is
 // on the face if the same point is reached with the parameters clamped to the domain.
-void classify_converged(Ctx& c) {
+template <class Resid>
+void classify_converged(Ctx& c, Resid&& resid) {
   if (c.s.contains(c.res.at)) {
     c.res.status = SolveStatus::kConverged;
     return;
+  }
+  // Off its face but on another face of the surface (a shell's neighbour past a pole, or one
+  // the iterate reached without crossing a shared edge): solved again there, from the point's
+  // projection.
+  const SurfaceLocation other = c.s.settle(c.res.at, c.res.point, kSettleReachRel * c.st.spacing);
+  if (other != c.res.at) {
+    const SolveResult before = c.res;
+    const SurfaceEval1 last = c.last;
+    if (newton(c, other, resid) && c.s.contains(c.res.at)) {
+      c.res.status = SolveStatus::kConverged;
+      return;
+    }
+    c.res = before;
+    c.last = last;
   }
   const auto& d = c.s.domain(c.res.at);
   const Vec2& uv = c.res.at.uv;
@@ -400,7 +418,7 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
   // Direct attempt from the first-order guess (eqs. 7-8).
   const SurfaceLocation guess = s.locate(ud.from_at, ud.from_at.uv + rho * ud.dir_uv);
   if (solve_from(guess)) {
-    classify_converged(c);
+    classify_converged(c, resid);
     return c.res;
   }
   // Leaving the face is the answer when the first-order model is trustworthy: the surface
@@ -427,7 +445,7 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
       }
     }
     if (ok) {
-      classify_converged(c);
+      classify_converged(c, resid);
       return c.res;
     }
     // A sub-step that fails where the curve, at the last sub-step or continued from it, is
@@ -576,7 +594,7 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
     }
     const Vec3 pa = a - c.res.point, pb = b - c.res.point;
     c.res.thread_angle = std::atan2(pa.cross(pb).norm(), pa.dot(pb));
-    classify_converged(c);
+    classify_converged(c, resid);
     if (c.res.status == SolveStatus::kConverged && st.gamma_min > 0.0 &&
         (c.res.thread_angle < st.gamma_min || c.res.thread_angle > kPi - st.gamma_min)) {
       c.res.status = SolveStatus::kShearLimit;

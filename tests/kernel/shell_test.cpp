@@ -4,8 +4,10 @@
 #include <plyfit/kernel/builtin_molds.hpp>
 #include <plyfit/kernel/builtin_shells.hpp>
 #include <plyfit/kernel/drape.hpp>
+#include <plyfit/kernel/flat_pattern.hpp>
 #include <plyfit/kernel/shell.hpp>
 
+#include "support/net_checks.hpp"
 #include "support/problems.hpp"
 
 #include <catch2/catch.hpp>
@@ -190,11 +192,54 @@ TEST_CASE("shell: the sphere as 8 faces drapes the same net as the sphere as one
   INFO("one face: " << a->metrics.nodes.mapped << " mapped; 8 faces: " << b->metrics.nodes.mapped);
   const std::size_t mapped = same_net(*a, *b, 1e-9 * pb.ply.d_weft);
   CHECK(mapped > 800);
+  CHECK(support::seam_gaps(*b) == 0);
   // The net crossed shared edges: nodes on several faces.
   std::set<int> faces;
   for (const DrapeNode& n : b->nodes)
     if (n.mapped()) faces.insert(n.face);
   CHECK(faces.size() >= 3);
+}
+
+TEST_CASE("shell: the cloth crosses a pole that four faces share") {
+  // Started off the north pole of the 8-face sphere: the ply (30 x 30 on R = 20) covers the
+  // pole, where the 4 northern faces meet in their collapsed edges. A sphere has no edge: every
+  // node of the ply is mapped. (The sphere as one face is compared where it maps its nodes: at
+  // its own pole it stops one node, issue 13's pole case.)
+  const Shell eight = make_shell("sphere-8", {{"R", 20.0}});
+  const Face one = one_patch_sphere(20.0);
+  const Vec3 s3 = Vec3(0.3, -0.2, 1).normalized() * 20.0;
+  auto pb = support::problem(1.0, Vec2(15, 15), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)}, s3,
+                             Vec3(1, -1, 0).normalized().cross(s3).normalized(),
+                             {Vec3(0, 0, 1), Vec3(0, 0, -1)});
+  pb.ply.rect = Vec2(30, 30);
+  auto b = drape(eight, pb);
+  REQUIRE(b.ok());
+  CHECK(b->metrics.nodes.mapped == 31 * 31);
+  CHECK(b->metrics.nodes.outside == 0);
+  CHECK(b->metrics.nodes.failed == 0);
+  CHECK(b->metrics.edge_length_max_rel < 1e-12);
+  std::set<int> faces;
+  for (const DrapeNode& n : b->nodes)
+    if (n.mapped()) faces.insert(n.face);
+  CHECK(faces.size() == 4);
+  auto a = drape(one, pb);
+  REQUIRE(a.ok());
+  // The scan resolves nodes in the same order on both: up to the one-face net's first stop,
+  // the nets agree node for node.
+  std::uint32_t first_stop = UINT32_MAX;
+  for (const DrapeNode& n : a->nodes)
+    if (n.status == NodeStatus::kOutside || n.status == NodeStatus::kFailed)
+      first_stop = std::min(first_stop, n.order);
+  std::size_t compared = 0;
+  for (const DrapeNode& n : a->nodes) {
+    const DrapeNode* m = b->find(n.id);
+    if (n.order >= first_stop || !n.mapped()) continue;
+    ++compared;
+    REQUIRE(m);
+    CHECK(m->mapped());
+    if ((n.point - m->point).norm() > 1e-9) FAIL_CHECK("node " << n.id.i << "," << n.id.j);
+  }
+  CHECK(compared > 100);
 }
 
 TEST_CASE("shell: a cylinder split along generators drapes the same net as one face") {
@@ -216,5 +261,44 @@ TEST_CASE("shell: a cylinder split along generators drapes the same net as one f
     REQUIRE(b.ok());
     const std::size_t mapped = same_net(*a, *b, 1e-9 * 0.5);
     CHECK(mapped > 500);
+    CHECK(support::seam_gaps(*b) == 0);
+  }
+}
+
+TEST_CASE("shell: a developable mold of three faces drapes as the plane it unrolls to") {
+  // Flange + fillet + wall (L = 40, r = 10, Hw = 40, W = 60) unrolls to the rectangle
+  // 60 x (80 + 5 pi): threads along and across the fillet stay square (every thread angle
+  // pi/2), the net is the plane's node for node, and the flat pattern's area is the shell's
+  // area to O(d^2) (0.1 % asked; the outline's corners and the faces' free edges are exact).
+  const Shell sh = make_shell("flange-fillet-wall");
+  auto fd = builtin_mold("plane", {{"W", 80 + 5 * kPi}, {"H", 60}});
+  REQUIRE(fd.ok());
+  const Face plane = make_face(std::move(fd).value());
+  for (const double d : {1.0, 0.5}) {
+    INFO("d = " << d);
+    auto pb = support::problem(d, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)},
+                               Vec3(-20, 30, 0), Vec3(0, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)});
+    auto r = drape(sh, pb);
+    REQUIRE(r.ok());
+    CHECK_FALSE(r->partial);
+    CHECK(r->metrics.gamma_min == Approx(kPi / 2).margin(1e-9));
+    CHECK(r->metrics.gamma_max == Approx(kPi / 2).margin(1e-9));
+    CHECK(r->metrics.edge_length_max_rel < 1e-12);
+    CHECK(r->metrics.crease_angle_max < 1e-9);  // tangent joins
+    CHECK(support::seam_gaps(*r) == 0);
+    for (const auto& f : r->metrics.faces) CHECK(f.mapped > 0);
+    // The unrolled plane, started at the same distance (20) from the flange's free edge.
+    auto pp = pb;
+    pp.start = Vec3(20, 30, 0);
+    auto q = drape(plane, pp);
+    REQUIRE(q.ok());
+    CHECK(r->metrics.nodes.mapped == q->metrics.nodes.mapped);
+    CHECK(r->metrics.nodes.outside == q->metrics.nodes.outside);
+    const FlatPattern fp = flat_pattern(sh, *r);
+    REQUIRE(fp.outline.size() == 1);
+    CHECK(std::abs(fp.area / sh.area() - 1.0) < 1e-3);
+    CHECK(fp.perimeter == Approx(2 * (80 + 5 * kPi) + 120).epsilon(1e-3));
+    // Every outline point has its point on the mold.
+    for (const Vec3& p : fp.outline[0].points3d) CHECK(sh.project(p).distance < 1e-9);
   }
 }

@@ -113,6 +113,15 @@ class DrapeSurface {
   virtual BBox3 bbox() const = 0;
   /// Area of face k (0 <= k < face_count()).
   virtual double face_area(std::int32_t k) const = 0;
+  /// The location of point p, which a solve reached at `at` off at's face, on another face
+  /// that holds it within `reach` (3D): a shell's neighbour past a pole the faces share, or
+  /// one reached without crossing their shared edge; `at` itself where no other face holds p
+  /// (one face: always).
+  virtual SurfaceLocation settle(const SurfaceLocation& at, const Vec3& p, double reach) const {
+    (void)p;
+    (void)reach;
+    return at;
+  }
   /// Crease angle (radians) between the faces of two locations: the largest angle between
   /// their outward normals along the shared edges joining them; 0 on one face.
   virtual double crease_angle(const SurfaceLocation& a, const SurfaceLocation& b) const {

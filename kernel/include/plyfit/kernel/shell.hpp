@@ -102,6 +102,7 @@ class Shell final : public DrapeSurface {
   std::vector<BoundaryLoop> boundary() const override { return boundary_; }
   BBox3 bbox() const override { return bbox_; }
   double face_area(std::int32_t k) const override { return face(k).area(); }
+  SurfaceLocation settle(const SurfaceLocation& at, const Vec3& p, double reach) const override;
   double crease_angle(const SurfaceLocation& a, const SurfaceLocation& b) const override {
     return a.face == b.face ? 0.0 : crease_angle(a.face, b.face);
   }
@@ -133,6 +134,13 @@ class Shell final : public DrapeSurface {
   std::vector<Edge> edges_;
   std::unique_ptr<Topology> topo_;
   std::vector<BoundaryLoop> boundary_;
+  // Per face: the faces that share an edge or a pole with it, and a (u, v) on each near the
+  // shared part (seeds for settle()).
+  struct Neighbour {
+    std::int32_t face;
+    std::vector<Vec2> seeds;
+  };
+  std::vector<std::vector<Neighbour>> neighbours_;
   Tolerances tol_;
   double gap_ = 0.0, size_ = 1.0, area_ = 0.0;
   BBox3 bbox_;
