@@ -1,9 +1,11 @@
 // plyfit compare SCENE... [--csv | --markdown] [-o OUTROOT] [--force]: drapes scenes on one
 // mold face with different initial conditions and prints the comparison of the paper's
-// Tables 2 and 4, marking the best scene for each criterion.
+// Tables 2 and 4 (our figures and the paper's own thread angles), marking the best scene for
+// each criterion among those that cover the face.
 
 #include "commands.hpp"
 #include "drape_job.hpp"
+#include "outline_coverage.hpp"
 #include "scene_names.hpp"
 
 #include <boost/program_options.hpp>
@@ -12,6 +14,7 @@
 #include <filesystem>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 
 namespace plyfit::cli {
 namespace {
@@ -24,34 +27,58 @@ constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 /// tie only when equal.
 constexpr double kTieRel = 1e-9;
 
-/// One compared criterion: a column of the table.
+/// How a column is marked.
+enum class Mark {
+  kSmaller,  ///< the smallest figure among the compared scenes
+  kLarger,   ///< the largest
+  kCovers,   ///< every scene that covers the face (the outline coverage rule): the compared ones
+  kNone,     ///< shown only
+};
+
+/// One column of the table.
 struct Criterion {
   std::string key;     ///< CSV column and `best` entry
   std::string header;  ///< table header
-  bool larger_better;  ///< else smaller is better
-  bool count;          ///< an integer count (exact ties)
-  int digits;          ///< decimals shown
+  Mark mark;
+  bool count;  ///< an integer count (exact ties)
+  int digits;  ///< decimals shown
 };
 
 const std::vector<Criterion>& criteria() {
   static const std::vector<Criterion> list = {
-      {"area", "area (mesh points)", false, true, 0},
-      {"flat_area", "flat area", false, false, 2},
-      {"gamma_min_deg", "gamma min (deg)", true, false, 3},
-      {"gamma_max_deg", "gamma max (deg)", false, false, 3},
-      {"energy", "energy sum cos^2", false, false, 3},
-      {"coverage_pct", "coverage (%)", true, false, 2},
-      {"shear_limit", "shear-limit stops", false, true, 0},
+      {"area", "area (mesh points)", Mark::kSmaller, true, 0},
+      {"flat_area", "flat area", Mark::kSmaller, false, 2},
+      {"gamma_min_deg", "gamma min (deg)", Mark::kLarger, false, 3},
+      {"gamma_max_deg", "gamma max (deg)", Mark::kSmaller, false, 3},
+      {"shear_max_deg", "max shear (deg)", Mark::kSmaller, false, 3},
+      {"energy", "energy sum cos^2", Mark::kSmaller, false, 3},
+      {"paper_gamma_min_deg", "paper gamma min (deg)", Mark::kLarger, false, 3},
+      {"paper_gamma_max_deg", "paper gamma max (deg)", Mark::kSmaller, false, 3},
+      {"paper_shear_max_deg", "paper max shear (deg)", Mark::kSmaller, false, 3},
+      {"paper_energy", "paper energy", Mark::kSmaller, false, 3},
+      {"coverage_pct", "cell coverage (%)", Mark::kNone, false, 2},
+      {"outline_coverage_pct", "outline coverage (%)", Mark::kCovers, false, 2},
+      {"shear_limit", "shear-limit stops", Mark::kSmaller, true, 0},
   };
   return list;
 }
 
+/// Index of the column `key` in criteria().
+std::size_t column(const std::string& key) {
+  for (std::size_t c = 0; c < criteria().size(); ++c)
+    if (criteria()[c].key == key) return c;
+  throw std::logic_error("no compare column " + key);
+}
+
 struct Row {
   std::string name, path;
-  bool ok = false;
+  bool ok = false;       ///< draped (status ok or partial)
+  bool partial = false;  ///< draped, status partial
   std::string error;
+  std::vector<std::string> warnings;
   std::vector<double> values;  ///< one per criterion
   std::vector<bool> best;
+  bool compared = false;  ///< status ok and covers the face: its figures compete for best
 };
 
 std::string fixed(double x, int digits) {
@@ -67,25 +94,67 @@ bool ties(double a, double b, bool count) {
   return std::abs(a - b) <= kTieRel * std::max(std::abs(a), std::abs(b));
 }
 
+// The rule: a scene competes for best only when its drape is ok (not partial) and its flat
+// pattern's outline covers at least the largest such coverage among the ok scenes (at most the
+// whole face) less kCoverageSlack: a fitting that covers less of the face never wins by the
+// figures it leaves out (fewer nodes, less energy, less area).
 void mark_best(std::vector<Row>& rows) {
-  for (auto& r : rows) r.best.assign(criteria().size(), false);
+  const std::size_t cov = column("outline_coverage_pct");
+  double top = -1.0;  // percent
+  for (const auto& r : rows)
+    if (r.ok && !r.partial) top = std::max(top, r.values[cov]);
+  const double floor = std::min(top, 100.0) - 100.0 * kCoverageSlack;
+  for (auto& r : rows) {
+    r.best.assign(criteria().size(), false);
+    r.compared = r.ok && !r.partial && r.values[cov] >= floor;
+  }
   for (std::size_t c = 0; c < criteria().size(); ++c) {
     const Criterion& k = criteria()[c];
+    if (k.mark == Mark::kNone) continue;
+    if (k.mark == Mark::kCovers) {
+      for (auto& r : rows) r.best[c] = r.compared;
+      continue;
+    }
     bool any = false;
     double best = 0.0;
     for (const auto& r : rows) {
-      if (!r.ok) continue;
+      if (!r.compared) continue;
       const double v = r.values[c];
-      if (!any || (k.larger_better ? v > best : v < best)) best = v;
+      if (!any || (k.mark == Mark::kLarger ? v > best : v < best)) best = v;
       any = true;
     }
     for (auto& r : rows)
-      if (r.ok && ties(r.values[c], best, k.count)) r.best[c] = true;
+      if (r.compared && ties(r.values[c], best, k.count)) r.best[c] = true;
   }
 }
 
+/// The marking rule, as the legends state it.
+const char* const kRule =
+    "best in its column among the compared scenes: those whose drape is ok (not partial) and "
+    "whose flat pattern's outline covers the face as well as the best, within 0.5% (all marked "
+    "in the outline coverage column); smallest area, flat area, gamma max, max shear, energy "
+    "(ours and the paper's) and shear-limit stops; largest gamma min (ours and the paper's); "
+    "ties within 1e-9 relative are all marked; the cell coverage is shown, not compared";
+
 std::string cell(const Row& r, std::size_t c) {
   return fixed(r.values[c], criteria()[c].digits);
+}
+
+// The scenes that failed, the partial ones with their warnings, and those that cover less.
+void print_notes(const std::vector<Row>& rows, std::ostream& os) {
+  for (const auto& r : rows) {
+    if (!r.ok) {
+      os << r.name << ": error: " << r.error << "\n";
+    } else if (r.partial) {
+      os << r.name << ": partial, not compared";
+      for (std::size_t k = 0; k < r.warnings.size(); ++k) os << (k ? "; " : ": ") << r.warnings[k];
+      os << "\n";
+    } else if (!r.compared) {
+      os << r.name << ": not compared: its outline covers "
+         << fixed(r.values[column("outline_coverage_pct")], 2)
+         << "% of the face, more than 0.5% less than the best\n";
+    }
+  }
 }
 
 void print_text(const std::vector<Row>& rows, std::ostream& os) {
@@ -115,10 +184,8 @@ void print_text(const std::vector<Row>& rows, std::ostream& os) {
     }
     os << s << "\n";
   }
-  for (const auto& r : rows)
-    if (!r.ok) os << r.name << ": error: " << r.error << "\n";
-  os << "* best in its column: smallest area, flat area, gamma max, energy and shear-limit "
-        "stops; largest gamma min and coverage (ties, within 1e-9 relative, are all marked)\n";
+  print_notes(rows, os);
+  os << "* " << kRule << "\n";
 }
 
 void print_markdown(const std::vector<Row>& rows, std::ostream& os) {
@@ -139,16 +206,17 @@ void print_markdown(const std::vector<Row>& rows, std::ostream& os) {
     }
     os << "\n";
   }
-  os << "\nBest in bold: smallest area, flat area, gamma max, energy and shear-limit stops; "
-        "largest gamma min and coverage (ties, within 1e-9 relative, are all marked).\n";
+  os << "\n";
+  print_notes(rows, os);
+  os << "\nIn bold: " << kRule << ".\n";
 }
 
 void print_csv(const std::vector<Row>& rows, std::ostream& os) {
   os << "scene,status";
   for (const auto& k : criteria()) os << "," << k.key;
-  os << ",best,error\n";
+  os << ",best,note\n";
   for (const auto& r : rows) {
-    os << r.name << "," << (r.ok ? "ok" : "error");
+    os << r.name << "," << (!r.ok ? "error" : r.partial ? "partial" : "ok");
     std::string best;
     for (std::size_t c = 0; c < criteria().size(); ++c) {
       if (!r.ok) {
@@ -161,10 +229,13 @@ void print_csv(const std::vector<Row>& rows, std::ostream& os) {
       os << "," << v.str();
       if (r.best[c]) best += (best.empty() ? "" : ";") + criteria()[c].key;
     }
-    std::string err = r.error;
-    for (char& ch : err)
+    // The note: the error, or a partial drape's warnings.
+    std::string note = r.error;
+    for (const auto& w : r.warnings)
+      if (r.partial) note += (note.empty() ? "" : "; ") + w;
+    for (char& ch : note)
       if (ch == '"') ch = '\'';
-    os << "," << best << "," << (err.empty() ? "" : "\"" + err + "\"") << "\n";
+    os << "," << best << "," << (note.empty() ? "" : "\"" + note + "\"") << "\n";
   }
 }
 
@@ -202,9 +273,12 @@ int run_compare(const std::vector<std::string>& args) {
                  "Drapes every scene (one mold face, different initial conditions) and prints,\n"
                  "per scene, the figures of the paper's Tables 2 and 4: area (mapped mesh\n"
                  "points), flat area (the flat pattern's outline), thread angles gamma min and\n"
-                 "max, shear energy sum cos^2(gamma), coverage of the face and the nodes stopped\n"
-                 "by the shear limit; the best scene for each criterion is marked. Scenes on\n"
-                 "different molds or faces are refused unless --force.\n\n"
+                 "max, max shear, shear energy sum cos^2(gamma), the same three by the paper's\n"
+                 "own thread angle (eq. 12), the coverage of the face by the mapped cells and\n"
+                 "by the outline, and the nodes stopped by the shear limit. The best scene for\n"
+                 "each criterion is marked among the ok scenes whose outline covers the face as\n"
+                 "well as the best, within 0.5% (a fitting that covers less never wins). Scenes\n"
+                 "on different molds or faces are refused unless --force.\n\n"
               << opts;
     return kExitOk;
   }
@@ -259,12 +333,20 @@ int run_compare(const std::vector<std::string>& args) {
     } else {
       const auto& m = out->metrics;
       r.ok = true;
+      r.partial = out->status == "partial";
+      r.warnings = out->warnings;
       r.values = {static_cast<double>(m.area_mesh_points),
                   out->flat_outline_area,
                   m.gamma_min * kRadToDeg,
                   m.gamma_max * kRadToDeg,
+                  m.shear_max * kRadToDeg,
                   m.shear_energy,
-                  out->face_area > 0 ? 100.0 * m.surface_area / out->face_area : 0.0,
+                  m.paper.gamma_min * kRadToDeg,
+                  m.paper.gamma_max * kRadToDeg,
+                  m.paper.shear_max * kRadToDeg,
+                  m.paper.energy,
+                  100.0 * m.coverage,
+                  100.0 * out->outline_coverage,
                   static_cast<double>(m.nodes.shear_limit)};
     }
     rows.push_back(std::move(r));

@@ -166,6 +166,8 @@ int run_drape(const std::vector<std::string>& args_in) {
             << " at the shear limit, " << m.nodes.failed << " failed, " << m.nodes.overlap
             << " overlapping; max shear " << out->shear_max_deg << " deg; "
             << static_cast<long>(out->total_ms) << " ms -> " << job->outdir << "\n";
+  if (!quiet)
+    for (const auto& w : out->warnings) std::cerr << "plyfit: warning: " << w << "\n";
   return finish(kExitOk, *out);
 }
 

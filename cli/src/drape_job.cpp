@@ -1,6 +1,7 @@
 #include "drape_job.hpp"
 
 #include "materials.hpp"
+#include "outline_coverage.hpp"
 
 #include <plyfit/exporters/exporters.hpp>
 #include <plyfit/importers/importers.hpp>
@@ -384,12 +385,26 @@ Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
     return Error{where + "give one 3D sweep direction per 2D sweep direction (" +
                  std::to_string(ply.sweeps.size()) + " 2D, " +
                  std::to_string(job.problem.sweeps.size()) + " 3D)"};
-  for (std::size_t k = 0; k < ply.sweeps.size(); ++k)
-    if (std::abs(cross2(ply.base_dir.normalized(), ply.sweeps[k].normalized())) <
-            job.drape.tol.ply_merge_rel ||
-        !(ply.sweeps[k].norm() > 0))
+  // As drape() checks it: a sweep within Tolerances::sweep_min_angle of the base path picks
+  // its side by the last digits given.
+  const double min_sweep = job.drape.tol.sweep_min_angle;
+  for (std::size_t k = 0; k < ply.sweeps.size(); ++k) {
+    if (!(ply.sweeps[k].norm() > 0))
       return Error{name("sweep2d") + ": sweep direction " + std::to_string(k + 1) +
-                   " is parallel to the base path"};
+                   " must be non-zero"};
+    const double sn = std::abs(cross2(ply.base_dir.normalized(), ply.sweeps[k].normalized()));
+    if (sn < std::sin(min_sweep)) {
+      std::ostringstream os;
+      os.precision(3);
+      os << std::asin(std::min(sn, 1.0)) / kDegToRad << " deg with it (at least "
+         << min_sweep / kDegToRad << " deg needed)";
+      return Error{name("sweep2d") + ": sweep direction " + std::to_string(k + 1) +
+                   " is parallel to the base path: it makes " + os.str() +
+                   "; it must point into one side of the path"};
+    }
+  }
+  for (const char* k : {"start3d", "base-normal", "sweep3d", "sweep2d", "lock-angle"})
+    job.input_names[k] = name(k);
 
   // The material: its warning and limit angles are the defaults of --warn-angle and
   // --lock-angle.
@@ -653,6 +668,30 @@ Result<std::unique_ptr<DrapeSurface>> load_surface(const DrapeJob& job,
   return surface;
 }
 
+namespace {
+// drape()'s input errors name the input in words, by these openings; the message gets the
+// option's name where the job's value came from ("--sweep3d", or "FILE: key 'sweep3d'").
+std::string with_input_name(const DrapeJob& job, const std::string& message) {
+  static const std::pair<const char*, const char*> kOpenings[] = {
+      {"3D sweep direction", "sweep3d"},
+      {"the two 3D sweep directions", "sweep3d"},
+      {"the base plane", "base-normal"},
+      {"the base-plane normal", "base-normal"},
+      {"the 3D start point", "start3d"},
+      {"cannot project the start point", "start3d"},
+      {"no surface normal at the start", "start3d"},
+      {"sweep direction", "sweep2d"},
+      {"both sweep directions", "sweep2d"},
+      {"the lock angle", "lock-angle"}};
+  for (const auto& [opening, key] : kOpenings) {
+    if (message.rfind(opening, 0) != 0) continue;
+    const auto n = job.input_names.find(key);
+    return (n != job.input_names.end() ? n->second : "--" + std::string(key)) + ": " + message;
+  }
+  return message;
+}
+}  // namespace
+
 Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel, bool progress) {
   const auto t0 = std::chrono::steady_clock::now();
   auto ms_since = [](auto t) {
@@ -684,7 +723,7 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   }
   auto res = drape(*surface, job.problem, opt);
   if (tty) std::cerr << "\r\033[K" << std::flush;
-  if (!res) return res.error();
+  if (!res) return Error{with_input_name(job, res.error().message)};
   if (cancel && cancel->load()) return Error{"cancelled"};
   run.drape_ms = res->drape_ms;
   const FlatPattern flat = flat_pattern(*surface, *res);
@@ -709,6 +748,8 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   out.metrics = m;
   out.face_area = surface->area();
   out.flat_outline_area = flat.area;
+  out.outline_coverage = out.face_area > 0 ? outline_surface_area(*res, flat) / out.face_area : 0.0;
+  out.warnings = res->warnings;
   for (const auto& k : job.outputs)
     if (const auto* e = exporters::find_exporter(k))
       for (const auto& f : e->files) out.files.push_back(f);

@@ -69,6 +69,9 @@ struct DrapeJob {
   std::string material_label;      ///< the material's label
   std::string materials_file;      ///< materials table file; empty: plyfit's own
   std::string scene;               ///< scene file the job came from, if any
+  /// How messages name the inputs drape() checks against the mold (start3d, base-normal,
+  /// sweep3d, sweep2d, lock-angle): "--key", or "FILE: key 'key'" for a scene's key.
+  std::map<std::string, std::string> input_names;
 };
 
 /// Parses flags (the arguments after `plyfit drape`, minus a leading scene file) into raw
@@ -97,6 +100,9 @@ struct JobOutcome {
   DrapeMetrics metrics;
   double face_area = 0.0;
   double flat_outline_area = 0.0;
+  /// The share of the surface the flat pattern's outline covers (outline_coverage.hpp).
+  double outline_coverage = 0.0;
+  std::vector<std::string> warnings;  ///< the drape's (why partial, and notes)
 };
 
 /// Imports the surface a job drapes: a built-in mold (one face, or a built-in shell), one face

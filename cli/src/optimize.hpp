@@ -5,6 +5,7 @@
 // run in parallel; the same input gives the same result whatever the number of threads.
 
 #include "drape_job.hpp"
+#include "outline_coverage.hpp"
 
 #include <plyfit/kernel/face.hpp>
 
@@ -91,13 +92,6 @@ struct OptimizeOptions {
   /// Called (from a worker, serialised) after each drape with the drapes done and planned.
   std::function<void(int done, int total)> progress;
 };
-
-/// A drape's coverage may fall this far (fraction of the face) below the best coverage (at
-/// most 1) and still count as covering as much: the 589 drapes of the three sphere-octant
-/// samples' searches (d = R/20) that reach the whole face cover 99.70% to 100.21% of it by
-/// this measure, at most 0.30% short, with the grid's position against the boundary (by the
-/// mapped cells, report.json's coverage, 88.5% to 96.8%).
-constexpr double kCoverageSlack = 0.005;
 
 /// The search's result.
 struct OptimizeResult {

@@ -1,6 +1,6 @@
-// report.json: inputs echoed, status, node counts, areas, thread angles, shear energy,
-// residuals, timings. nlohmann-json writes numbers in their shortest exact form, so equal
-// inputs give equal bytes except for the timing_ms fields.
+// report.json: inputs echoed, status, node counts, areas, thread angles, shear energy, the
+// paper's thread angles and energy (eq. 12), residuals, timings. nlohmann-json writes numbers in
+// their shortest exact form, so equal inputs give equal bytes except for the timing_ms fields.
 
 #include <plyfit/exporters/atomic_file.hpp>
 #include <plyfit/exporters/exporters.hpp>
@@ -162,6 +162,13 @@ std::string report_json(const ExportContext& ctx) {
                        {"max_deg", m.gamma_max * kRadToDeg}};
   j["shear_max_deg"] = m.shear_max * kRadToDeg;
   j["shear_energy"] = m.shear_energy;
+  j["paper_metrics"] = {{"gamma_min", m.paper.gamma_min},
+                        {"gamma_max", m.paper.gamma_max},
+                        {"energy", m.paper.energy},
+                        {"gamma_min_deg", m.paper.gamma_min * kRadToDeg},
+                        {"gamma_max_deg", m.paper.gamma_max * kRadToDeg},
+                        {"shear_max_deg", m.paper.shear_max * kRadToDeg},
+                        {"with_angle", m.paper.angles}};
   j["residual"] = {{"edge_length_max_rel", m.edge_length_max_rel},
                    {"surface_distance_max", m.surface_distance_max},
                    {"base_plane_max_rel", m.base_plane_max_rel}};

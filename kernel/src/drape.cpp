@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <sstream>
 
 namespace plyfit {
 
@@ -18,8 +19,7 @@ using detail::kPi;
 // The base plane must cut the surface at the start: the sine of the angle between the base
 // plane and the tangent plane there must exceed this.
 constexpr double kMinPlaneCutSin = 1e-3;
-// A 3D sweep direction must make at least this sine with the base path in the tangent plane.
-constexpr double kMinSweepSin = 1e-6;
+constexpr double kRadToDeg = 180.0 / kPi;
 // Node-count estimate (expected_nodes): samples per cell width across the face, the grid's
 // bounds per direction, a relative margin, boundary-ring nodes per sqrt(nodes), and a floor.
 constexpr double kEstimateSamplesPerCell = 0.3;
@@ -74,12 +74,75 @@ std::size_t expected_nodes(const DrapeSurface& s, const Ply& ply, const Vec3& st
   return static_cast<std::size_t>(std::min(n, static_cast<double>(cap)));
 }
 
+// x in the shortest of 3 significant digits (messages).
+std::string brief(double x) {
+  std::ostringstream os;
+  os.precision(3);
+  os << x;
+  return os.str();
+}
+
+// The input checks that need the ply: each sweep direction at least tol.sweep_min_angle from
+// the base path (Ply::create refuses only exact parallels).
+Status check_sweeps_2d(const Ply& P, const Tolerances& tol) {
+  for (std::size_t k = 0; k < P.spec().sweeps.size(); ++k) {
+    const double sn = std::abs(cross2(P.base_dir(), P.spec().sweeps[k]));
+    if (sn < std::sin(tol.sweep_min_angle))
+      return Error{"sweep direction " + std::to_string(k + 1) +
+                   " is parallel to the base path: it makes " +
+                   brief(std::asin(std::min(sn, 1.0)) * kRadToDeg) + " deg with it (at least " +
+                   brief(tol.sweep_min_angle * kRadToDeg) +
+                   " deg needed); it must point into one side of the path"};
+  }
+  return ok_status();
+}
+
+// Warnings of a drape that ran but is not what was asked for: a start far from the surface, no
+// cell mapped at all (partial), or a sweep that maps nothing while another does (a note); the
+// last two only for a scan that ran to its end (`complete`).
+void judge_drape(const DrapeSurface& s, const DrapeProblem& pb, const Tolerances& tol,
+                 bool complete, DrapeResult& res) {
+  const double far = tol.start_far_rel * s.size();
+  if (res.start_moved > far) {
+    res.partial = true;
+    const Vec3& p = res.start_point;
+    res.warnings.push_back(
+        "the 3D start lies " + brief(res.start_moved) + " mm from the surface, more than " +
+        brief(tol.start_far_rel) + " times its size (" + brief(s.size()) +
+        " mm, the bounding-box diagonal): the drape starts at the nearest point of the surface, (" +
+        brief(p.x()) + ", " + brief(p.y()) + ", " + brief(p.z()) +
+        "), far from where it was asked to; check the start, the face and "
+        "the unit");
+  }
+  if (!complete) return;
+  if (!(res.metrics.flat_area > 0.0)) {
+    res.partial = true;
+    res.warnings.push_back(
+        "the drape maps no cell: the cloth leaves the face at the base path on every swept side "
+        "(do the sweep directions point into the face from the base path?)");
+    return;
+  }
+  const Ply& P = *res.ply;
+  std::vector<std::uint64_t> per_sweep(pb.sweeps.size(), 0);
+  for (const DrapeNode& n : res.nodes) {
+    if (!n.mapped() || n.id.is_path_only() || n.has(DrapeNode::kOnPath)) continue;
+    const int k = P.sweep_for_side(P.side(n.ply));
+    if (k >= 0 && static_cast<std::size_t>(k) < per_sweep.size()) ++per_sweep[k];
+  }
+  for (std::size_t k = 0; k < per_sweep.size(); ++k)
+    if (per_sweep[k] == 0)
+      res.warnings.push_back("sweep direction " + std::to_string(k + 1) +
+                             " maps no node: the cloth leaves the face at the base path on its "
+                             "side (the start on the face's edge?)");
+}
+
 }  // namespace
 
 Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const DrapeOptions& opt) {
   const auto t0 = std::chrono::steady_clock::now();
   auto ply = Ply::create(pb.ply, opt.tol);
   if (!ply) return ply.error();
+  if (auto st = check_sweeps_2d(*ply, opt.tol); !st) return st.error();
   if (pb.sweeps.size() != pb.ply.sweeps.size())
     return Error{"give as many 3D sweep directions as 2D ones (" +
                  std::to_string(pb.ply.sweeps.size()) + " 2D, " + std::to_string(pb.sweeps.size()) +
@@ -108,16 +171,23 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
   t3.normalize();
   // Pairing of 2D and 3D: (base, sweep) has the same handedness about the normal in both.
   const Ply& P = *ply;
+  // Each sweep's part across the path, in the tangent plane: the sine of its angle with the
+  // plane of the path and the normal.
+  const Vec3 across = n0.cross(t3);
   std::vector<double> side3;
   for (std::size_t k = 0; k < pb.sweeps.size(); ++k) {
-    Vec3 w = pb.sweeps[k];
+    const Vec3& w = pb.sweeps[k];
     if (!w.allFinite() || !(w.norm() > 0.0))
       return Error{"3D sweep direction " + std::to_string(k + 1) + " must be a non-zero vector"};
-    w -= w.dot(n0) * n0;
-    const double c = n0.dot(t3.cross(w.normalized()));
-    if (!(w.norm() > kMinSweepSin * pb.sweeps[k].norm()) || std::abs(c) < kMinSweepSin)
+    const double c = across.dot(w) / w.norm();
+    if (!(std::abs(c) >= std::sin(opt.tol.sweep_min_angle)))
       return Error{"3D sweep direction " + std::to_string(k + 1) +
-                   " is normal to the surface or parallel to the base path at the start"};
+                   " is parallel to the base path or normal to the surface at the start: it "
+                   "lies " +
+                   brief(std::asin(std::min(std::abs(c), 1.0)) * kRadToDeg) +
+                   " deg from the plane of the two (at least " +
+                   brief(opt.tol.sweep_min_angle * kRadToDeg) +
+                   " deg needed); it must point to one side of the path"};
     side3.push_back(c > 0 ? 1.0 : -1.0);
   }
   std::vector<double> side2;
@@ -161,6 +231,7 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
     res.warnings.push_back(std::to_string(res.metrics.nodes.failed) +
                            " node(s) where the solver found no solution");
   }
+  judge_drape(s, pb, opt.tol, !scanner.cancelled() && !scanner.truncated(), res);
   res.drape_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return res;

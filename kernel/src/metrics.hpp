@@ -5,8 +5,8 @@
 
 namespace plyfit::detail {
 
-/// Fills res.metrics (node counts, thread angles, energy, areas, residual checks) and the
-/// nodes' thread angles.
+/// Fills res.metrics (node counts, thread angles, energy, the paper's thread angles and energy,
+/// areas, residual checks) and the nodes' thread angles.
 void compute_metrics(const DrapeSurface& s, DrapeResult& res);
 
 }  // namespace plyfit::detail

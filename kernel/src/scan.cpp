@@ -240,6 +240,7 @@ void Scanner::scan() {
       // Weft neighbour first, so that guesses and branches are reproducible.
       Known ka = known[best_a], kb = known[best_b];
       if (!is_weft(ka.dir) && is_weft(kb.dir)) std::swap(ka, kb);
+      if (is_weft(ka.dir) != is_weft(kb.dir)) node(qi).set_solved_from(ka.dir, kb.dir);  // eq. 12
       r = solve_two(qn, *ka.n, ka.dir, res_.rest_length(qn, ka.dir), *kb.n, kb.dir,
                     res_.rest_length(qn, kb.dir));
       // Links to further known neighbours (fronts that met around a hole in the net) are

@@ -7,7 +7,9 @@
 
 #include "cli/cli_util.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <sstream>
 
 using namespace plyfit::test;
@@ -53,44 +55,89 @@ TEST_CASE("cli: compare marks the best sphere-octant scene per criterion, as the
   REQUIRE(r.code == 0);
   const auto rows = parse_csv(r.out);
   REQUIRE(rows.size() == 4);
-  const std::vector<std::string> header = {
-      "scene",  "status",       "area",        "flat_area", "gamma_min_deg", "gamma_max_deg",
-      "energy", "coverage_pct", "shear_limit", "best",      "error"};
+  const std::vector<std::string> header = {"scene",
+                                           "status",
+                                           "area",
+                                           "flat_area",
+                                           "gamma_min_deg",
+                                           "gamma_max_deg",
+                                           "shear_max_deg",
+                                           "energy",
+                                           "paper_gamma_min_deg",
+                                           "paper_gamma_max_deg",
+                                           "paper_shear_max_deg",
+                                           "paper_energy",
+                                           "coverage_pct",
+                                           "outline_coverage_pct",
+                                           "shear_limit",
+                                           "best",
+                                           "note"};
   CHECK(rows[0] == header);
-  // Each criterion: the golden figure, and whether larger is better.
+  const std::size_t kBest = 15;
+  // Each criterion: the figure from the golden, and whether larger is better. The max shears
+  // come from the golden's extreme angles (the largest |90 - gamma|).
   struct Crit {
-    std::string column, pointer;
-    double scale;
+    std::string column;
+    std::function<double(const json&)> value;
     bool larger;
   };
   const double deg = 180.0 / 3.14159265358979323846;
-  const std::vector<Crit> crits = {{"area", "/area_mesh_points", 1, false},
-                                   {"flat_area", "/flat_outline/area", 1, false},
-                                   {"gamma_min_deg", "/thread_angle/min", deg, true},
-                                   {"gamma_max_deg", "/thread_angle/max", deg, false},
-                                   {"energy", "/shear_energy", 1, false},
-                                   {"coverage_pct", "/coverage", 100, true},
-                                   {"shear_limit", "/nodes/shear_limit", 1, false}};
+  auto at = [](const char* p) { return [p](const json& g) { return g[p].get<double>(); }; };
+  auto in_deg = [&](const char* p) {
+    return [p, deg](const json& g) { return g[p].get<double>() * deg; };
+  };
+  auto shear = [deg](const char* lo, const char* hi) {
+    return [=](const json& g) {
+      return std::max(90.0 - g[lo].get<double>() * deg, g[hi].get<double>() * deg - 90.0);
+    };
+  };
+  const std::vector<Crit> crits = {
+      {"area", at("/area_mesh_points"), false},
+      {"flat_area", at("/flat_outline/area"), false},
+      {"gamma_min_deg", in_deg("/thread_angle/min"), true},
+      {"gamma_max_deg", in_deg("/thread_angle/max"), false},
+      {"shear_max_deg", shear("/thread_angle/min", "/thread_angle/max"), false},
+      {"energy", at("/shear_energy"), false},
+      {"paper_gamma_min_deg", in_deg("/paper_metrics/gamma_min"), true},
+      {"paper_gamma_max_deg", in_deg("/paper_metrics/gamma_max"), false},
+      {"paper_shear_max_deg", shear("/paper_metrics/gamma_min", "/paper_metrics/gamma_max"), false},
+      {"paper_energy", at("/paper_metrics/energy"), false},
+      {"shear_limit", at("/nodes/shear_limit"), false}};
   std::vector<json> goldens;
   for (const auto& n : names)
     goldens.push_back(json::parse(slurp(sample("golden/" + n + ".json"))));
-  for (std::size_t c = 0; c < crits.size(); ++c) {
-    INFO(crits[c].column);
-    double best = crits[c].larger ? -1e300 : 1e300;
-    for (const auto& g : goldens) {
-      const double v = g[crits[c].pointer].get<double>() * crits[c].scale;
-      best = crits[c].larger ? std::max(best, v) : std::min(best, v);
-    }
+  auto col = [&](const std::string& key) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), key) - header.begin());
+  };
+  auto marked = [&](const std::vector<std::string>& row, const std::string& key) {
+    return (";" + row[kBest] + ";").find(";" + key + ";") != std::string::npos;
+  };
+  for (const auto& c : crits) {
+    INFO(c.column);
+    double best = c.larger ? -1e300 : 1e300;
+    for (const auto& g : goldens)
+      best = c.larger ? std::max(best, c.value(g)) : std::min(best, c.value(g));
     for (std::size_t k = 0; k < names.size(); ++k) {
       const auto& row = rows[k + 1];
       CHECK(row[0] == names[k]);
       CHECK(row[1] == "ok");
-      const double v = goldens[k][crits[c].pointer].get<double>() * crits[c].scale;
-      CHECK(std::abs(std::stod(row[2 + c]) - v) <= 1e-9 * std::abs(v));
-      const bool marked =
-          (";" + row[9] + ";").find(";" + crits[c].column + ";") != std::string::npos;
-      CHECK(marked == (std::abs(v - best) <= 1e-9 * std::abs(best)));
+      const double v = c.value(goldens[k]);
+      // The shears are differences near 90 degrees: their rounding is that of 90 degrees.
+      CHECK(std::abs(std::stod(row[col(c.column)]) - v) <= 1e-9 * std::max(std::abs(v), 90.0));
+      CHECK(marked(row, c.column) ==
+            (std::abs(v - best) <= 1e-9 * std::max(std::abs(best), 1e-300)));
     }
+  }
+  // The cell coverage is the golden's, not compared; the three samples (d = R/20) all cover
+  // the face by their outlines (within kCoverageSlack), so all are compared and all marked.
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const auto& row = rows[k + 1];
+    CHECK(std::abs(std::stod(row[col("coverage_pct")]) -
+                   100 * goldens[k]["/coverage"].get<double>()) <= 1e-9 * 100);
+    CHECK_FALSE(marked(row, "coverage_pct"));
+    CHECK(std::stod(row[col("outline_coverage_pct")]) > 99.5);
+    CHECK(marked(row, "outline_coverage_pct"));
+    CHECK(row[col("note")].empty());
   }
   // The text table: a header, three rows and the legend; marks shown as '*'.
   const CliRun t = plyfit_run("compare" + args, tmp);
@@ -120,9 +167,10 @@ TEST_CASE("cli: compare marks every tied scene") {
   CHECK(rows[1][0] == "sphere-octant-a");
   CHECK(rows[2][0] == "sphere-octant-a-2");
   const std::string all =
-      "area;flat_area;gamma_min_deg;gamma_max_deg;energy;coverage_pct;shear_limit";
-  CHECK(rows[1][9] == all);
-  CHECK(rows[2][9] == all);
+      "area;flat_area;gamma_min_deg;gamma_max_deg;shear_max_deg;energy;paper_gamma_min_deg;"
+      "paper_gamma_max_deg;paper_shear_max_deg;paper_energy;outline_coverage_pct;shear_limit";
+  CHECK(rows[1][15] == all);
+  CHECK(rows[2][15] == all);
 }
 
 TEST_CASE("cli: compare refuses scenes on different molds unless --force") {
@@ -137,7 +185,10 @@ TEST_CASE("cli: compare refuses scenes on different molds unless --force") {
   r = plyfit_run("compare --force '" + a + "' '" + r3 + "'", tmp);
   CHECK(r.code == 0);
   CHECK(r.err.find("warning: comparing scenes on different molds") != std::string::npos);
-  CHECK(lines(r.out) == 4);
+  // Header, two rows, the note that revolution-third-a's outline covers less (75% of its face,
+  // the paper's case (a) leaves regions uncalculated) and the legend.
+  CHECK(lines(r.out) == 5);
+  CHECK(r.out.find("revolution-third-a: not compared: its outline covers ") != std::string::npos);
   // The same mold through another path is the same mold.
   spit(tmp.file("a.ini"), slurp(a));
   std::string text = slurp(a);
@@ -154,4 +205,85 @@ TEST_CASE("cli: compare refuses scenes on different molds unless --force") {
   CHECK(plyfit_run("compare", tmp).code == 2);
   CHECK(plyfit_run("compare --csv --markdown '" + a + "'", tmp).code == 2);
   CHECK(plyfit_run("compare '" + tmp.file("none.ini") + "'", tmp).code == 1);
+}
+
+TEST_CASE("cli: compare never marks as best a fitting that covers less of the face") {
+  Scratch tmp("compare_cover");
+  const std::string a = sample("sphere-octant-a.ini");
+  std::string text = slurp(a);
+  text.replace(text.find("molds/"), 6, std::string(PLYFIT_SOURCE_DIR) + "/samples/molds/");
+  // The same drape on a cloth of 12 x 12 mm: fewer mesh points, less flat area and energy, but
+  // the pole's corner of the face only.
+  std::string small = text;
+  small.replace(small.find("spacing = 1"), 11, "spacing = 1\nply = 12,12");
+  spit(tmp.file("small.ini"), small);
+  // Started 846 mm above the pole: the same net, but partial (not what was asked for).
+  std::string far = text;
+  far.replace(far.find("start3d = 0,0,20"), 16, "start3d = 0,0,866");
+  spit(tmp.file("far.ini"), far);
+  const CliRun r = plyfit_run(
+      "compare --csv '" + a + "' '" + tmp.file("small.ini") + "' '" + tmp.file("far.ini") + "'",
+      tmp);
+  INFO(r.out << r.err);
+  REQUIRE(r.code == 0);
+  const auto rows = parse_csv(r.out);
+  REQUIRE(rows.size() == 4);
+  const auto& ra = rows[1];
+  const auto& rs = rows[2];
+  const auto& rf = rows[3];
+  CHECK(rs[1] == "ok");
+  // The small cloth has the smaller figures ...
+  for (std::size_t c : {2u, 3u, 7u, 11u}) {
+    INFO(rows[0][c]);
+    CHECK(std::stod(rs[c]) < std::stod(ra[c]));
+  }
+  // ... and covers less than 99.5% of what the whole cloth covers: it is marked nowhere.
+  CHECK(std::stod(rs[13]) < std::stod(ra[13]) - 0.5);
+  CHECK(rs[15].empty());
+  CHECK(ra[15].find("area;flat_area;") == 0);
+  CHECK(ra[15].find("energy") != std::string::npos);
+  // The partial drape is shown with its warning and not compared, though its figures tie.
+  CHECK(rf[1] == "partial");
+  CHECK(rf[2] == ra[2]);
+  CHECK(rf[15].empty());
+  CHECK(rf[16].find("846 mm from the surface") != std::string::npos);
+  // The text table says why.
+  const CliRun t = plyfit_run(
+      "compare '" + a + "' '" + tmp.file("small.ini") + "' '" + tmp.file("far.ini") + "'", tmp);
+  CHECK(t.out.find("far: partial, not compared: the 3D start lies 846 mm") != std::string::npos);
+  CHECK(t.out.find("small: not compared: its outline covers ") != std::string::npos);
+  CHECK(t.out.find("covers the face as well as the best, within 0.5%") != std::string::npos);
+}
+
+TEST_CASE("cli: compare on the paper's Table 4 cases leaves out the two that cover less") {
+  // Cases (a) and (b) on the third of a surface of revolution leave regions of the face
+  // uncalculated (their outlines cover 75% and 92% of it): they have the fewest mesh points but
+  // are not the best fittings; among (c) to (f) the smallest area is the goldens' smallest.
+  Scratch tmp("compare_rev");
+  std::string args;
+  std::vector<json> goldens;
+  for (const char c : std::string("abcdef")) {
+    args += " '" + sample(std::string("revolution-third-") + c + ".ini") + "'";
+    goldens.push_back(
+        json::parse(slurp(sample(std::string("golden/revolution-third-") + c + ".json"))));
+  }
+  const CliRun r = plyfit_run("compare --csv" + args, tmp);
+  INFO(r.out << r.err);
+  REQUIRE(r.code == 0);
+  const auto rows = parse_csv(r.out);
+  REQUIRE(rows.size() == 7);
+  CHECK(std::stod(rows[1][13]) < 99.0);
+  CHECK(std::stod(rows[2][13]) < 99.0);
+  CHECK(rows[1][15].empty());
+  CHECK(rows[2][15].empty());
+  double least = 1e300;
+  for (std::size_t k = 2; k < 6; ++k)
+    least = std::min(least, goldens[k]["/area_mesh_points"].get<double>());
+  CHECK(least > goldens[0]["/area_mesh_points"].get<double>());
+  for (std::size_t k = 2; k < 6; ++k) {
+    INFO(rows[k + 1][0]);
+    CHECK(std::stod(rows[k + 1][13]) > 99.0);
+    const bool marked = (";" + rows[k + 1][15] + ";").find(";area;") != std::string::npos;
+    CHECK(marked == (goldens[k]["/area_mesh_points"].get<double>() == least));
+  }
 }

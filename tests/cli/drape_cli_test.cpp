@@ -64,3 +64,39 @@ TEST_CASE("cli: bad drape input is one line, a non-zero exit and no output") {
     CHECK_FALSE(std::filesystem::exists(out));
   }
 }
+
+TEST_CASE("cli: a drape's input checked against the mold names the option; nonsense is partial") {
+  Scratch s("drape_nonsense");
+  // Half a degree off the base path (-X at the pole): an error naming --sweep3d, exit 1.
+  CliRun r =
+      plyfit_run("drape " + with("sweep3d", "-1,0.0087,0") + " -o '" + s.file("o1") + "'", s);
+  INFO(r.err);
+  CHECK(r.code == 1);
+  CHECK(lines(r.err) == 1);
+  CHECK(r.err.rfind("plyfit: error: --sweep3d: 3D sweep direction 1 is parallel to the base path",
+                    0) == 0);
+  CHECK_FALSE(std::filesystem::exists(s.file("o1")));
+  // A drape that ran but is not what was asked for: exit 0, status partial, the warning shown.
+  struct Partial {
+    std::string args, says;
+  };
+  std::string off_face = with("sweep2d", "0,-1");  // swept off the octant's edge y = 0
+  off_face.replace(off_face.find("--sweep3d 0,1,0"), 15, "--sweep3d 0,-1,0");
+  const std::vector<Partial> cases = {
+      {with("start3d", "0,0,866"), "846 mm from the surface"},
+      {off_face, "maps no cell"},
+  };
+  for (const auto& c : cases) {
+    const std::string& args = c.args;
+    const std::string out = s.file("o2");
+    std::filesystem::remove_all(out);
+    r = plyfit_run("drape " + args + " --outputs json -o '" + out + "'", s);
+    INFO(args << "\n-> exit " << r.code << ": " << r.err);
+    CHECK(r.code == 0);
+    CHECK(r.err.find("plyfit: warning: ") != std::string::npos);
+    CHECK(r.err.find(c.says) != std::string::npos);
+    const std::string report = slurp(out + "/report.json");
+    CHECK(report.find("\"status\": \"partial\"") != std::string::npos);
+    CHECK(report.find(c.says) != std::string::npos);
+  }
+}

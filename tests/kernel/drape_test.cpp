@@ -21,8 +21,12 @@ constexpr double kPi = 3.14159265358979323846;
 // Accuracy the drape promises at its default tolerance (issue 4 / issue 3).
 constexpr double kLinkRel = 1e-10;     // link length error / d
 constexpr double kRightAngle = 1e-12;  // thread angles on a plane
-constexpr double kZeroShear = 1e-10;   // cylinder with threads along and around the axis
-constexpr double kSymmetry = 1e-12;    // mirror-symmetric setups, relative to the mold size
+// The paper's one-sided angle on a plane: over links of d, not 2 d, and set by the node's own
+// solve, which stops at the rounding floor of the residual (Tolerances::roundoff_rel times
+// the coordinates and the face size: 5e-13 mm on the 100 mm plane, 1e-12 rad over d = 2).
+constexpr double kOneSidedRightAngle = 1e-11;
+constexpr double kZeroShear = 1e-10;  // cylinder with threads along and around the axis
+constexpr double kSymmetry = 1e-12;   // mirror-symmetric setups, relative to the mold size
 
 Face builtin(const std::string& name, std::map<std::string, double> p = {}) {
   auto fd = builtin_mold(name, p);
@@ -520,4 +524,192 @@ TEST_CASE("drape: a pole start is robust to the last digit of the poles") {
     CHECK(r.metrics.nodes.mapped == 716);
     CHECK(r.metrics.nodes.outside == 73);
   }
+}
+
+TEST_CASE("drape: the paper's thread angle (eq. 12) is a right angle on a plane, as ours") {
+  const Face f = builtin("plane");  // [0, 100]^2
+  const double a = 30 * kPi / 180;
+  const Vec2 b2(std::cos(a), std::sin(a)), w2(-std::sin(a), std::cos(a));
+  const Vec3 n3(-std::sin(a), std::cos(a), 0);
+  const DrapeResult r =
+      run(f, problem(2.0, Vec2(0.3, 0.7), b2, {w2, -w2}, Vec3(50, 50, 0), n3, {n3, -n3}));
+  const auto& p = r.metrics.paper;
+  // Every node off the base path but the first of each thread beyond it (reached from one
+  // neighbour) is solved from a weft and a warp neighbour.
+  CHECK(p.angles > r.metrics.nodes.mapped * 9 / 10);
+  CHECK(p.angles <= r.metrics.angles);
+  CHECK(std::abs(p.gamma_min - kPi / 2) < kOneSidedRightAngle);
+  CHECK(std::abs(p.gamma_max - kPi / 2) < kOneSidedRightAngle);
+  CHECK(p.shear_max < kOneSidedRightAngle);
+  CHECK(p.energy < static_cast<double>(p.angles) * std::pow(kOneSidedRightAngle, 2));
+}
+
+TEST_CASE("drape: on a cylinder with threads at 45 degrees both thread angles are closed forms") {
+  // Base path along a generator through crossings (base2d 1,1): the net is the lattice
+  // theta = (j - i) phi, z = -(i + j) d / sqrt(2) about the start, with 2 R sin(phi / 2) =
+  // d / sqrt(2), every link a chord of length d (the helices are geodesics, so the
+  // one-neighbour solves continue them onto the lattice too). A node's links to the two
+  // neighbours it is solved from, both in the row nearer the path, have equal and opposite
+  // chords across the axis: the paper's angle is exactly pi / 2. Ours: with four mapped
+  // neighbours, central differences span two rows, cos gamma = sin^2(phi/2) / (1 + cos^2(phi/2));
+  // at an edge, one-sided links into both neighbouring rows give cos gamma = sin^2(phi / 2),
+  // the smallest angle of the net.
+  const double R = 10, d = 1.0;
+  const Face f = builtin("cylinder", {{"R", R}, {"H", 40}, {"angle", 120}});
+  const double a = kPi / 3;
+  const Vec3 s3(R * std::cos(a), R * std::sin(a), 20), tang(-std::sin(a), std::cos(a), 0);
+  const DrapeResult r = run(
+      f, problem(d, Vec2(0, 0), Vec2(1, 1), {Vec2(-1, 1), Vec2(1, -1)}, s3, tang, {tang, -tang}));
+  REQUIRE(r.metrics.nodes.failed == 0);
+  const double phi = 2 * std::asin(d / (2 * std::sqrt(2.0) * R));
+  const double s2 = std::pow(std::sin(phi / 2), 2), c2 = std::pow(std::cos(phi / 2), 2);
+  int interior = 0;
+  for (const auto& n : r.nodes) {
+    if (!n.mapped() || n.id.is_path_only()) continue;
+    const double th = a + (n.id.j - n.id.i) * phi, z = 20 - (n.id.i + n.id.j) * d / std::sqrt(2.0);
+    CHECK((n.point - Vec3(R * std::cos(th), R * std::sin(th), z)).norm() < kLinkRel * d);
+    bool four = true;
+    for (int k = 0; k < 4; ++k) {
+      const DrapeNode* m = r.neighbour(n, static_cast<ThreadDir>(k));
+      four = four && m && m->mapped();
+    }
+    if (four && n.has(DrapeNode::kHasAngle)) {
+      ++interior;
+      CHECK(std::abs(n.thread_angle - std::acos(s2 / (1 + c2))) < kRightAngle);
+    }
+  }
+  CHECK(interior > 600);
+  const auto& p = r.metrics.paper;
+  CHECK(p.angles > r.metrics.nodes.mapped * 9 / 10);
+  CHECK(std::abs(p.gamma_min - kPi / 2) < kRightAngle);
+  CHECK(std::abs(p.gamma_max - kPi / 2) < kRightAngle);
+  CHECK(p.energy < static_cast<double>(p.angles) * kRightAngle * kRightAngle);
+  CHECK(std::abs(r.metrics.gamma_min - std::acos(s2)) < kRightAngle);  // 90 - 0.072 degrees
+  CHECK(std::abs(r.metrics.gamma_max - kPi / 2) < kRightAngle);
+}
+
+TEST_CASE("drape: the paper's thread angles on the sphere octant's Table 1 cases") {
+  const double R = 20;
+  const Face f = builtin("sphere-octant", {{"R", R}});
+  const DrapeProblem pa = problem(1.0, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)}, Vec3(0, 0, R),
+                                  Vec3(0, 1, 0), {Vec3(0, 1, 0)});
+  const DrapeProblem pb = problem(1.0, Vec2(20, 0), Vec2(1, 0), {Vec2(0, 1)}, Vec3(R / 2, 0, R / 2),
+                                  Vec3(0, 1, 0), {Vec3(0, 1, 0)});
+  for (const DrapeProblem& pr : {pa, pb}) {
+    const DrapeResult r = run(f, pr);
+    const auto& p = r.metrics.paper;
+    CHECK(p.angles > 0);
+    CHECK(p.angles <= r.metrics.angles);
+    CHECK(p.gamma_min <= p.gamma_max);
+    CHECK(p.gamma_min > 0.0);
+    CHECK(p.gamma_max < kPi);
+    CHECK(p.shear_max == std::max(kPi / 2 - p.gamma_min, p.gamma_max - kPi / 2));
+  }
+  // Case (b) is symmetric about the start's meridian: the mirror turns a node solved from its
+  // -x and -y neighbours into one solved from its +x and -y neighbours, and gamma into
+  // pi - gamma, so the extremes add up to pi as ours do.
+  const DrapeResult b = run(f, pb);
+  CHECK(std::abs(b.metrics.paper.gamma_min + b.metrics.paper.gamma_max - kPi) < 1e-9);
+  CHECK(std::abs(b.metrics.gamma_min + b.metrics.gamma_max - kPi) < 1e-9);
+}
+
+TEST_CASE("drape: a lock angle bounds the paper's thread angle, the one eq. (12) tests") {
+  // The two-sphere solve stops a node whose angle between its two links passes the lock: the
+  // paper's angle is that angle (or pi minus it), so no mapped node passes the lock by it.
+  const Face f = builtin("sphere-octant", {{"R", 20}});
+  const DrapeProblem pb = problem(0.5, Vec2(15, 0), Vec2(1, 1), {Vec2(-1, 1)}, Vec3(0, 0, 20),
+                                  Vec3(0, 1, 0), {Vec3(0, 1, 0)});
+  for (double deg : {20.0, 30.0, 45.0}) {
+    INFO("lock angle " << deg);
+    DrapeOptions opt;
+    opt.lock_angle = deg * kPi / 180;
+    const DrapeResult r = run(f, pb, opt);
+    REQUIRE(r.metrics.nodes.shear_limit > 0);
+    CHECK(r.metrics.paper.shear_max <= opt.lock_angle);
+    // The lock is reached: a node next to a locked one sheared within 5 degrees of it.
+    CHECK(r.metrics.paper.shear_max > opt.lock_angle - 5 * kPi / 180);
+  }
+}
+
+TEST_CASE("drape: a drape that covers nothing, or starts far from the face, is partial") {
+  const double R = 20;
+  const Face f = builtin("sphere-octant", {{"R", R}});
+  const DrapeProblem a = problem(1.0, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)}, Vec3(0, 0, R),
+                                 Vec3(0, 1, 0), {Vec3(0, 1, 0)});
+  const DrapeResult ra = run(f, a);
+  REQUIRE_FALSE(ra.partial);
+  REQUIRE(ra.warnings.empty());
+  auto says = [](const DrapeResult& r, const std::string& what) {
+    for (const auto& w : r.warnings)
+      if (w.find(what) != std::string::npos) return true;
+    return false;
+  };
+  SECTION("a sweep pointing off the face maps no cell") {
+    // Case (a) swept to -y: the base path lies on the octant's edge y = 0.
+    auto pb = a;
+    pb.ply.sweeps = {Vec2(0, -1)};
+    pb.sweeps = {Vec3(0, -1, 0)};
+    const DrapeResult r = run(f, pb);
+    CHECK(r.metrics.flat_area == 0.0);
+    CHECK(r.partial);
+    CHECK(says(r, "maps no cell"));
+  }
+  SECTION("of two sweeps, one that maps nothing is a note, not partial") {
+    auto pb = a;
+    pb.ply.sweeps = {Vec2(0, 1), Vec2(0, -1)};
+    pb.sweeps = {Vec3(0, 1, 0), Vec3(0, -1, 0)};
+    const DrapeResult r = run(f, pb);
+    CHECK_FALSE(r.partial);
+    CHECK(r.metrics.nodes.mapped == ra.metrics.nodes.mapped);
+    REQUIRE(r.warnings.size() == 1);
+    CHECK(says(r, "sweep direction 2 maps no node"));
+  }
+  SECTION("a start far from the face is projected, and the drape is partial") {
+    // 846 mm above the octant's pole: the same net as case (a), but not what was asked for.
+    auto pb = a;
+    pb.start = Vec3(0, 0, R + 846);
+    const DrapeResult r = run(f, pb);
+    CHECK(r.start_moved == 846.0);
+    CHECK(r.metrics.nodes.mapped == ra.metrics.nodes.mapped);
+    CHECK(r.partial);
+    CHECK(says(r, "846 mm from the surface"));
+    // The threshold: Tolerances::start_far_rel of the face's size.
+    const double far = Tolerances().start_far_rel * f.size();
+    pb.start = Vec3(0, 0, R + 0.99 * far);
+    CHECK_FALSE(run(f, pb).partial);
+    pb.start = Vec3(0, 0, R + 1.01 * far);
+    CHECK(run(f, pb).partial);
+    // The paper's case (b) starts 5.9 mm off the sphere (a sixth of the octant's size): ok.
+    pb = a;
+    pb.ply.start = Vec2(20, 0);
+    pb.start = Vec3(R / 2, 0, R / 2);
+    const DrapeResult b = run(f, pb);
+    CHECK(b.start_moved > 5.8);
+    CHECK_FALSE(b.partial);
+  }
+}
+
+TEST_CASE("drape: a sweep within a degree of the base path or the normal is an error") {
+  const Face f = builtin("sphere-octant");
+  const DrapeProblem ok = problem(1.0, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)}, Vec3(0, 0, 20),
+                                  Vec3(0, 1, 0), {Vec3(0, 1, 0)});
+  // The base path runs along -X at the pole (the 2D base direction +x maps to it); the normal
+  // is +Z. t = tan(0.5 degrees), tan(2 degrees).
+  const double t05 = std::tan(0.5 * kPi / 180), t2 = std::tan(2 * kPi / 180);
+  auto bad = ok;
+  bad.ply.sweeps = {Vec2(1, t05)};  // 2D: half a degree off the base path
+  CHECK_THAT(drape(f, bad).error().message,
+             Catch::Contains("sweep direction 1 is parallel to the base path"));
+  bad.ply.sweeps = {Vec2(1, t2)};
+  CHECK(drape(f, bad).ok());
+  bad = ok;
+  bad.sweeps = {Vec3(-1, t05, 0)};  // 3D: half a degree off the base path
+  CHECK_THAT(drape(f, bad).error().message,
+             Catch::Contains("3D sweep direction 1 is parallel to the base path"));
+  bad.sweeps = {Vec3(0, t05, 1)};  // half a degree off the normal
+  CHECK_THAT(drape(f, bad).error().message, Catch::Contains("normal to the surface"));
+  bad.sweeps = {Vec3(-1, t2, 0)};
+  CHECK(drape(f, bad).ok());
+  bad.sweeps = {Vec3(0, t2, 1)};
+  CHECK(drape(f, bad).ok());
 }

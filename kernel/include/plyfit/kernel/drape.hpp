@@ -44,6 +44,12 @@ struct DrapeNode {
                                                 ///< extended past the face (point/uv valid)
   static constexpr std::uint8_t kHasAngle = 4;  ///< thread_angle is defined
   static constexpr std::uint8_t kStart = 8;     ///< the start point
+  /// Solved from a weft and a warp neighbour (the two-sphere solve of §5.2): the links to those
+  /// two give the paper's thread angle of eq. (12) (DrapeMetrics::paper); kFromPlusX and
+  /// kFromPlusY say which ones (see set_solved_from).
+  static constexpr std::uint8_t kSolvedTwo = 16;
+  static constexpr std::uint8_t kFromPlusX = 32;  ///< with kSolvedTwo: the weft one is +x (else -x)
+  static constexpr std::uint8_t kFromPlusY = 64;  ///< with kSolvedTwo: the warp one is +y (else -y)
   // Fields ordered so that Eigen's 16-byte alignment of Vec2 leaves no padding: 96 bytes.
   Vec3 point = Vec3::Zero();  ///< 3D position (mapped, or extended, else zero)
   double thread_angle = 0.0;  ///< gamma between weft and warp at a mapped regular node, radians
@@ -66,6 +72,14 @@ struct DrapeNode {
   void set_at(const SurfaceLocation& a) {
     uv = a.uv;
     face = static_cast<std::uint16_t>(a.face);
+  }
+  /// Records that the node was solved from its neighbours across the weft link `weft` (kPlusX
+  /// or kMinusX) and the warp link `warp` (kPlusY or kMinusY): kSolvedTwo and its direction
+  /// bits (flags, so that the node keeps its size); a node solved again keeps the last pair.
+  void set_solved_from(ThreadDir weft, ThreadDir warp) {
+    flags = static_cast<std::uint8_t>((flags & ~(kFromPlusX | kFromPlusY)) | kSolvedTwo |
+                                      (weft == ThreadDir::kPlusX ? kFromPlusX : 0) |
+                                      (warp == ThreadDir::kPlusY ? kFromPlusY : 0));
   }
 };
 
@@ -173,6 +187,18 @@ struct DrapeMetrics {
   double gamma_min = 0.0, gamma_max = 0.0;  ///< thread angles, radians (0 if none)
   double shear_energy = 0.0;                ///< sum of cos^2(gamma) over mapped regular nodes
   std::uint64_t angles = 0;                 ///< nodes with a thread angle
+  /// The paper's own thread angles (eq. 12, §7.1): at each mapped node solved from a weft and
+  /// a warp neighbour (DrapeNode::kSolvedTwo), the angle at the node between its links to those
+  /// two, one-sided, each link taken along +x or +y (a node solved from its -x and +y
+  /// neighbours has the angle pi minus that between the links, so that both definitions
+  /// measure one gamma). Nodes solved from one neighbour, or on the base path, have none.
+  struct PaperFigures {
+    double gamma_min = 0.0, gamma_max = 0.0;  ///< radians (0 if no node has the angle)
+    double energy = 0.0;                      ///< sum of cos^2(gamma) over those nodes (eq. 14)
+    double shear_max = 0.0;                   ///< largest |pi/2 - gamma| (radians)
+    std::uint64_t angles = 0;                 ///< nodes with the angle
+  };
+  PaperFigures paper;
   /// max | |p_a - p_b| - rest | / d over links between mapped nodes.
   double edge_length_max_rel = 0.0;
   /// max |S(u, v) - p| over mapped nodes, with S evaluated afresh (model units).

@@ -48,6 +48,19 @@ struct Tolerances {
   /// A rational surface extended past its domain is undefined where its weight falls below
   /// extension_min_weight_rel times its smallest control weight.
   double extension_min_weight_rel = 1e-3;
+  /// A sweep direction must make at least this angle (radians) with the base path: in 2D, and
+  /// in 3D its component across the path in the tangent plane at the start must be at least
+  /// sin(sweep_min_angle) of its length (so neither along the path nor along the normal). The
+  /// sweep only picks a side of the path (the scan's order is the same for every direction
+  /// into one side); within a degree of the path that side is a matter of the last digits
+  /// given, and no drape worth making is specified that way. One degree.
+  double sweep_min_angle = 0.017453292519943295;
+  /// A 3D start farther than start_far_rel times the surface's size (bounding-box diagonal)
+  /// from the surface is projected onto it but makes the drape partial with a warning: the
+  /// drape starts far from where it was asked to (a wrong unit, face or frame). The paper's
+  /// own starts off the surface lie within a fifth of it (Table 1 (b): 5.9 mm, 0.17 of the
+  /// octant's size; Table 3 (c): 2.2 mm, 0.06 of the surface of revolution's).
+  double start_far_rel = 0.5;
 };
 
 }  // namespace plyfit
