@@ -633,6 +633,17 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
       return perpendicular(p - a).dot(perpendicular(*step.corner - a)) < 0.0;
     return n.dot((b - a).cross(p - a)) * want > 0.0;
   };
+  // A solution on the requested branch: its thread angle, the in-face test, eq. (12).
+  auto finish = [&]() {
+    const Vec3 pa = a - c.res.point, pb = b - c.res.point;
+    c.res.thread_angle = std::atan2(pa.cross(pb).norm(), pa.dot(pb));
+    classify_converged(c);
+    if (c.res.status == SolveStatus::kConverged && st.gamma_min > 0.0 &&
+        (c.res.thread_angle < st.gamma_min || c.res.thread_angle > kPi - st.gamma_min)) {
+      c.res.status = SolveStatus::kShearLimit;
+      c.res.reason = "thread angle beyond the shear limit";
+    }
+  };
   // Newton from g; true when it converged on the requested branch (c.res classified).
   auto attempt = [&](const SurfaceLocation& g) {
     setup_margins(c, step.a_at, g);
@@ -646,14 +657,7 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
       c.res.reason = "only the folded branch was found";
       return false;
     }
-    const Vec3 pa = a - c.res.point, pb = b - c.res.point;
-    c.res.thread_angle = std::atan2(pa.cross(pb).norm(), pa.dot(pb));
-    classify_converged(c);
-    if (c.res.status == SolveStatus::kConverged && st.gamma_min > 0.0 &&
-        (c.res.thread_angle < st.gamma_min || c.res.thread_angle > kPi - st.gamma_min)) {
-      c.res.status = SolveStatus::kShearLimit;
-      c.res.reason = "thread angle beyond the shear limit";
-    }
+    finish();
     return true;
   };
   // The circle of intersection of the two spheres, bisected for its crossing of the surface
@@ -759,14 +763,7 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
     c.res.point = ef.p;
     c.res.residual = r.cwiseAbs().sum();
     c.last = ef;
-    const Vec3 pa = a - c.res.point, pb = b - c.res.point;
-    c.res.thread_angle = std::atan2(pa.cross(pb).norm(), pa.dot(pb));
-    classify_converged(c);
-    if (c.res.status == SolveStatus::kConverged && st.gamma_min > 0.0 &&
-        (c.res.thread_angle < st.gamma_min || c.res.thread_angle > kPi - st.gamma_min)) {
-      c.res.status = SolveStatus::kShearLimit;
-      c.res.reason = "thread angle beyond the shear limit";
-    }
+    finish();
     return true;
   };
   // 1. The caller's guess (eqs. 10-11).
