@@ -249,6 +249,11 @@ inline Draped draped_at(const DrapeSurface& s, const DrapeResult& r, const Vec2&
 /// Samples per side of the square draped_at() checks the outline against around a spike.
 inline constexpr int kSpikeRaster = 41;
 
+/// A sample within this many spacings of the outline lies on it, neither inside nor out
+/// (a sample on a thread line the outline runs along differs from it by the rounding of the
+/// ply coordinates, about 1e-16 d).
+inline constexpr double kSpikeOnOutline = 1e-9;
+
 /// True when p lies inside the outline (even-odd over all loops).
 inline bool inside_outline(const std::vector<OutlineLoop>& loops, const Vec2& p) {
   bool in = false;
@@ -285,9 +290,9 @@ inline double outline_distance(const std::vector<OutlineLoop>& loops, const Vec2
 /// over the square of half-side kSpikeRunSpacings * spacing about the spike, every point
 /// draped_at() decides agrees with the outline, except within its cell's twist of the
 /// outline (the outline's straight chords against the fan map's image), and every point it
-/// cannot decide lies outside the outline or on it. Then the outline is the draped region
-/// there, narrow as it is: the face boundary runs close to, or at a shallow angle to, a line
-/// where the cloth stops (a cell with a node the drape stopped at, the base path of a
+/// cannot decide lies outside the outline or on it (within kSpikeOnOutline). Then the outline is
+/// the draped region there, narrow as it is: the face boundary runs close to, or at a shallow angle
+/// to, a line where the cloth stops (a cell with a node the drape stopped at, the base path of a
 /// one-sided drape, the end of the drape). Anything else leaves the spike a defect.
 inline std::string spike_reason(const DrapeSurface& s, const DrapeResult& r,
                                 const std::vector<OutlineLoop>& loops, const OutlineDefect& d,
@@ -326,7 +331,9 @@ inline std::string spike_reason(const DrapeSurface& s, const DrapeResult& r,
       const Draped o = draped_at(s, r, x, &twist);
       const bool in = inside_outline(loops, x);
       if (o == Draped::kUnknown ? !in : (o == Draped::kYes) == in) continue;
-      if (outline_distance(loops, x) > (o == Draped::kUnknown ? 0.0 : twist)) return "";
+      const double on = kSpikeOnOutline * spacing;
+      if (outline_distance(loops, x) > (o == Draped::kUnknown ? on : std::max(on, twist)))
+        return "";
     }
   return narrow_piece ? "a narrow piece of the draped region, as draped_at() finds it"
                       : "a narrow notch of the draped region, as draped_at() finds it";
