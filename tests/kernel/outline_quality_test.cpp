@@ -113,6 +113,27 @@ Checked check_outline(const DrapeSurface& s, const DrapeResult& r,
   return c;
 }
 
+// A drape as random_drapes() builds it, and what to call it.
+struct SpikeCase {
+  const char* what;
+  const char* mold;
+  double d;
+  Vec2 b2, w2;
+  Vec3 start, bn, sw;
+  bool both;
+  double lock = 0.0;  // radians; 0: the default lock angle
+};
+
+Checked check_case(const SpikeCase& c) {
+  const Face f = builtin(c.mold);
+  DrapeOptions opt;
+  if (c.lock > 0.0) opt.lock_angle = c.lock;
+  const auto r = drape(f, random_problem(c.d, c.b2, c.w2, c.start, c.bn, c.sw, c.both), opt);
+  REQUIRE(r.ok());
+  const FlatPattern fp = flat_pattern(f, *r);
+  return check_outline(f, *r, fp.outline, c.d);
+}
+
 }  // namespace
 
 TEST_CASE("outline checks: draped_at on a plate, analytic") {
@@ -167,16 +188,7 @@ TEST_CASE("outline checks: a spike or notch put into a true outline is a defect"
 // drapes with seeds 1..): the outline turns back within d/2 (the geometric check fails), and
 // the drape itself shows the narrow shape is the draped region's (spike_reason explains it).
 TEST_CASE("outline checks: narrow shapes of the draped region are no defects") {
-  struct Case {
-    const char* what;
-    const char* mold;
-    double d;
-    Vec2 b2, w2;
-    Vec3 start, bn, sw;
-    bool both;
-    double lock_deg = 0.0;  // 0: the default lock angle
-  };
-  const Case cases[] = {
+  const SpikeCase cases[] = {
       // A strip of cloth 0.18 d wide between the face's edge and a row whose cells below
       // were stopped (overlap): the edge runs 0.02 above the row.
       {"hemisphere: strip between the face edge and an overlap stop", "hemisphere",
@@ -205,19 +217,55 @@ TEST_CASE("outline checks: narrow shapes of the draped region are no defects") {
       // mismatch on the strip's end edge, 6e-17 d off, was first taken for a defect.)
       {"cylinder: a strip between the base path and a thread ends at the lock", "cylinder", 0.24745,
        Vec2(-0.037955, 0.999279), Vec2(-0.999279, -0.037955), Vec3(6.936050, 3.461219, 6.872162),
-       Vec3(-0.958010, -0.216617, -0.187868), Vec3(0.156870, 0.316674, 0.935473), false, 29.1},
+       Vec3(-0.958010, -0.216617, -0.187868), Vec3(0.156870, 0.316674, 0.935473), false,
+       29.1 * 3.14159265358979323846 / 180.0},
   };
-  for (const Case& c : cases) {
+  for (const SpikeCase& c : cases) {
     INFO(c.what);
-    const Face f = builtin(c.mold);
-    DrapeOptions opt;
-    if (c.lock_deg > 0.0) opt.lock_angle = c.lock_deg * 3.14159265358979323846 / 180.0;
-    const auto r = drape(f, random_problem(c.d, c.b2, c.w2, c.start, c.bn, c.sw, c.both), opt);
-    REQUIRE(r.ok());
-    const FlatPattern fp = flat_pattern(f, *r);
-    const Checked k = check_outline(f, *r, fp.outline, c.d);
+    const Checked k = check_case(c);
     INFO(support::describe(k.all));
     CHECK(!k.all.empty());
+    CHECK(k.unexplained.empty());
+  }
+}
+
+// Hidden: spikes found by more random drapes (60 per mold, other seeds) that the drape does
+// not explain; issue 13 open. At a pole (the flat pattern's tangent charts; draped_at()
+// does not follow them), a slit where a node sits on the face edge, and tiny loops.
+TEST_CASE("outline checks (open): spikes not explained yet", "[.][issue13]") {
+  const SpikeCase cases[] = {
+      // The outline zigzags next to the octant's pole (turns 187 degrees within 0.2 d);
+      // draped_at() disagrees up to 0.12 d there, near the pole where it cannot be trusted.
+      {"sphere-octant: near the pole", "sphere-octant", 1.2950513267414197,
+       Vec2(-0.74746613518783522, 0.66429991475790573),
+       Vec2(-0.66429991475790573, -0.74746613518783522),
+       Vec3(13.707934246429375, 9.5066040853652076, 8.4008515147194114),
+       Vec3(-0.67023659691666204, 0.28773985266276808, 0.68409698241052075),
+       Vec3(-0.29795063772662417, -0.79535273566274833, -0.5278630914849799), true},
+      // A slit (the outline turns back by 180.0000 degrees): node (16, 1), outside by the
+      // drape, lies on the face edge; the boundary walk between two crossings 1e-9 d from
+      // it goes out 0.14 to a boundary vertex and back.
+      {"revolution-third: a slit at a node on the face edge", "revolution-third",
+       0.90945018569637281, Vec2(-0.94308292321922516, 0.33255766407088116),
+       Vec2(0.33255766407088116, 0.94308292321922516),
+       Vec3(6.0595112018465791, 12.051681233137371, 6.8669809774933013),
+       Vec3(0.41867821856177634, -0.67995239868280033, -0.60197448851877722),
+       Vec3(0.7587485170160998, 0.46781850093380173, 0.45326210751608159), true,
+       0.98081698304218179},
+      // A loop of three points, 0.008 d wide: a face corner inside a cell all of whose
+      // corners are beyond the face, next to a cell dropped at the lock.
+      {"saddle: a tiny loop at a face corner", "saddle", 1.0995805630790003,
+       Vec2(0.9348704698392083, 0.35498902042544633),
+       Vec2(0.35498902042544633, -0.9348704698392083),
+       Vec3(0.11378114762570135, -5.6103148327224623, 2.7624312195010461),
+       Vec3(-0.075287878260115793, 0.88947202561877037, 0.45074521742191725),
+       Vec3(-0.70184141042739223, 0.048206644704051192, 0.71070018574337401), true,
+       0.61875749200595509},
+  };
+  for (const SpikeCase& c : cases) {
+    INFO(c.what);
+    const Checked k = check_case(c);
+    INFO(support::describe(k.unexplained));
     CHECK(k.unexplained.empty());
   }
 }
