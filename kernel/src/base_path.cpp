@@ -41,9 +41,12 @@ void Scanner::map_path(const Vec3& t3) {
       const SolveResult r =
           solve_base_path(s_, {from.point, from.at(), res_.base_normal, travel, rest}, st_);
       resolve(idx, r);
-      if (!node(idx).mapped()) break;
+      // Across a hole of the face the path goes on, on the face's surface under the hole
+      // (kInHole: outside, extended), and comes back onto the face beyond it: the seed curve
+      // is not cut by a cutout. Past the outer boundary it stops.
+      if (!node(idx).carries()) break;
       if (overlaps(idx)) {  // a closed plane section: the path came round
-        node(idx).status = NodeStatus::kOverlap;
+        stop_overlap(idx);
         break;
       }
       chain.push_back(idx);

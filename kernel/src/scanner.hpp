@@ -78,11 +78,14 @@ class Scanner {
   std::uint32_t node_for(const NodeId& id, const Vec2& pos);
   void resolve(std::uint32_t idx, const SolveResult& r);
   bool overlaps(std::uint32_t k);
+  void stop_overlap(std::uint32_t k);
+  // The neighbour across the link in direction d if the cloth goes on from it: mapped, or in
+  // a hole of the face (DrapeNode::carries).
   const DrapeNode* mapped_nb(const DrapeNode& n, ThreadDir d) const {
     const std::int32_t k = n.nb[static_cast<int>(d)];
     if (k < 0) return nullptr;
     const DrapeNode& m = res_.nodes[static_cast<std::size_t>(k)];
-    return m.mapped() ? &m : nullptr;
+    return m.carries() ? &m : nullptr;
   }
   bool cancelled_now();
   void push_neighbours(std::uint32_t idx);
