@@ -255,6 +255,15 @@ void Scanner::scan() {
       if (is_weft(ka.dir) != is_weft(kb.dir)) node(qi).set_solved_from(ka.dir, kb.dir);  // eq. 12
       r = solve_two(qn, *ka.n, ka.dir, res_.rest_length(qn, ka.dir), *kb.n, kb.dir,
                     res_.rest_length(qn, kb.dir));
+      // The solver tests eq. (12) on the face only; under a hole the cloth stops at the shear
+      // limit as it would on the face without the hole.
+      if (is_weft(ka.dir) != is_weft(kb.dir) && r.status == SolveStatus::kLeftFace && r.extended &&
+          st_.gamma_min > 0.0 &&
+          (r.thread_angle < st_.gamma_min || r.thread_angle > kPi - st_.gamma_min) &&
+          s_.in_hole(r.at)) {
+        r.status = SolveStatus::kShearLimit;
+        r.reason = "thread angle beyond the shear limit (under a hole of the face)";
+      }
       // Links to further known neighbours (fronts that met around a hole in the net) are
       // not solved for: a node that breaks one is no point of the cloth.
       const bool landed = r.status == SolveStatus::kConverged ||
