@@ -3,6 +3,8 @@
 #include "scanner.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace plyfit::detail {
 
@@ -41,9 +43,15 @@ void Scanner::map_path(const Vec3& t3) {
       const SolveResult r =
           solve_base_path(s_, {from.point, from.at(), res_.base_normal, travel, rest}, st_);
       resolve(idx, r);
-      if (!node(idx).mapped()) break;
+      // Across a hole of the face the path goes on, on the face's surface under the hole
+      // (kInHole: outside, extended), and comes back onto the face beyond it: the seed curve
+      // is not cut by a cutout. Past the outer boundary it stops.
+      if (!node(idx).carries()) {
+        path_stop_[dirn] = pcopy.pos;
+        break;
+      }
       if (overlaps(idx)) {  // a closed plane section: the path came round
-        node(idx).status = NodeStatus::kOverlap;
+        stop_overlap(idx);
         break;
       }
       chain.push_back(idx);
@@ -68,6 +76,51 @@ Vec3 Scanner::path_chord(const DrapeNode& a) const {
   if (k + 1 < bp.size()) return res_.nodes[bp[k + 1]].point - a.point;
   if (k > 0) return a.point - res_.nodes[bp[k - 1]].point;
   return res_.base_tangent;
+}
+
+// The slit a path stopped at a gap leaves (see PathSlit): the lattice links around the
+// path's line, beyond both its ends, whose two ends lie on the two sides and are mapped.
+Scanner::PathSlit Scanner::path_slits() const {
+  PathSlit out;
+  if (res_.base_path.empty() || ply_.sweep_for_side(1) < 0 || ply_.sweep_for_side(-1) < 0)
+    return out;
+  const Vec2 o = ply_.spec().start, dir = ply_.base_dir();
+  double t0 = std::numeric_limits<double>::infinity(), t1 = -t0;
+  for (const std::uint32_t k : res_.base_path) {
+    const double t = (res_.nodes[k].ply - o).dot(dir);
+    t0 = std::min(t0, t);
+    t1 = std::max(t1, t);
+  }
+  const double merge = opt_.tol.ply_merge_rel * ply_.d();
+  auto mapped_at = [&](std::int32_t i, std::int32_t j) {
+    const DrapeNode* n = res_.find(NodeId::regular(i, j));
+    return n && n->mapped();
+  };
+  constexpr std::int32_t kSteps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+  for (const DrapeNode& a : res_.nodes) {
+    if (!a.mapped() || a.id.is_path_only() || far_from_path(a.ply) || ply_.side(a.ply) <= 0)
+      continue;
+    for (const auto& st : kSteps) {
+      // The node across the line: one link on, or two where the one between lies on it.
+      std::int32_t i = a.id.i + st[0], j = a.id.j + st[1];
+      int sb = ply_.side(ply_.pos(i, j));
+      if (sb > 0) continue;
+      if (sb == 0) {
+        if (mapped_at(i, j)) continue;
+        i += st[0];
+        j += st[1];
+        sb = ply_.side(ply_.pos(i, j));
+      }
+      if (sb >= 0 || !mapped_at(i, j)) continue;
+      // Where the segment crosses the line, along the path.
+      const Vec2 pb = ply_.pos(i, j);
+      const double ca = cross2(dir, a.ply - o), cb = cross2(dir, pb - o);
+      const double t = (a.ply + ca / (ca - cb) * (pb - a.ply) - o).dot(dir);
+      if (t >= t0 - merge && t <= t1 + merge) continue;
+      if (out.links++ == 0) out.stop = path_stop_[t > t1 ? 0 : 1];
+    }
+  }
+  return out;
 }
 
 }  // namespace plyfit::detail

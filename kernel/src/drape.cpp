@@ -215,6 +215,16 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
     res.warnings.push_back(std::to_string(res.metrics.nodes.failed) +
                            " node(s) where the solver found no solution");
   }
+  if (const auto slit = scanner.path_slits(); slit.links > 0) {
+    res.partial = true;
+    res.warnings.push_back(
+        "the base path stops at ply (" + brief(slit.stop.x()) + ", " + brief(slit.stop.y()) +
+        ") at a gap in the surface that is no hole of one face (a missing face, or a notch "
+        "outside the face's outer boundary) while the cloth goes on beyond it: " +
+        std::to_string(slit.links) +
+        " thread link(s) across the path's line there join the two sweeps' cloth unsolved "
+        "(a slit in the flat pattern)");
+  }
   judge_drape(s, pb, opt.tol, !scanner.cancelled() && !scanner.truncated(), res);
   res.drape_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -12,6 +12,14 @@ namespace plyfit {
 
 namespace {
 
+// Twice the signed area of a closed (u, v) polyline (shoelace).
+double polygon_area2(const std::vector<Vec2>& pts) {
+  double a = 0.0;
+  for (std::size_t k = 0, m = pts.size() - 1; k < pts.size(); m = k++)
+    a += pts[m].x() * pts[k].y() - pts[k].x() * pts[m].y();
+  return a;
+}
+
 // 5-point Gauss-Legendre rule on [-1, 1].
 constexpr double kGaussX[5] = {-0.9061798459386640, -0.5384693101056831, 0.0, 0.5384693101056831,
                                0.9061798459386640};
@@ -90,6 +98,16 @@ Result<Face> Face::create(FaceData data, const Tolerances& tol) {
       border = border && (std::abs(p.x() - d.u0) <= eu || std::abs(p.x() - d.u1) <= eu ||
                           std::abs(p.y() - d.v0) <= ev || std::abs(p.y() - d.v1) <= ev);
     f.natural_ = border;
+  }
+  if (f.loops_.size() > 1) {  // holes: the outer loop is the one of largest (u, v) area
+    double best = -1.0;
+    for (std::size_t l = 0; l < f.loops_.size(); ++l) {
+      const double a = std::abs(polygon_area2(f.loops_[l].points));
+      if (a > best) {
+        best = a;
+        f.outer_ = static_cast<int>(l);
+      }
+    }
   }
   // Bounding box from samples on the face (control boxes can be far larger).
   for (const auto& s : sample_face(f, 33)) f.bbox_.add(s.second);
@@ -261,6 +279,22 @@ bool Face::contains(const Vec2& uv) const {
   if (!d.contains(w.x(), w.y(), tol_.param_rel * d.width_u(), tol_.param_rel * d.width_v()))
     return false;
   return loops_.empty() || natural_ || inside_trims_fast(w);
+}
+
+bool Face::in_hole(const Vec2& uv) const {
+  if (outer_ < 0) return false;
+  const Vec2 w = wrap(uv);
+  if (!domain().contains(w.x(), w.y()) || contains(w)) return false;
+  const auto& pts = loops_[static_cast<std::size_t>(outer_)].points;
+  bool inside = false;  // crossing number, as inside_trims
+  for (std::size_t k = 0, m = pts.size() - 1; k < pts.size(); m = k++) {
+    const Vec2& a = pts[m];
+    const Vec2& b = pts[k];
+    if ((a.y() > w.y()) != (b.y() > w.y()) &&
+        w.x() < a.x() + (w.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
+      inside = !inside;
+  }
+  return inside;
 }
 
 SurfaceEval1 Face::eval1(const SurfaceLocation& at) const {

@@ -33,6 +33,7 @@ void for_each_link(const DrapeResult& r, F&& f) {
   for (std::size_t k = 1; k < bp.size(); ++k) {
     const DrapeNode& a = nodes[bp[k - 1]];
     const DrapeNode& b = nodes[bp[k]];
+    if (!a.mapped() || !b.mapped()) continue;  // a link across a hole of the face
     // A path along a thread between two crossings is that thread's link, listed already.
     if (!a.id.is_path_only() && !b.id.is_path_only() &&
         std::abs(a.id.i - b.id.i) + std::abs(a.id.j - b.id.j) == 1)

@@ -101,6 +101,9 @@ void Scanner::resolve(std::uint32_t idx, const SolveResult& r) {
         n.point = r.point;
         n.set_at(r.at);
         n.flags |= DrapeNode::kExtended;
+        // In a hole of the face the surface runs on under it: the cloth goes on from the node
+        // as on a face without the hole (the flat pattern cuts the hole out).
+        if (s_.in_hole(r.at)) n.flags |= DrapeNode::kInHole;
       }
       break;
     case SolveStatus::kShearLimit:
@@ -122,6 +125,16 @@ bool Scanner::overlaps(std::uint32_t k) {
   return near;
 }
 
+// Node k, mapped or in a hole, lies on cloth already laid: mapped, it is an overlap; in a
+// hole, the cloth under the hole goes no further from it.
+void Scanner::stop_overlap(std::uint32_t k) {
+  DrapeNode& n = node(k);
+  if (n.mapped())
+    n.status = NodeStatus::kOverlap;
+  else
+    n.flags = static_cast<std::uint8_t>(n.flags & ~DrapeNode::kInHole);
+}
+
 bool Scanner::cancelled_now() {
   if (opt_.cancel && opt_.cancel->load(std::memory_order_relaxed)) cancelled_ = true;
   return cancelled_;
@@ -135,10 +148,9 @@ void Scanner::push_neighbours(std::uint32_t idx) {
     if (!q || q->is_path_only()) continue;  // path nodes are mapped by the base path
     const Vec2 qp = ply_.pos(q->i, q->j);
     const int side = ply_.side(qp);
-    // On the path: mapped (or not) by the base path. (Beyond a hole the path stops at, the
-    // line stays unmapped: a slit; solving it from the sweep that reaches it first lets one
-    // sweep's cloth cross the line and meet the other's sheared on a curved face, see
-    // tests/kernel/holes_test.cpp.)
+    // On the path: mapped (or not) by the base path, which goes on across holes of the face
+    // (map_path). (Solving the line from the sweep that reaches it first lets one sweep's
+    // cloth cross the line and meet the other's sheared on a curved face.)
     if (side == 0) continue;
     if (ply_.sweep_for_side(side) < 0) continue;  // that half-plane is not swept
     if (res_.nodes.size() >= opt_.max_nodes) {
@@ -243,9 +255,20 @@ void Scanner::scan() {
       if (is_weft(ka.dir) != is_weft(kb.dir)) node(qi).set_solved_from(ka.dir, kb.dir);  // eq. 12
       r = solve_two(qn, *ka.n, ka.dir, res_.rest_length(qn, ka.dir), *kb.n, kb.dir,
                     res_.rest_length(qn, kb.dir));
+      // The solver tests eq. (12) on the face only; under a hole the cloth stops at the shear
+      // limit as it would on the face without the hole.
+      if (is_weft(ka.dir) != is_weft(kb.dir) && r.status == SolveStatus::kLeftFace && r.extended &&
+          st_.gamma_min > 0.0 &&
+          (r.thread_angle < st_.gamma_min || r.thread_angle > kPi - st_.gamma_min) &&
+          s_.in_hole(r.at)) {
+        r.status = SolveStatus::kShearLimit;
+        r.reason = "thread angle beyond the shear limit (under a hole of the face)";
+      }
       // Links to further known neighbours (fronts that met around a hole in the net) are
       // not solved for: a node that breaks one is no point of the cloth.
-      for (int x = 0; x < nk && r.status == SolveStatus::kConverged; ++x) {
+      const bool landed = r.status == SolveStatus::kConverged ||
+                          (r.status == SolveStatus::kLeftFace && r.extended && s_.in_hole(r.at));
+      for (int x = 0; x < nk && landed && r.status != SolveStatus::kFailed; ++x) {
         if (known[x].n == ka.n || known[x].n == kb.n) continue;
         const double rest = res_.rest_length(qn, known[x].dir);
         const double err = std::abs((r.point - known[x].n->point).norm() - rest);
@@ -264,10 +287,11 @@ void Scanner::scan() {
     }
     resolve(qi, r);
     // The cloth can come round onto itself (a closed face, a face that wraps over itself, a
-    // net sheared nearly flat), or fold its threads back (folds_back()).
-    if (node(qi).mapped() && ((opt_.overlap_test && overlaps(qi)) || folds_back(qi)))
-      node(qi).status = NodeStatus::kOverlap;
-    if (node(qi).mapped()) push_neighbours(qi);
+    // net sheared nearly flat), or fold its threads back (folds_back()). In a hole the cloth
+    // under the hole stops there (the node stays outside).
+    if (node(qi).carries() && ((opt_.overlap_test && overlaps(qi)) || folds_back(qi)))
+      stop_overlap(qi);
+    if (node(qi).carries()) push_neighbours(qi);
   }
   while (!heap_.empty()) heap_.pop();  // cancelled: pending nodes stay unresolved
 }

@@ -68,6 +68,15 @@ class Scanner {
   bool truncated() const { return truncated_; }
   bool cancelled() const { return cancelled_; }
   std::uint64_t path_off_ply() const { return path_off_ply_; }
+  /// A slit along the base path's line: thread links across the line beyond the path's
+  /// ends that join cloth mapped by the two sweeps (the path stopped where the surface has a
+  /// gap that is no hole of one face, and the face goes on beyond it; see path_slits()).
+  struct PathSlit {
+    std::uint64_t links = 0;   ///< such links (0: no slit)
+    Vec2 stop = Vec2::Zero();  ///< ply position of the path node where the path stopped
+  };
+  /// Finds the slit after the scan (never on a path that crossed its gaps).
+  PathSlit path_slits() const;
 
  private:
   DrapeNode& node(std::uint32_t k) { return res_.nodes[k]; }
@@ -78,11 +87,14 @@ class Scanner {
   std::uint32_t node_for(const NodeId& id, const Vec2& pos);
   void resolve(std::uint32_t idx, const SolveResult& r);
   bool overlaps(std::uint32_t k);
+  void stop_overlap(std::uint32_t k);
+  // The neighbour across the link in direction d if the cloth goes on from it: mapped, or in
+  // a hole of the face (DrapeNode::carries).
   const DrapeNode* mapped_nb(const DrapeNode& n, ThreadDir d) const {
     const std::int32_t k = n.nb[static_cast<int>(d)];
     if (k < 0) return nullptr;
     const DrapeNode& m = res_.nodes[static_cast<std::size_t>(k)];
-    return m.mapped() ? &m : nullptr;
+    return m.carries() ? &m : nullptr;
   }
   bool cancelled_now();
   void push_neighbours(std::uint32_t idx);
@@ -113,6 +125,7 @@ class Scanner {
   double far_ = 0.0;  // distance from the path line beyond which far_from_path() holds
   std::uint32_t order_ = 0;
   std::uint64_t path_off_ply_ = 0;
+  Vec2 path_stop_[2] = {Vec2::Zero(), Vec2::Zero()};  // where the path stopped, +tau and -tau
   bool truncated_ = false, cancelled_ = false;
   bool one_face_ = true;  // every location is in one chart: guesses need no chart checks
   double cell_ = 1.0;     // overlap radius

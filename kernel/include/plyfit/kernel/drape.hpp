@@ -50,6 +50,10 @@ struct DrapeNode {
   static constexpr std::uint8_t kSolvedTwo = 16;
   static constexpr std::uint8_t kFromPlusX = 32;  ///< with kSolvedTwo: the weft one is +x (else -x)
   static constexpr std::uint8_t kFromPlusY = 64;  ///< with kSolvedTwo: the warp one is +y (else -y)
+  /// kOutside and kExtended, in a hole of the face (DrapeSurface::in_hole): the cloth goes on
+  /// from it on the face's surface under the hole (the base path and the sweeps continue
+  /// across a cutout as if it were not there; the flat pattern cuts the hole out).
+  static constexpr std::uint8_t kInHole = 128;
   // Fields ordered so that Eigen's 16-byte alignment of Vec2 leaves no padding: 96 bytes.
   Vec3 point = Vec3::Zero();  ///< 3D position (mapped, or extended, else zero)
   double thread_angle = 0.0;  ///< gamma between weft and warp at a mapped regular node, radians
@@ -65,6 +69,8 @@ struct DrapeNode {
   std::uint8_t flags = 0;
   std::uint16_t face = 0;  ///< face (chart) of `uv`: see at()
   bool mapped() const { return status == NodeStatus::kMapped; }
+  /// Mapped, or in a hole of the face (kInHole): a node the drape goes on from.
+  bool carries() const { return mapped() || (flags & kInHole) != 0; }
   bool has(std::uint8_t f) const { return (flags & f) != 0; }
   /// Where the node lies on the surface (mapped, or extended).
   SurfaceLocation at() const { return {uv, face}; }
@@ -238,7 +244,7 @@ struct DrapeResult {
   std::vector<std::string> warnings;     ///< why partial, and other notes
   std::vector<DrapeNode> nodes;          ///< every node reached, in resolution order
   NodeIndex index;                       ///< NodeId -> position in `nodes`
-  std::vector<std::uint32_t> base_path;  ///< mapped base-path nodes in path order
+  std::vector<std::uint32_t> base_path;  ///< base-path nodes in order, mapped or kInHole
   std::shared_ptr<const Ply> ply;
   DrapeMetrics metrics;
   Vec3 start_point = Vec3::Zero();  ///< the start on the face

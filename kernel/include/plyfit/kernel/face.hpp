@@ -139,6 +139,14 @@ class DrapeSurface {
     (void)reach;
     return at;
   }
+  /// True when `at` lies in a hole of its face: off the face, but inside the face's parameter
+  /// domain and its outer trim loop, so that the face's surface runs on under the hole (a
+  /// drape goes on across it on that surface, see DrapeNode::kInHole). False past the outer
+  /// loop or the domain, and on a surface that has no such holes.
+  virtual bool in_hole(const SurfaceLocation& at) const {
+    (void)at;
+    return false;
+  }
   /// Crease angle (radians) between the faces of two locations: the largest angle between
   /// their outward normals along the shared edges joining them; 0 on one face.
   virtual double crease_angle(const SurfaceLocation& a, const SurfaceLocation& b) const {
@@ -228,6 +236,9 @@ class Face final : public DrapeSurface {
   }
   /// True when uv (after wrapping) lies on the face: in the domain and inside the trims.
   bool contains(const Vec2& uv) const;
+  /// True when uv (after wrapping) is off the face but in the domain and inside the outer
+  /// trim loop (the loop of largest (u, v) area): in a hole (see DrapeSurface::in_hole).
+  bool in_hole(const Vec2& uv) const;
   /// The nearest point of the face to p by a damped Newton iteration from `seed` (parameters
   /// kept in the domain, on the face when `on_face`); ok is false if it cannot evaluate.
   Projection project_from(const Vec3& p, const Vec2& seed, bool on_face) const;
@@ -259,6 +270,7 @@ class Face final : public DrapeSurface {
   std::int32_t face_count() const override { return 1; }
   std::vector<BoundaryLoop> boundary() const override;
   SurfaceLocation settle(const SurfaceLocation& at, const Vec3& p, double reach) const override;
+  bool in_hole(const SurfaceLocation& at) const override { return in_hole(at.uv); }
   /// The face's poles: domain edges its surface collapses to one point (found once).
   const std::vector<Pole>& poles() const { return poles_; }
 
@@ -273,6 +285,7 @@ class Face final : public DrapeSurface {
   std::vector<TrimLoop> loops_;
   bool reversed_ = false, closed_u_ = false, closed_v_ = false;
   bool natural_ = false;  // the one loop runs along the domain's border
+  int outer_ = -1;        // the outer loop (largest (u, v) area) when there are holes, else -1
   std::string name_;
   double area_ = 0.0;
   BBox3 bbox_;

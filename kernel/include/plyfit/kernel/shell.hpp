@@ -103,6 +103,10 @@ class Shell final : public DrapeSurface {
   BBox3 bbox() const override { return bbox_; }
   double face_area(std::int32_t k) const override { return face(k).area(); }
   SurfaceLocation settle(const SurfaceLocation& at, const Vec3& p, double reach) const override;
+  /// In a hole of the location's face that no neighbour face's sewing gap covers.
+  bool in_hole(const SurfaceLocation& at) const override {
+    return face(at.face).in_hole(at.uv) && !contains(at);
+  }
   double crease_angle(const SurfaceLocation& a, const SurfaceLocation& b) const override {
     return a.face == b.face ? 0.0 : crease_angle(a.face, b.face);
   }
