@@ -80,10 +80,13 @@ class OverlapGrid {
       hi[a] = c[a] + (f + reach_ >= 1.0 ? 1 : 0);
     }
     const float r2 = static_cast<float>(radius_ * radius_ * (1 + kFloatSlack));
+    std::size_t own = 0;  // the slot of p's cell (among those visited)
     for (std::int64_t i = lo[0]; i <= hi[0]; ++i)
       for (std::int64_t j = lo[1]; j <= hi[1]; ++j)
         for (std::int64_t k = lo[2]; k <= hi[2]; ++k) {
-          std::uint32_t h = slots_[find(key(i, j, k))].head;
+          const std::size_t slot = find(key(i, j, k));
+          own = i == c[0] && j == c[1] && k == c[2] ? slot : own;
+          std::uint32_t h = slots_[slot].head;
           if (h == kNone) continue;
           const V4 x = splat(static_cast<float>(p.x() - static_cast<double>(i) * edge_));
           const V4 y = splat(static_cast<float>(p.y() - static_cast<double>(j) * edge_));
@@ -98,7 +101,7 @@ class OverlapGrid {
               if (near[t] && exact(ch.node[t])) return true;
           }
         }
-    insert(c, p, node);
+    insert(c, own, p, node);
     return false;
   }
 
@@ -140,10 +143,14 @@ class OverlapGrid {
     for (std::size_t h = (k * 0x9E3779B97F4A7C15ULL) >> (64 - bits_);; h = (h + 1) & mask)
       if (slots_[h].head == kNone || slots_[h].key == k) return h;
   }
-  void insert(const std::int64_t c[3], const Vec3& p, std::uint32_t node) {
-    if (2 * (count_ + 1) > slots_.size()) grow();
+  // Records node at p in cell c, whose slot (found by the test) is `slot`.
+  void insert(const std::int64_t c[3], std::size_t slot, const Vec3& p, std::uint32_t node) {
     const std::uint64_t k = key(c[0], c[1], c[2]);
-    Slot& s = slots_[find(k)];
+    if (slots_[slot].head == kNone && 2 * (count_ + 1) > slots_.size()) {
+      grow();
+      slot = find(k);
+    }
+    Slot& s = slots_[slot];
     if (s.head == kNone) {
       s.key = k;
       ++count_;
