@@ -29,10 +29,10 @@ constexpr double kEstimateMargin = 1.05;
 constexpr double kEstimateRing = 8.0;
 constexpr double kEstimateMinNodes = 64.0;
 // The mapped cells (flat chords of the surface, inside it) cover at most its area; a little
-// more is the trim polylines' chord error. More is cloth lying on cloth: the drape tests
-// every node for overlap only on surfaces that close on themselves and where the net is
-// sheared past 60 degrees (a test of every node would cost half the speed), and an immersed
-// net can still come back over itself elsewhere on a long open face. The coverage shows it.
+// more is the trim polylines' chord error. More is cloth lying on cloth: the overlap test
+// runs at every mapped node on every face (unless DrapeOptions::overlap_test is off), but it
+// stops only a node within kOverlapRel * d of a laid node; cloth that comes back with its
+// nodes between the laid ones (all farther than that) overlaps unseen. The coverage shows it.
 constexpr double kCoverageSlack = 0.01;
 
 // Number of nodes the scan is expected to reach, to size the node vector once (no

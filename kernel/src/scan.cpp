@@ -120,9 +120,11 @@ void Scanner::resolve(std::uint32_t idx, const SolveResult& r) {
 // records it.
 bool Scanner::overlaps(std::uint32_t k) {
   const DrapeNode& n = node(k);
-  const bool near = grid_.any_far_near(n.point, n.ply, kOverlapSeparation * ply_.d());
-  if (!near) grid_.insert(n.point, n.ply);
-  return near;
+  const double r2 = cell_ * cell_, sep = kOverlapSeparation * ply_.d(), s2 = sep * sep;
+  return grid_.test_insert(n.point, k, [&](std::uint32_t m) {
+    const DrapeNode& o = res_.nodes[m];
+    return (o.point - n.point).squaredNorm() < r2 && (o.ply - n.ply).squaredNorm() >= s2;
+  });
 }
 
 // Node k, mapped or in a hole, lies on cloth already laid: mapped, it is an overlap; in a

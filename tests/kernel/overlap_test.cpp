@@ -6,10 +6,13 @@
 
 #include <catch2/catch.hpp>
 
+#include "overlap_grid.hpp"
 #include "support/problems.hpp"
 
 #include <cmath>
+#include <random>
 #include <string>
+#include <vector>
 
 using namespace plyfit;
 using plyfit::support::problem;
@@ -21,6 +24,12 @@ constexpr double kPi = 3.14159265358979323846;
 // (3D) of another at least kSeparation d away from it on the ply lies on cloth already laid.
 constexpr double kNearRel = 0.5;
 constexpr double kSeparation = 2.0;
+
+// A node of the grid test below: 3D point and ply position.
+struct GridNode {
+  Vec3 p;
+  Vec2 ply;
+};
 
 // Pairs of mapped nodes that break the criterion, by brute force.
 int cloth_on_cloth(const DrapeResult& r, double d) {
@@ -63,5 +72,65 @@ TEST_CASE("drape: cloth landing on cloth already laid is flagged on an open face
     CHECK(cloth_on_cloth(r, d) == 0);
     // A full turn of cloth is laid: about the face's circumference times its height.
     CHECK(r.metrics.surface_area > 0.9 * 2 * kPi * 10 * 20);
+  }
+}
+
+TEST_CASE("overlap grid: the float-filtered test answers as the all-double one, at the radius") {
+  // OverlapGrid filters in floats relative to its cells and leaves the decision to the exact
+  // test: it must find every recorded node the exact test accepts, whatever the scale and
+  // the distance from the origin. A flat sheet of recorded nodes; then cloth coming back
+  // over it (ply positions far away) at unfavourable places: within a hair of the radius of
+  // a recorded node (inside and outside), on cell boundaries, between recorded nodes, and
+  // anywhere. Every answer is compared with a brute-force test over the recorded nodes.
+  struct Scale {
+    double d;
+    Vec3 origin;
+  };
+  for (const Scale& sc : {Scale{1.0, Vec3(0, 0, 0)}, Scale{1e-3, Vec3(1e4, -2e4, 3e3)},
+                          Scale{50.0, Vec3(-3e5, 1e5, 7e4)}}) {
+    const double d = sc.d, r = kNearRel * d, sep = kSeparation * d;
+    INFO("d = " << d);
+    std::vector<GridNode> nodes;
+    std::vector<std::uint32_t> recorded;
+    plyfit::detail::OverlapGrid grid;
+    grid.init(r, 64);  // small: the slot table grows
+    auto exact = [&](const GridNode& n, std::uint32_t m) {
+      return (nodes[m].p - n.p).squaredNorm() < r * r && (nodes[m].ply - n.ply).norm() >= sep;
+    };
+    int hits = 0, checked = 0;
+    auto add = [&](const Vec3& p, const Vec2& ply) {
+      nodes.push_back({p, ply});
+      const auto k = static_cast<std::uint32_t>(nodes.size() - 1);
+      bool brute = false;
+      for (std::uint32_t m : recorded) brute = brute || exact(nodes[k], m);
+      const bool got = grid.test_insert(p, k, [&](std::uint32_t m) { return exact(nodes[k], m); });
+      CHECK(got == brute);
+      if (!got) recorded.push_back(k);
+      hits += got ? 1 : 0;
+      ++checked;
+    };
+    constexpr int kSide = 24;
+    for (int i = 0; i < kSide; ++i)
+      for (int j = 0; j < kSide; ++j) add(sc.origin + Vec3(i * d, j * d, 0.0), Vec2(i * d, j * d));
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const std::size_t sheet = recorded.size();
+    for (int n = 0; n < 3000; ++n) {
+      const Vec2 far(1e3 * d + n * 3 * d, 0.0);  // no two of the returning nodes are near
+      const GridNode& m = nodes[recorded[static_cast<std::size_t>(n) % sheet]];
+      Vec3 dir(u(rng), u(rng), u(rng));
+      dir.normalize();
+      const double rel[] = {-1e-12, 1e-12, -1e-7, 1e-7, -1e-5, 1e-5, 1e-4, 2e-4, u(rng) * 0.5};
+      Vec3 p = m.p + dir * r * (1 + rel[n % 9]);
+      if (n % 5 == 1) p = m.p + Vec3(0.5 * d, 0.5 * d, u(rng) * r);  // between recorded nodes
+      if (n % 7 == 2) {  // on a cell boundary (cell edge kCellRadii * r from the origin)
+        const double edge = plyfit::detail::OverlapGrid::kCellRadii * r;
+        p.x() = std::round(p.x() / edge) * edge;
+      }
+      add(p, far);
+    }
+    CHECK(checked == kSide * kSide + 3000);
+    CHECK(hits > 1000);  // most of the returning cloth lands on the sheet
+    CHECK(hits < 3000);
   }
 }
