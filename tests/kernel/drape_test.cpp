@@ -713,3 +713,57 @@ TEST_CASE("drape: a sweep within a degree of the base path or the normal is an e
   bad.sweeps = {Vec3(0, t2, 1)};
   CHECK(drape(f, bad).ok());
 }
+
+TEST_CASE("drape: failed nodes are counted by reason, and where fronts disagree no point fits") {
+  // A fuzz drape (seed 11) on the hemisphere R = 1: two fronts of cloth meet around the nodes
+  // stopped at the fold limit and overlap, and one node reached from three sides fails.
+  const double R = 1.0, d = 0.0466772;
+  const Face f = builtin("hemisphere", {{"R", R}});
+  const Vec3 w3(0.259241, 0.965348, 0.029947);
+  const DrapeResult r = run(f, problem(d, Vec2(0, 0), Vec2(-0.971152, -0.238460),
+                                       {Vec2(0.238460, -0.971152), Vec2(-0.238460, 0.971152)},
+                                       Vec3(-0.156435, -0.287080, 0.517885),
+                                       Vec3(-0.135449, 0.932291, -0.335392), {w3, -w3}));
+  REQUIRE(r.metrics.nodes.failed >= 1);
+  std::uint64_t counted = 0;
+  for (const auto& [why, count] : r.metrics.nodes.failed_reasons) {
+    CHECK(why != "unknown");
+    counted += count;
+  }
+  CHECK(counted == r.metrics.nodes.failed);
+  // Each node that failed because the fronts disagree has three or more mapped neighbours,
+  // and no point of the sphere is at the rest length from all of them: each pair of them
+  // pins at most two points (|p| = R, |p - a| = |p - b| = d, in closed form), and every such
+  // point is off the remaining links by more than 1e-9 d.
+  int fronts = 0;
+  for (const auto& [k, why] : r.failures) {
+    if (std::string(why) != "the fronts disagree: a third link is off") continue;
+    ++fronts;
+    const DrapeNode& q = r.nodes[k];
+    std::vector<std::pair<Vec3, double>> nb;  // mapped neighbour, rest length to it
+    for (int dir = 0; dir < 4; ++dir)
+      if (const DrapeNode* m = r.neighbour(q, static_cast<ThreadDir>(dir)); m && m->mapped())
+        nb.emplace_back(m->point, r.rest_length(q, static_cast<ThreadDir>(dir)));
+    REQUIRE(nb.size() >= 3);
+    for (std::size_t x = 0; x < nb.size(); ++x)
+      for (std::size_t y = x + 1; y < nb.size(); ++y) {
+        const auto& [a, ra] = nb[x];
+        const auto& [b, rb] = nb[y];
+        // p.a = (R^2 + |a|^2 - ra^2) / 2 with |a| = R, likewise for b.
+        const double ka = R * R - ra * ra / 2, kb = R * R - rb * rb / 2;
+        const double aa = a.dot(a), ab = a.dot(b), bb = b.dot(b), det = aa * bb - ab * ab;
+        if (!(std::abs(det) > 1e-12)) continue;  // a and b opposite across the node: no pair
+        const Vec3 p0 = a * ((ka * bb - kb * ab) / det) + b * ((kb * aa - ka * ab) / det);
+        const Vec3 n = a.cross(b).normalized();
+        const double h2 = R * R - p0.squaredNorm();
+        if (h2 < 0) continue;  // the spheres miss each other on the surface
+        for (double sgn : {1.0, -1.0}) {
+          const Vec3 p = p0 + sgn * std::sqrt(h2) * n;
+          double worst = 0.0;
+          for (const auto& [c, rc] : nb) worst = std::max(worst, std::abs((p - c).norm() - rc));
+          CHECK(worst > 1e-9 * d);
+        }
+      }
+  }
+  CHECK(fronts >= 1);
+}
