@@ -767,3 +767,38 @@ TEST_CASE("drape: failed nodes are counted by reason, and where fronts disagree 
   }
   CHECK(fronts >= 1);
 }
+
+TEST_CASE("drape: a node between two mapped nodes of one thread too far apart fails as such") {
+  // A fuzz drape (seed 12) on the saddle: fronts of cloth meet from both sides of nodes whose
+  // only mapped neighbours lie on one thread, more than the two links apart. No point joins
+  // them; the reason says so (it said "no intersection (the spheres do not meet)").
+  const Face f = builtin("saddle");
+  const Vec3 w3(-0.524273, 0.711874, -0.467304);
+  const DrapeResult r = run(f, problem(0.517907, Vec2(0, 0), Vec2(0.680328, 0.732908),
+                                       {Vec2(0.732908, -0.680328), Vec2(-0.732908, 0.680328)},
+                                       Vec3(-3.919251, 6.948146, -0.068130),
+                                       Vec3(-0.779846, -0.044677, -0.624375), {w3, -w3}));
+  const auto& why = r.metrics.nodes.failed_reasons;
+  const auto stretch = why.find("the fronts disagree: the thread between them would stretch");
+  REQUIRE(stretch != why.end());
+  CHECK(why.count("no intersection (the spheres do not meet)") == 0);
+  std::uint64_t counted = 0;
+  for (const auto& [text, count] : why) counted += count;
+  CHECK(counted == r.metrics.nodes.failed);
+  int checked = 0;
+  for (const auto& [k, text] : r.failures) {
+    if (std::string(text) != stretch->first) continue;
+    const DrapeNode& q = r.nodes[k];
+    bool apart = false;  // a thread through q whose two mapped ends are too far apart
+    for (ThreadDir d : {ThreadDir::kPlusX, ThreadDir::kPlusY}) {
+      const DrapeNode* a = r.neighbour(q, d);
+      const DrapeNode* b = r.neighbour(q, opposite(d));
+      if (a && b && a->mapped() && b->mapped())
+        apart = apart ||
+                (a->point - b->point).norm() > r.rest_length(q, d) + r.rest_length(q, opposite(d));
+    }
+    CHECK(apart);
+    ++checked;
+  }
+  CHECK(checked == static_cast<int>(stretch->second));
+}
