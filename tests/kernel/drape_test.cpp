@@ -1,6 +1,8 @@
 #include <plyfit/kernel/analytic_surfaces.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
+#include <plyfit/kernel/builtin_shells.hpp>
 #include <plyfit/kernel/drape.hpp>
+#include <plyfit/kernel/shell.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -801,4 +803,50 @@ TEST_CASE("drape: a node between two mapped nodes of one thread too far apart fa
     ++checked;
   }
   CHECK(checked == static_cast<int>(stretch->second));
+}
+
+TEST_CASE("drape: a cell sheared nearly flat across two faces of sphere-8 is mapped, not folded") {
+  // A fuzz drape (seed 11) on builtin:sphere-8: node (9, 7) near the south pole, its weft
+  // neighbour (8, 7) and warp neighbour (9, 8) on two faces, the cell sheared by 80 degrees.
+  // It failed ("only the folded branch was found"), then stopped as if folded ("the cell would
+  // fold"): both side tests took the sphere's sag below the chord for the side. Its cell is
+  // not folded: the node is the solution of |p| = R, |p - a| = |p - b| = d (closed form)
+  // that is not the cell's fourth corner.
+  const double R = 20.0, d = 2.33766;
+  auto data = builtin_shell("sphere-8", {{"R", R}});
+  REQUIRE(data.ok());
+  auto sh = Shell::create(std::move(data).value());
+  REQUIRE(sh.ok());
+  const Vec3 w3(0.170222, 0.576356, 0.799273);
+  const DrapeResult r =
+      run(*sh,
+          problem(d, Vec2(0, 0), Vec2(0.531435, 0.847099), {Vec2(0.847099, -0.531435)},
+                  Vec3(7.589290, -6.897802, -7.011721), Vec3(-0.372097, 0.288549, 0.882204), {w3}));
+  const DrapeNode* q = r.find(NodeId::regular(9, 7));
+  const DrapeNode* a = r.find(NodeId::regular(8, 7));
+  const DrapeNode* b = r.find(NodeId::regular(9, 8));
+  const DrapeNode* c = r.find(NodeId::regular(8, 8));
+  REQUIRE(q);
+  REQUIRE(a);
+  REQUIRE(b);
+  REQUIRE(c);
+  REQUIRE(a->mapped());
+  REQUIRE(b->mapped());
+  REQUIRE(c->mapped());
+  REQUIRE(a->at().face != b->at().face);
+  INFO("node (9, 7): " << to_string(q->status));
+  REQUIRE(q->mapped());
+  // The closed-form solutions (as in solvers_test.cpp): c is one, q must be the other.
+  const Vec3 &pa = a->point, &pb = b->point;
+  const double k = (2 * R * R - d * d) / 2, aa = pa.dot(pa), ab = pa.dot(pb), bb = pb.dot(pb);
+  const double det = aa * bb - ab * ab;
+  const Vec3 p0 = pa * ((k * bb - k * ab) / det) + pb * ((k * aa - k * ab) / det);
+  const Vec3 n = pa.cross(pb).normalized();
+  const double t = std::sqrt(R * R - p0.squaredNorm());
+  const Vec3 s1 = p0 + t * n, s2 = p0 - t * n;
+  const bool c_is_s1 = (c->point - s1).norm() < (c->point - s2).norm();
+  CHECK((c->point - (c_is_s1 ? s1 : s2)).norm() < 1e-8 * d);
+  CHECK((q->point - (c_is_s1 ? s2 : s1)).norm() < 1e-8 * d);
+  CHECK(std::acos((pa - q->point).normalized().dot((pb - q->point).normalized())) >
+        169.0 * kPi / 180);
 }
