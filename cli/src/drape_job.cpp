@@ -385,24 +385,10 @@ Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
     return Error{where + "give one 3D sweep direction per 2D sweep direction (" +
                  std::to_string(ply.sweeps.size()) + " 2D, " +
                  std::to_string(job.problem.sweeps.size()) + " 3D)"};
-  // As drape() checks it: a sweep within Tolerances::sweep_min_angle of the base path picks
-  // its side by the last digits given.
-  const double min_sweep = job.drape.tol.sweep_min_angle;
-  for (std::size_t k = 0; k < ply.sweeps.size(); ++k) {
-    if (!(ply.sweeps[k].norm() > 0))
-      return Error{name("sweep2d") + ": sweep direction " + std::to_string(k + 1) +
-                   " must be non-zero"};
-    const double sn = std::abs(cross2(ply.base_dir.normalized(), ply.sweeps[k].normalized()));
-    if (sn < std::sin(min_sweep)) {
-      std::ostringstream os;
-      os.precision(3);
-      os << std::asin(std::min(sn, 1.0)) / kDegToRad << " deg with it (at least "
-         << min_sweep / kDegToRad << " deg needed)";
-      return Error{name("sweep2d") + ": sweep direction " + std::to_string(k + 1) +
-                   " is parallel to the base path: it makes " + os.str() +
-                   "; it must point into one side of the path"};
-    }
-  }
+  // As Ply::create checks them (drape() would refuse them later, without the option's name).
+  for (std::size_t k = 0; k < ply.sweeps.size(); ++k)
+    if (auto st = check_sweep_direction(ply.base_dir, ply.sweeps[k], k, job.drape.tol); !st)
+      return Error{name("sweep2d") + ": " + st.error().message};
   for (const char* k : {"start3d", "base-normal", "sweep3d", "sweep2d", "lock-angle"})
     job.input_names[k] = name(k);
 

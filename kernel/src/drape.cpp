@@ -82,21 +82,6 @@ std::string brief(double x) {
   return os.str();
 }
 
-// The input checks that need the ply: each sweep direction at least tol.sweep_min_angle from
-// the base path (Ply::create refuses only exact parallels).
-Status check_sweeps_2d(const Ply& P, const Tolerances& tol) {
-  for (std::size_t k = 0; k < P.spec().sweeps.size(); ++k) {
-    const double sn = std::abs(cross2(P.base_dir(), P.spec().sweeps[k]));
-    if (sn < std::sin(tol.sweep_min_angle))
-      return Error{"sweep direction " + std::to_string(k + 1) +
-                   " is parallel to the base path: it makes " +
-                   brief(std::asin(std::min(sn, 1.0)) * kRadToDeg) + " deg with it (at least " +
-                   brief(tol.sweep_min_angle * kRadToDeg) +
-                   " deg needed); it must point into one side of the path"};
-  }
-  return ok_status();
-}
-
 // Warnings of a drape that ran but is not what was asked for: a start far from the surface, no
 // cell mapped at all (partial), or a sweep that maps nothing while another does (a note); the
 // last two only for a scan that ran to its end (`complete`).
@@ -142,7 +127,6 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
   const auto t0 = std::chrono::steady_clock::now();
   auto ply = Ply::create(pb.ply, opt.tol);
   if (!ply) return ply.error();
-  if (auto st = check_sweeps_2d(*ply, opt.tol); !st) return st.error();
   if (pb.sweeps.size() != pb.ply.sweeps.size())
     return Error{"give as many 3D sweep directions as 2D ones (" +
                  std::to_string(pb.ply.sweeps.size()) + " 2D, " + std::to_string(pb.sweeps.size()) +

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace plyfit {
 
@@ -10,6 +11,21 @@ bool finite2(const Vec2& v) {
   return v.allFinite();
 }
 }  // namespace
+
+Status check_sweep_direction(const Vec2& base_dir, const Vec2& sweep, std::size_t k,
+                             const Tolerances& tol) {
+  const std::string which = "sweep direction " + std::to_string(k + 1);
+  if (!finite2(sweep) || !(sweep.norm() > 0.0)) return Error{which + " must be a non-zero vector"};
+  const double sn = std::abs(cross2(base_dir.normalized(), sweep.normalized()));
+  if (sn >= std::sin(tol.sweep_min_angle)) return ok_status();
+  constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+  std::ostringstream os;
+  os.precision(3);
+  os << which << " is parallel to the base path: it makes "
+     << std::asin(std::min(sn, 1.0)) * kRadToDeg << " deg with it (at least "
+     << tol.sweep_min_angle * kRadToDeg << " deg needed); it must point into one side of the path";
+  return Error{os.str()};
+}
 
 // Sets n.id / n.pos / n.link_from for a path point at n.pos: a regular node when it is on a
 // crossing (both threads within the merge tolerance, position snapped), a split of the
@@ -58,13 +74,9 @@ Result<Ply> Ply::create(PlySpec spec, const Tolerances& tol) {
   spec.base_dir.normalize();
   for (size_t k = 0; k < spec.sweeps.size(); ++k) {
     auto& w = spec.sweeps[k];
-    if (!finite2(w) || !(w.norm() > 0.0))
-      return Error{"sweep direction " + std::to_string(k + 1) + " must be a non-zero vector"};
+    if (auto st = check_sweep_direction(spec.base_dir, w, k, tol); !st) return st.error();
     w.normalize();
     const double c = cross2(spec.base_dir, w);
-    if (std::abs(c) < tol.ply_merge_rel)
-      return Error{"sweep direction " + std::to_string(k + 1) +
-                   " is parallel to the base path (it must point into a half-plane)"};
     int& slot = c > 0 ? p.sweep_plus_ : p.sweep_minus_;
     if (slot >= 0)
       return Error{"both sweep directions point into the same half-plane of the base path"};

@@ -15,6 +15,7 @@
 #include <plyfit/kernel/flat_pattern.hpp>
 #include <plyfit/kernel/shell.hpp>
 
+#include <unistd.h>
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
@@ -173,9 +174,22 @@ std::vector<std::unique_ptr<Case>> cases() {
   return v;
 }
 
+// Scratch folders, one per name and process (test runs of several clones at once, or ctest
+// -j, must not share one), removed when the test program ends.
+struct ScratchDirs {
+  std::vector<fs::path> made;
+  ~ScratchDirs() {
+    std::error_code ec;
+    for (const auto& p : made) fs::remove_all(p, ec);
+  }
+};
+ScratchDirs scratch_dirs;
+
 fs::path fresh_dir(const std::string& name) {
-  const fs::path p = fs::temp_directory_path() / ("plyfit_exporters_test_" + name);
+  const fs::path p = fs::temp_directory_path() /
+                     ("plyfit_exporters_test_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(p);
+  scratch_dirs.made.push_back(p);
   fs::create_directories(p);
   return p;
 }

@@ -1,7 +1,9 @@
 #include <plyfit/kernel/analytic_surfaces.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
+#include <plyfit/kernel/builtin_shells.hpp>
 #include <plyfit/kernel/drape.hpp>
 #include <plyfit/kernel/flat_pattern.hpp>
+#include <plyfit/kernel/shell.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -271,4 +273,41 @@ TEST_CASE("flat pattern: at a pole the outline has the face's corner angle") {
     CHECK(std::abs(std::abs(q.x()) - q.y()) < 0.01);
   }
   CHECK(near >= 2);
+}
+
+TEST_CASE(
+    "flat pattern: across a fillet the outline is the net's chord length (flange-fillet-wall)") {
+  // samples/flange-fillet-wall.ini: flange L = 40, fillet r = 10, wall Hw = 40, width W = 60,
+  // developable; threads along x run round the fillet, those along y along its axis. The
+  // threads are straight between crossings, so over the fillet each link of d is the chord of
+  // an arc 2 r asin(d / 2r): the fillet's flat length is its arc pi r / 2 shortened by the
+  // factor d / (2 r asin(d / 2r)) (1 - d^2 / 24 r^2), the rectangle L + pi r / 2 + Hw by W
+  // otherwise. Perimeter and area agree with that to within the four links (one per free edge
+  // at each tangent join) that are partly on the fillet: each is short of its arc by at most
+  // 2 r asin(d / 2r) - d; the exact 311.416 is approached as d^2.
+  constexpr double L = 40, r = 10, Hw = 40, W = 60;
+  auto data = builtin_shell("flange-fillet-wall", {});
+  REQUIRE(data.ok());
+  auto sh = Shell::create(std::move(data).value());
+  REQUIRE(sh.ok());
+  double previous_gap = 0.0;
+  for (const double d : {1.0, 0.5}) {
+    INFO("d " << d);
+    const auto res = drape(
+        *sh, support::problem(d, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)},
+                              Vec3(-20, 30, 0), Vec3(0, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)}));
+    REQUIRE(res.ok());
+    REQUIRE(res->metrics.nodes.failed == 0);
+    const FlatPattern fp = flat_pattern(*sh, *res);
+    REQUIRE(fp.outline.size() == 1);
+    const double arc_per_link = 2 * r * std::asin(d / (2 * r));
+    const double fillet = (kPi * r / 2) * d / arc_per_link;
+    const double join_links = 4 * (arc_per_link - d);
+    CHECK(std::abs(fp.perimeter - 2 * (L + fillet + Hw + W)) <= join_links);
+    CHECK(std::abs(fp.area - (L + fillet + Hw) * W) <= W * join_links);
+    const double gap = 2 * (L + kPi * r / 2 + Hw + W) - fp.perimeter;
+    CHECK(gap > 0.0);
+    if (previous_gap > 0.0) CHECK(std::abs(previous_gap / gap - 4.0) < 0.2);
+    previous_gap = gap;
+  }
 }

