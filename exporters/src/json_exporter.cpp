@@ -152,6 +152,8 @@ std::string report_json(const ExportContext& ctx) {
                 {"outside", m.nodes.outside},         {"off_ply", m.nodes.off_ply},
                 {"shear_limit", m.nodes.shear_limit}, {"overlap", m.nodes.overlap},
                 {"failed", m.nodes.failed},           {"with_angle", m.angles}};
+  j["nodes"]["failed_reasons"] = nlohmann::json::object();
+  for (const auto& [why, count] : m.nodes.failed_reasons) j["nodes"]["failed_reasons"][why] = count;
   j["area_mesh_points"] = m.area_mesh_points;
   j["flat_area"] = m.flat_area;
   j["surface_area"] = m.surface_area;

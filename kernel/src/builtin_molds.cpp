@@ -104,6 +104,8 @@ Status sample_loops(BuiltinFace& b, const Tolerances& tol) {
   auto surface = NurbsSurface::create(b.face.surface, tol);
   if (!surface) return surface.error();
   FaceData probe = b.face;
+  probe.area = 1.0;  // only the size is needed here: no area integration (a second or more on
+                     // a trimmed face of many spans)
   for (int pass = 0; pass < 2; ++pass) {
     auto face = Face::create(probe, tol);
     if (!face) return face.error();
@@ -142,6 +144,90 @@ NurbsSurfaceData plate_patch(double w, double h) {
   s.knots_v = {0, 0, h, h};
   s.poles = {Vec3(0, 0, 0), Vec3(0, h, 0), Vec3(w, 0, 0), Vec3(w, h, 0)};
   return s;
+}
+
+// The blade's trim: the root cut at u = kBladeRootU, the tip's apex at u = kBladeTipU (both
+// inside the domain [0, 1], so that the outline is a real trim, as a CAD blade face's is).
+constexpr double kBladeRootU = 0.04;
+constexpr double kBladeTipU = 0.985;
+// Width of the blade's surface across the chord, in maximum chords: the surface extends past
+// the leading and trailing edges.
+constexpr double kBladeWidthChords = 1.25;
+// Pitch angle of the blade's sections at the root (degrees); the tip's is this less `twist`.
+constexpr double kBladeRootPitchDeg = 65.0;
+
+// Clamped cubic knots on [0, 1] with `count` poles, the interior knots at the cosine spacing
+// 0.5 - 0.5 cos(pi x), x uniform, blended with uniform spacing by `cluster` (0: uniform, 1:
+// cosine): clustered at both ends, as a CAD export of a blade fitted through sections that
+// crowd at the root and the tip has them.
+std::vector<double> clustered_knots(int count, double cluster) {
+  std::vector<double> k(4, 0.0);
+  const int spans = count - 3;
+  for (int i = 1; i < spans; ++i) {
+    const double x = static_cast<double>(i) / spans;
+    k.push_back((1.0 - cluster) * x + cluster * (0.5 - 0.5 * std::cos(kPi * x)));
+  }
+  k.insert(k.end(), 4, 1.0);
+  return k;
+}
+
+// Greville abscissa of pole i of a cubic with knots k.
+double greville3(const std::vector<double>& k, int i) {
+  return (k[i + 1] + k[i + 2] + k[i + 3]) / 3.0;
+}
+
+// The blade: a bicubic B-spline sheet along +X (span) over (u, v) in [0, 1]^2, nu x nv poles
+// at the Greville abscissae of clustered knots, so that x = span * u exactly; across it
+// (v) a cambered section of width kBladeWidthChords * chord, pitched by kBladeRootPitchDeg at
+// the root, twisted by `twist` towards the tip (fastest at the root), skewed along -Y...+Y by
+// `skew` * (x / span)^2. Normal on the convex side of the camber.
+NurbsSurfaceData blade_patch(double span, double chord, double twist_deg, double camber,
+                             double skew, int nu, int nv) {
+  NurbsSurfaceData s;
+  s.degree_u = s.degree_v = 3;
+  s.count_u = nu;
+  s.count_v = nv;
+  s.knots_u = clustered_knots(nu, 1.0);
+  s.knots_v = clustered_knots(nv, 0.5);
+  const double w = kBladeWidthChords * chord;
+  for (int i = 0; i < nu; ++i) {
+    const double sg = greville3(s.knots_u, i);
+    const double beta = rad(kBladeRootPitchDeg) - rad(twist_deg) * (2.0 * sg - sg * sg);
+    for (int j = 0; j < nv; ++j) {
+      const double t = greville3(s.knots_v, j);
+      const double eta = (t - 0.5) * w, zeta = camber * w * 4.0 * t * (1.0 - t);
+      s.poles.emplace_back(span * sg, eta * std::cos(beta) - zeta * std::sin(beta) + skew * sg * sg,
+                           eta * std::sin(beta) + zeta * std::cos(beta));
+    }
+  }
+  return s;
+}
+
+// A cubic Bezier curve in (u, v) through the four control points.
+NurbsCurveData2 bezier2(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  NurbsCurveData2 k;
+  k.degree = 3;
+  k.knots = {0, 0, 0, 0, 1, 1, 1, 1};
+  k.poles = {a, b, c, d};
+  return k;
+}
+
+// The blade's outline in (u, v): the root cut (a line at u = kBladeRootU), the trailing edge
+// and the leading edge (cubic Beziers, the chord widest at about a third of the span, arriving
+// along u at the tip), and a rounded tip (half an ellipse, about round in 3D).
+std::vector<NurbsCurveData2> blade_outline(double span, double chord) {
+  const double w = kBladeWidthChords * chord;
+  const double tip_half = 0.16;                // half the tip's chord, in v
+  const double tip_len = tip_half * w / span;  // the tip's length in u: round in 3D
+  const double u0 = kBladeRootU, u1 = kBladeTipU - tip_len, l = u1 - u0;
+  const Vec2 le0(u0, 0.5 + 0.26), te0(u0, 0.5 - 0.22);
+  const Vec2 le1(u1, 0.5 + tip_half), te1(u1, 0.5 - tip_half);
+  NurbsCurveData2 tip = ellipse_arc(tip_len, tip_half, -0.5 * kPi, 0.5 * kPi);
+  for (auto& p : tip.poles) p += Vec2(u1, 0.5);
+  return {line2(le0, te0),
+          bezier2(te0, Vec2(u0 + 0.3 * l, 0.5 - 0.40), Vec2(u0 + 0.7 * l, 0.5 - tip_half), te1),
+          tip,
+          bezier2(le1, Vec2(u0 + 0.7 * l, 0.5 + tip_half), Vec2(u0 + 0.3 * l, 0.5 + 0.44), le0)};
 }
 }  // namespace
 
@@ -217,6 +303,21 @@ const std::vector<BuiltinInfo>& builtin_molds() {
         {"t0", -90.0, "tube angle start"},
         {"t1", 90.0, "tube angle end"},
         {"angle", 90.0, "sector angle, degrees"}}},
+      {"blade",
+       "propeller blade face along +X from x = 0 (a CAD blade export): a bicubic B-spline of "
+       "nu x nv poles over (u, v) in [0, 1]^2 with knots clustered at the root and the tip, "
+       "x = span * u; its sections cambered (camber * width, width 1.25 chord), pitched 65 "
+       "degrees at the root and twisted by `twist` towards the tip, skewed along Y by skew * "
+       "(x / span)^2; trimmed (not at the domain's border) by the blade outline: a root cut at "
+       "x = 0.04 span, leading and trailing edges at most `chord` apart, a rounded tip at "
+       "x = 0.985 span; normal on the convex side",
+       {{"span", 240.0, "length along X of the surface"},
+        {"chord", 50.0, "largest chord of the outline"},
+        {"twist", 45.0, "twist from root to tip, degrees"},
+        {"camber", 0.06, "camber height per section width"},
+        {"skew", 30.0, "offset along Y of the tip"},
+        {"nu", 242.0, "poles along the span (>= 8)"},
+        {"nv", 13.0, "poles across the chord (>= 4)"}}},
   };
   return list;
 }
@@ -329,6 +430,22 @@ Result<BuiltinFace> builtin_face(const std::string& name,
     fd.surface = torus_patch(v["R"], v["r"], rad(v["t0"]), rad(v["t1"]), 0.0, rad(v["angle"]));
     fd.closed_v = v["angle"] == 360.0;
     fd.closed_u = v["t1"] - v["t0"] == 360.0;
+  } else if (name == "blade") {
+    for (const char* k : {"span", "chord"})
+      if (auto s = positive(k); !s) return s.error();
+    if (!(std::abs(v["twist"]) <= 90.0))
+      return Error{"parameter 'twist' of 'blade' must be in [-90, 90]"};
+    if (!(v["camber"] >= 0.0 && v["camber"] <= 0.25))
+      return Error{"parameter 'camber' of 'blade' must be in [0, 0.25]"};
+    const auto count = [&](const char* k, double lo) {
+      return v[k] >= lo && v[k] <= 2000.0 && v[k] == std::floor(v[k]);
+    };
+    if (!count("nu", 8.0) || !count("nv", 4.0))
+      return Error{"parameters 'nu', 'nv' of 'blade' must be integers from 8 (nu), 4 (nv) to 2000"};
+    fd.surface = blade_patch(v["span"], v["chord"], v["twist"], v["camber"], v["skew"],
+                             static_cast<int>(v["nu"]), static_cast<int>(v["nv"]));
+    b.natural_outer = false;
+    b.exact_loops.push_back(blade_outline(v["span"], v["chord"]));
   }
   if (auto st = sample_loops(b, tol); !st)
     return Error{"built-in mold '" + name + "': " + st.error().message};

@@ -105,6 +105,9 @@ void compute_metrics(const DrapeSurface& s, DrapeResult& res) {
     m.faces[k].area = s.face_area(static_cast<std::int32_t>(k));
   thread_angles(res);
   paper_angles(res, m.paper);
+  for (const auto& [k, why] : res.failures)
+    if (res.nodes[k].status == NodeStatus::kFailed)
+      ++m.nodes.failed_reasons[why && *why ? why : "unknown"];
   bool first = true;
   for (const DrapeNode& n : res.nodes) {
     switch (n.status) {

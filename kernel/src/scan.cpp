@@ -111,6 +111,7 @@ void Scanner::resolve(std::uint32_t idx, const SolveResult& r) {
       break;
     case SolveStatus::kFailed:
       n.status = NodeStatus::kFailed;
+      res_.failures.emplace_back(idx, r.reason);
       break;
   }
 }

@@ -44,6 +44,10 @@ constexpr double kDistinctSolutionRel = 0.5;
 // A Newton step proposing to leave the domain margin this many times in a row, from an
 // iterate already past the domain edge, ends the solve with "left the face".
 constexpr int kOutsideStrikes = 2;
+// The two-sphere solver tells the sides of the line a-b apart sideways, across the mean of
+// the normals at a and b, while that mean (of two unit normals) is at least this long: the
+// normals turn by less than about 174 degrees between a and b.
+constexpr double kMeanNormalMin = 0.1;
 
 Vec3 face_normal(const DrapeSurface& s, const SurfaceLocation& at, const SurfaceEval1& e) {
   // The limit normal at poles, else the normalised cross product with the face orientation.
@@ -627,10 +631,28 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
   auto across_from_corner = [&](const SurfaceLocation& p_at) {
     return step.corner && (step.a_at.face != step.b_at.face || p_at.face != step.a_at.face);
   };
-  auto perpendicular = [&](Vec3 v) { return Vec3(v - v.dot(e_ab) * e_ab); };
+  // The offset of v from the line a-b that tells its sides apart: along the sideways
+  // direction, perpendicular to the line and to the mean of the normals at a and b. (The full
+  // perpendicular adds the sag of the surface below the chord a-b, the same on both sides,
+  // which on a curved face outweighs the sideways offsets of a cell sheared nearly flat: on
+  // sphere-8 at 80 degrees of shear both solutions then seemed on the corner's side.) Where
+  // the normals nearly cancel (a knife edge), the full perpendicular.
+  std::optional<Vec3> side_dir;
+  bool side_dir_known = false;
+  auto offset = [&](const Vec3& v) {
+    if (!side_dir_known) {
+      side_dir_known = true;
+      const SurfaceEval1 ea = s.eval1(step.a_at), eb = s.eval1(step.b_at);
+      c.res.evaluations += 2;
+      if (ea.ok && eb.ok) {
+        const Vec3 w = (face_normal(s, step.a_at, ea) + face_normal(s, step.b_at, eb)).cross(e_ab);
+        if (w.norm() > kMeanNormalMin) side_dir = w.normalized();
+      }
+    }
+    return side_dir ? Vec3(v.dot(*side_dir) * *side_dir) : Vec3(v - v.dot(e_ab) * e_ab);
+  };
   auto on_branch = [&](const Vec3& p, const Vec3& n, const SurfaceLocation& p_at) {
-    if (across_from_corner(p_at))
-      return perpendicular(p - a).dot(perpendicular(*step.corner - a)) < 0.0;
+    if (across_from_corner(p_at)) return offset(p - a).dot(offset(*step.corner - a)) < 0.0;
     return n.dot((b - a).cross(p - a)) * want > 0.0;
   };
   // A solution on the requested branch: its thread angle, the in-face test, eq. (12).
@@ -677,7 +699,7 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
     Vec3 w1 = want * n.cross(e);
     if (step.corner && step.a_at.face != step.b_at.face) {
       // Across a crease the normals are no guide: the side away from the corner.
-      const Vec3 away = -perpendicular(*step.corner - a);
+      const Vec3 away = -offset(*step.corner - a);
       if (away.norm() > 0.0) {
         w1 = away.normalized();
         n = e.cross(w1);

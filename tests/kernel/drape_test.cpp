@@ -1,6 +1,8 @@
 #include <plyfit/kernel/analytic_surfaces.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
+#include <plyfit/kernel/builtin_shells.hpp>
 #include <plyfit/kernel/drape.hpp>
+#include <plyfit/kernel/shell.hpp>
 
 #include <catch2/catch.hpp>
 
@@ -712,4 +714,139 @@ TEST_CASE("drape: a sweep within a degree of the base path or the normal is an e
   CHECK(drape(f, bad).ok());
   bad.sweeps = {Vec3(0, t2, 1)};
   CHECK(drape(f, bad).ok());
+}
+
+TEST_CASE("drape: failed nodes are counted by reason, and where fronts disagree no point fits") {
+  // A fuzz drape (seed 11) on the hemisphere R = 1: two fronts of cloth meet around the nodes
+  // stopped at the fold limit and overlap, and one node reached from three sides fails.
+  const double R = 1.0, d = 0.0466772;
+  const Face f = builtin("hemisphere", {{"R", R}});
+  const Vec3 w3(0.259241, 0.965348, 0.029947);
+  const DrapeResult r = run(f, problem(d, Vec2(0, 0), Vec2(-0.971152, -0.238460),
+                                       {Vec2(0.238460, -0.971152), Vec2(-0.238460, 0.971152)},
+                                       Vec3(-0.156435, -0.287080, 0.517885),
+                                       Vec3(-0.135449, 0.932291, -0.335392), {w3, -w3}));
+  REQUIRE(r.metrics.nodes.failed >= 1);
+  std::uint64_t counted = 0;
+  for (const auto& [why, count] : r.metrics.nodes.failed_reasons) {
+    CHECK(why != "unknown");
+    counted += count;
+  }
+  CHECK(counted == r.metrics.nodes.failed);
+  // Each node that failed because the fronts disagree has three or more mapped neighbours,
+  // and no point of the sphere is at the rest length from all of them: each pair of them
+  // pins at most two points (|p| = R, |p - a| = |p - b| = d, in closed form), and every such
+  // point is off the remaining links by more than 1e-9 d.
+  int fronts = 0;
+  for (const auto& [k, why] : r.failures) {
+    if (std::string(why) != "the fronts disagree: a third link is off") continue;
+    ++fronts;
+    const DrapeNode& q = r.nodes[k];
+    std::vector<std::pair<Vec3, double>> nb;  // mapped neighbour, rest length to it
+    for (int dir = 0; dir < 4; ++dir)
+      if (const DrapeNode* m = r.neighbour(q, static_cast<ThreadDir>(dir)); m && m->mapped())
+        nb.emplace_back(m->point, r.rest_length(q, static_cast<ThreadDir>(dir)));
+    REQUIRE(nb.size() >= 3);
+    for (std::size_t x = 0; x < nb.size(); ++x)
+      for (std::size_t y = x + 1; y < nb.size(); ++y) {
+        const auto& [a, ra] = nb[x];
+        const auto& [b, rb] = nb[y];
+        // p.a = (R^2 + |a|^2 - ra^2) / 2 with |a| = R, likewise for b.
+        const double ka = R * R - ra * ra / 2, kb = R * R - rb * rb / 2;
+        const double aa = a.dot(a), ab = a.dot(b), bb = b.dot(b), det = aa * bb - ab * ab;
+        if (!(std::abs(det) > 1e-12)) continue;  // a and b opposite across the node: no pair
+        const Vec3 p0 = a * ((ka * bb - kb * ab) / det) + b * ((kb * aa - ka * ab) / det);
+        const Vec3 n = a.cross(b).normalized();
+        const double h2 = R * R - p0.squaredNorm();
+        if (h2 < 0) continue;  // the spheres miss each other on the surface
+        for (double sgn : {1.0, -1.0}) {
+          const Vec3 p = p0 + sgn * std::sqrt(h2) * n;
+          double worst = 0.0;
+          for (const auto& [c, rc] : nb) worst = std::max(worst, std::abs((p - c).norm() - rc));
+          CHECK(worst > 1e-9 * d);
+        }
+      }
+  }
+  CHECK(fronts >= 1);
+}
+
+TEST_CASE("drape: a node between two mapped nodes of one thread too far apart fails as such") {
+  // A fuzz drape (seed 12) on the saddle: fronts of cloth meet from both sides of nodes whose
+  // only mapped neighbours lie on one thread, more than the two links apart. No point joins
+  // them; the reason says so (it said "no intersection (the spheres do not meet)").
+  const Face f = builtin("saddle");
+  const Vec3 w3(-0.524273, 0.711874, -0.467304);
+  const DrapeResult r = run(f, problem(0.517907, Vec2(0, 0), Vec2(0.680328, 0.732908),
+                                       {Vec2(0.732908, -0.680328), Vec2(-0.732908, 0.680328)},
+                                       Vec3(-3.919251, 6.948146, -0.068130),
+                                       Vec3(-0.779846, -0.044677, -0.624375), {w3, -w3}));
+  const auto& why = r.metrics.nodes.failed_reasons;
+  const auto stretch = why.find("the fronts disagree: the thread between them would stretch");
+  REQUIRE(stretch != why.end());
+  CHECK(why.count("no intersection (the spheres do not meet)") == 0);
+  std::uint64_t counted = 0;
+  for (const auto& [text, count] : why) counted += count;
+  CHECK(counted == r.metrics.nodes.failed);
+  int checked = 0;
+  for (const auto& [k, text] : r.failures) {
+    if (std::string(text) != stretch->first) continue;
+    const DrapeNode& q = r.nodes[k];
+    bool apart = false;  // a thread through q whose two mapped ends are too far apart
+    for (ThreadDir d : {ThreadDir::kPlusX, ThreadDir::kPlusY}) {
+      const DrapeNode* a = r.neighbour(q, d);
+      const DrapeNode* b = r.neighbour(q, opposite(d));
+      if (a && b && a->mapped() && b->mapped())
+        apart = apart ||
+                (a->point - b->point).norm() > r.rest_length(q, d) + r.rest_length(q, opposite(d));
+    }
+    CHECK(apart);
+    ++checked;
+  }
+  CHECK(checked == static_cast<int>(stretch->second));
+}
+
+TEST_CASE("drape: a cell sheared nearly flat across two faces of sphere-8 is mapped, not folded") {
+  // A fuzz drape (seed 11) on builtin:sphere-8: node (9, 7) near the south pole, its weft
+  // neighbour (8, 7) and warp neighbour (9, 8) on two faces, the cell sheared by 80 degrees.
+  // It failed ("only the folded branch was found"), then stopped as if folded ("the cell would
+  // fold"): both side tests took the sphere's sag below the chord for the side. Its cell is
+  // not folded: the node is the solution of |p| = R, |p - a| = |p - b| = d (closed form)
+  // that is not the cell's fourth corner.
+  const double R = 20.0, d = 2.33766;
+  auto data = builtin_shell("sphere-8", {{"R", R}});
+  REQUIRE(data.ok());
+  auto sh = Shell::create(std::move(data).value());
+  REQUIRE(sh.ok());
+  const Vec3 w3(0.170222, 0.576356, 0.799273);
+  const DrapeResult r =
+      run(*sh,
+          problem(d, Vec2(0, 0), Vec2(0.531435, 0.847099), {Vec2(0.847099, -0.531435)},
+                  Vec3(7.589290, -6.897802, -7.011721), Vec3(-0.372097, 0.288549, 0.882204), {w3}));
+  const DrapeNode* q = r.find(NodeId::regular(9, 7));
+  const DrapeNode* a = r.find(NodeId::regular(8, 7));
+  const DrapeNode* b = r.find(NodeId::regular(9, 8));
+  const DrapeNode* c = r.find(NodeId::regular(8, 8));
+  REQUIRE(q);
+  REQUIRE(a);
+  REQUIRE(b);
+  REQUIRE(c);
+  REQUIRE(a->mapped());
+  REQUIRE(b->mapped());
+  REQUIRE(c->mapped());
+  REQUIRE(a->at().face != b->at().face);
+  INFO("node (9, 7): " << to_string(q->status));
+  REQUIRE(q->mapped());
+  // The closed-form solutions (as in solvers_test.cpp): c is one, q must be the other.
+  const Vec3 &pa = a->point, &pb = b->point;
+  const double k = (2 * R * R - d * d) / 2, aa = pa.dot(pa), ab = pa.dot(pb), bb = pb.dot(pb);
+  const double det = aa * bb - ab * ab;
+  const Vec3 p0 = pa * ((k * bb - k * ab) / det) + pb * ((k * aa - k * ab) / det);
+  const Vec3 n = pa.cross(pb).normalized();
+  const double t = std::sqrt(R * R - p0.squaredNorm());
+  const Vec3 s1 = p0 + t * n, s2 = p0 - t * n;
+  const bool c_is_s1 = (c->point - s1).norm() < (c->point - s2).norm();
+  CHECK((c->point - (c_is_s1 ? s1 : s2)).norm() < 1e-8 * d);
+  CHECK((q->point - (c_is_s1 ? s2 : s1)).norm() < 1e-8 * d);
+  CHECK(std::acos((pa - q->point).normalized().dot((pb - q->point).normalized())) >
+        169.0 * kPi / 180);
 }

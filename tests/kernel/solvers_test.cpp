@@ -1,5 +1,7 @@
 #include <plyfit/kernel/analytic_surfaces.hpp>
+#include <plyfit/kernel/builtin_shells.hpp>
 #include <plyfit/kernel/face.hpp>
+#include <plyfit/kernel/shell.hpp>
 #include <plyfit/kernel/solvers.hpp>
 
 #include <catch2/catch.hpp>
@@ -457,4 +459,52 @@ TEST_CASE("solvers: random valid configurations are recovered, never folded", "[
     CHECK(ok1 >= 0.999 * trials);
     CHECK(ok3 >= 0.999 * trials);
   }
+}
+
+TEST_CASE("solvers: a cell sheared nearly flat across two faces of sphere-8 is solved unfolded") {
+  // A node of a fuzz drape on builtin:sphere-8 (R = 20, d = 2.33766) near the south pole,
+  // its weft neighbour a and warp neighbour b on two octant faces and the cell sheared by
+  // 80 degrees: both solutions of the two spheres lie 0.19 sideways of the chord a-b but
+  // 0.14 below it (the sphere's sag), and the old side test (the full perpendicular to a-b)
+  // took the unfolded one for the folded one: "only the folded branch was found".
+  const double R = 20.0, d = 2.33766;
+  auto data = builtin_shell("sphere-8", {{"R", R}});
+  REQUIRE(data.ok());
+  auto made = Shell::create(std::move(data).value());
+  REQUIRE(made.ok());
+  const Shell& sh = *made;
+  const Vec3 a = Vec3(-5.15837763509, -0.952660671787, -19.2998336215).normalized() * R;
+  const Vec3 b = Vec3(-2.79642230406, 3.05670182342, -19.5662105749).normalized() * R;
+  // Both solutions in closed form: |p| = R, |p - a| = |p - b| = d, i.e. p.a = (2R^2 - d^2)/2,
+  // p.b likewise, p = alpha a + beta b + t n with n normal to a and b.
+  const double k = (2 * R * R - d * d) / 2, aa = a.dot(a), ab = a.dot(b), bb = b.dot(b);
+  const double det = aa * bb - ab * ab;
+  const Vec3 p0 = a * ((k * bb - k * ab) / det) + b * ((k * aa - k * ab) / det);
+  const Vec3 n = a.cross(b).normalized();
+  const double t = std::sqrt(R * R - p0.squaredNorm());
+  const Vec3 s1 = p0 + t * n, s2 = p0 - t * n;
+  // The cell's fourth corner is the solution on the side +1 about the outward normal; the
+  // node is the other one.
+  auto side = [&](const Vec3& p) { return (p / R).dot((b - a).cross(p - a)); };
+  const Vec3 corner = side(s1) > 0 ? s1 : s2, want = side(s1) > 0 ? s2 : s1;
+  const double gamma = std::acos((a - want).normalized().dot((b - want).normalized()));
+  REQUIRE(gamma > 169.0 * kPi / 180);  // sheared by more than 79 degrees
+  TwoSphereStep st;
+  st.a = a;
+  st.b = b;
+  st.a_at = sh.project(a).at;
+  st.b_at = sh.project(b).at;
+  REQUIRE(st.a_at.face != st.b_at.face);
+  st.ra = st.rb = d;
+  st.side = -1.0;
+  st.corner = corner;
+  SolverSettings set;
+  set.spacing = d;
+  set.gamma_min = set.tol.fold_angle;
+  const SolveResult r = solve_two_spheres(sh, st, set);
+  INFO("status " << to_string(r.status) << ": " << r.reason);
+  REQUIRE(r.status == SolveStatus::kConverged);
+  CHECK((r.point - want).norm() < kConstraintRel * d * 100);
+  CHECK(sphere_error(r.point, a, d) < kConstraintRel * d);
+  CHECK(sphere_error(r.point, b, d) < kConstraintRel * d);
 }

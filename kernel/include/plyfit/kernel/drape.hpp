@@ -11,8 +11,10 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace plyfit {
@@ -181,6 +183,9 @@ struct NodeCounts {
   std::uint64_t shear_limit = 0;
   std::uint64_t failed = 0;
   std::uint64_t overlap = 0;  ///< stopped where the cloth would lie on itself
+  /// The failed nodes counted by the solver's reason (SolveResult::reason, e.g. "the fronts
+  /// disagree: a third link is off"); the counts add up to `failed`.
+  std::map<std::string, std::uint64_t> failed_reasons;
 };
 
 /// The metrics of §7.1 and independent residual checks.
@@ -245,6 +250,8 @@ struct DrapeResult {
   std::vector<DrapeNode> nodes;          ///< every node reached, in resolution order
   NodeIndex index;                       ///< NodeId -> position in `nodes`
   std::vector<std::uint32_t> base_path;  ///< base-path nodes in order, mapped or kInHole
+  /// Why each failed node failed: (index in `nodes`, the solver's reason), in resolution order.
+  std::vector<std::pair<std::uint32_t, const char*>> failures;
   std::shared_ptr<const Ply> ply;
   DrapeMetrics metrics;
   Vec3 start_point = Vec3::Zero();  ///< the start on the face
