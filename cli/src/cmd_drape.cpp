@@ -164,8 +164,9 @@ int run_drape(const std::vector<std::string>& args_in) {
             << m.nodes.auxiliary << " auxiliary base-path points), " << m.nodes.outside
             << " outside, " << m.nodes.off_ply << " off the ply, " << m.nodes.shear_limit
             << " at the shear limit, " << m.nodes.failed << " failed, " << m.nodes.overlap
-            << " overlapping; max shear " << out->shear_max_deg << " deg; "
-            << static_cast<long>(out->total_ms) << " ms -> " << job->outdir << "\n";
+            << " overlapping, " << m.nodes.conflict << " in conflict; max shear "
+            << out->shear_max_deg << " deg; " << static_cast<long>(out->total_ms) << " ms -> "
+            << job->outdir << "\n";
   if (!quiet)
     for (const auto& w : out->warnings) std::cerr << "plyfit: warning: " << w << "\n";
   return finish(kExitOk, *out);

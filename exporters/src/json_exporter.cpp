@@ -148,12 +148,20 @@ std::string report_json(const ExportContext& ctx) {
                 {"uv", vec(r.start_at.uv)},
                 {"moved", r.start_moved}};
   j["base_tangent"] = vec(r.base_tangent);
-  j["nodes"] = {{"mapped", m.nodes.mapped},           {"auxiliary", m.nodes.auxiliary},
-                {"outside", m.nodes.outside},         {"off_ply", m.nodes.off_ply},
-                {"shear_limit", m.nodes.shear_limit}, {"overlap", m.nodes.overlap},
-                {"failed", m.nodes.failed},           {"with_angle", m.angles}};
+  j["nodes"] = {{"mapped", m.nodes.mapped},
+                {"auxiliary", m.nodes.auxiliary},
+                {"outside", m.nodes.outside},
+                {"off_ply", m.nodes.off_ply},
+                {"shear_limit", m.nodes.shear_limit},
+                {"overlap", m.nodes.overlap},
+                {"failed", m.nodes.failed},
+                {"conflict", m.nodes.conflict},
+                {"with_angle", m.angles}};
   j["nodes"]["failed_reasons"] = nlohmann::json::object();
   for (const auto& [why, count] : m.nodes.failed_reasons) j["nodes"]["failed_reasons"][why] = count;
+  j["nodes"]["conflict_reasons"] = nlohmann::json::object();
+  for (const auto& [why, count] : m.nodes.conflict_reasons)
+    j["nodes"]["conflict_reasons"][why] = count;
   j["area_mesh_points"] = m.area_mesh_points;
   j["flat_area"] = m.flat_area;
   j["surface_area"] = m.surface_area;

@@ -215,6 +215,14 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
     res.warnings.push_back(std::to_string(res.metrics.nodes.failed) +
                            " node(s) where the solver found no solution");
   }
+  if (res.metrics.nodes.conflict > 0) {
+    res.partial = true;
+    res.warnings.push_back(
+        std::to_string(res.metrics.nodes.conflict) +
+        " conflict node(s): two fronts of cloth met there and disagree (no point of the surface "
+        "fits all their links), so the cloth cannot be laid there as one piece: a dart or a "
+        "splice is needed there, or another start or base path");
+  }
   if (const auto slit = scanner.path_slits(); slit.links > 0) {
     res.partial = true;
     res.warnings.push_back(

@@ -38,6 +38,8 @@ const char* to_string(NodeStatus s) {
       return "failed";
     case NodeStatus::kOverlap:
       return "overlap";
+    case NodeStatus::kConflict:
+      return "conflict";
     case NodeStatus::kPending:
       return "pending";
   }

@@ -300,8 +300,8 @@ class Builder {
   // The known neighbours of a node the drape never reached, beyond the face, or none if the
   // node is a path node, known, off the ply, in an unswept half-plane (the outline stays on
   // the mapped side there), or one the drape reached and stopped for another reason than
-  // leaving the face (a shear limit, an overlap, a failure: the cloth goes no further there,
-  // and a corner solved past such a node can fold its cell).
+  // leaving the face (a shear limit, an overlap, a failure, a conflict: the cloth goes no
+  // further there, and a corner solved past such a node can fold its cell).
   std::vector<Nb> virtual_neighbours(const NodeId& id) const {
     std::vector<Nb> nbs;
     if (id.is_path_only() || virtual_.count(id.key())) return nbs;

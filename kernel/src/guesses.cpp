@@ -65,10 +65,12 @@ SolveResult Scanner::solve_two(const DrapeNode& q, const DrapeNode& a, ThreadDir
   if (is_weft(da) == is_weft(db)) st.gamma_min = 0.0;  // same thread: no thread angle
   SolveResult r = solve_two_spheres(s_, step, st);
   // Two mapped nodes on one thread farther apart than the two links between them: fronts of
-  // cloth that met from both sides of the node, and no point joins them.
+  // cloth that met from both sides of the node, and no point joins them (a conflict).
   if (is_weft(da) == is_weft(db) && r.status == SolveStatus::kFailed &&
-      (b.point - a.point).norm() > ra + rb)
+      (b.point - a.point).norm() > ra + rb) {
     r.reason = "the fronts disagree: the thread between them would stretch";
+    r.fronts_disagree = true;
+  }
   // The cell (a, c, b, q) must not fold: q lies across the line a-b from the fourth corner
   // c, about the normal. The solver kept the ply's orientation of (a, b, q); if c lies on
   // that side too, the net around c is already sheared past flat, and no unfolded cell

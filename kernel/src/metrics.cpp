@@ -105,9 +105,13 @@ void compute_metrics(const DrapeSurface& s, DrapeResult& res) {
     m.faces[k].area = s.face_area(static_cast<std::int32_t>(k));
   thread_angles(res);
   paper_angles(res, m.paper);
-  for (const auto& [k, why] : res.failures)
+  for (const auto& [k, why] : res.failures) {
+    const char* text = why && *why ? why : "unknown";
     if (res.nodes[k].status == NodeStatus::kFailed)
-      ++m.nodes.failed_reasons[why && *why ? why : "unknown"];
+      ++m.nodes.failed_reasons[text];
+    else if (res.nodes[k].status == NodeStatus::kConflict)
+      ++m.nodes.conflict_reasons[text];
+  }
   bool first = true;
   for (const DrapeNode& n : res.nodes) {
     switch (n.status) {
@@ -128,6 +132,9 @@ void compute_metrics(const DrapeSurface& s, DrapeResult& res) {
         break;
       case NodeStatus::kOverlap:
         ++m.nodes.overlap;
+        break;
+      case NodeStatus::kConflict:
+        ++m.nodes.conflict;
         break;
       case NodeStatus::kPending:
         break;

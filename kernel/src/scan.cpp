@@ -110,7 +110,7 @@ void Scanner::resolve(std::uint32_t idx, const SolveResult& r) {
       n.status = NodeStatus::kShearLimit;
       break;
     case SolveStatus::kFailed:
-      n.status = NodeStatus::kFailed;
+      n.status = r.fronts_disagree ? NodeStatus::kConflict : NodeStatus::kFailed;
       res_.failures.emplace_back(idx, r.reason);
       break;
   }
@@ -268,7 +268,8 @@ void Scanner::scan() {
         r.reason = "thread angle beyond the shear limit (under a hole of the face)";
       }
       // Links to further known neighbours (fronts that met around a hole in the net) are
-      // not solved for: a node that breaks one is no point of the cloth.
+      // not solved for: a node that breaks one is no point of the cloth (three links on a
+      // 2-D surface: in general no point fits them all; a conflict, not a solver failure).
       const bool landed = r.status == SolveStatus::kConverged ||
                           (r.status == SolveStatus::kLeftFace && r.extended && s_.in_hole(r.at));
       for (int x = 0; x < nk && landed && r.status != SolveStatus::kFailed; ++x) {
@@ -278,6 +279,7 @@ void Scanner::scan() {
         if (err > kFrontMismatchRel * ply_.d()) {
           r.status = SolveStatus::kFailed;
           r.reason = "the fronts disagree: a third link is off";
+          r.fronts_disagree = true;
         }
       }
     } else if (nk == 1 && behind_lock(qn)) {

@@ -3,6 +3,8 @@
 
 #include <plyfit/importers/importers.hpp>
 
+#include <nlohmann/json.hpp>
+
 #include <catch2/catch.hpp>
 
 #include "cli/cli_util.hpp"
@@ -99,4 +101,37 @@ TEST_CASE("cli: a drape's input checked against the mold names the option; nonse
     CHECK(report.find("\"status\": \"partial\"") != std::string::npos);
     CHECK(report.find(c.says) != std::string::npos);
   }
+}
+
+TEST_CASE(
+    "cli: where two fronts of cloth disagree, report.json counts conflict nodes, not failed") {
+  // The kernel's hemisphere case (drape_test.cpp, a fuzz drape of seed 11): a node reached
+  // from three sides that no point of the sphere fits. report.json gives it under
+  // nodes.conflict with its reason in nodes.conflict_reasons; nothing under failed.
+  Scratch s("drape_conflict");
+  const std::string args =
+      "--mold builtin:hemisphere:R=1 --spacing 0.0466772 --start2d 0,0 "
+      "--base2d -0.971152,-0.238460 --sweep2d 0.238460,-0.971152 --sweep2d -0.238460,0.971152 "
+      "--start3d -0.156435,-0.287080,0.517885 --base-normal -0.135449,0.932291,-0.335392 "
+      "--sweep3d 0.259241,0.965348,0.029947 --sweep3d -0.259241,-0.965348,-0.029947";
+  const CliRun r = plyfit_run("drape " + args + " --outputs json -o '" + s.file("o") + "'", s);
+  INFO(r.out << r.err);
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(slurp(s.file("o") + "/report.json"));
+  const auto& nodes = j.at("nodes");
+  const auto conflict = nodes.at("conflict").get<std::uint64_t>();
+  CHECK(conflict >= 1);
+  CHECK(nodes.at("failed") == 0);
+  CHECK(nodes.at("failed_reasons").empty());
+  std::uint64_t counted = 0;
+  for (const auto& [why, count] : nodes.at("conflict_reasons").items()) {
+    CHECK(why.rfind("the fronts disagree: ", 0) == 0);
+    counted += count.get<std::uint64_t>();
+  }
+  CHECK(counted == conflict);
+  CHECK(j.at("status") == "partial");
+  const std::string warning = std::to_string(conflict) + " conflict node(s)";
+  CHECK(j.at("warnings").dump().find(warning) != std::string::npos);
+  CHECK(r.err.find("plyfit: warning: " + warning) != std::string::npos);
+  CHECK(r.out.find(", " + std::to_string(conflict) + " in conflict;") != std::string::npos);
 }

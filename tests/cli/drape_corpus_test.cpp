@@ -60,9 +60,9 @@ TEST_CASE("cli: plyfit drape works on a face of every shared CAD file") {
     INFO(args.str() << "\n-> " << r.out << r.err);
     REQUIRE(r.code == 0);
     const std::string report = slurp(s.file("out" + std::to_string(files)) + "/report.json");
-    // ok, or partial where a few nodes fail (the surf114 blob is nearly closed: with no lock
-    // angle the unbounded cloth wraps round it until it overlaps itself, and some nodes near
-    // 80 degrees of shear find no solution).
+    // ok, or partial where a few nodes fail or conflict (the surf114 blob is nearly closed:
+    // with no lock angle the unbounded cloth wraps round it until it overlaps itself, and some
+    // nodes near 80 degrees of shear find no solution).
     auto number = [&](const std::string& key) {
       const auto at = report.find("\"" + key + "\": ");
       REQUIRE(at != std::string::npos);
@@ -71,7 +71,7 @@ TEST_CASE("cli: plyfit drape works on a face of every shared CAD file") {
     const bool ok = report.find("\"status\": \"ok\"") != std::string::npos ||
                     report.find("\"status\": \"partial\"") != std::string::npos;
     CHECK(ok);
-    CHECK(number("failed") < 0.01 * number("mapped"));
+    CHECK(number("failed") + number("conflict") < 0.01 * number("mapped"));
     // A drape that covers a real part of the face.
     CHECK(number("coverage") > 0.2);
     CHECK(number("edge_length_max_rel") < 1e-10);

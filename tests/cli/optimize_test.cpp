@@ -200,7 +200,7 @@ TEST_CASE(
     CHECK(rep["shear_energy"].get<double>() < beat);
     CHECK(same(rep["shear_energy"].get<double>(), best["energy"].get<double>()));
     CHECK(same(rep["flat_outline"]["area"].get<double>(), best["flat_area"].get<double>()));
-    for (const char* stop : {"shear_limit", "failed", "overlap", "off_ply"})
+    for (const char* stop : {"shear_limit", "failed", "overlap", "conflict", "off_ply"})
       CHECK(rep["nodes"][stop].get<int>() == 0);
     CHECK(rep["nodes"]["outside"].get<int>() > 0);
   }

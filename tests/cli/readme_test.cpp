@@ -73,8 +73,8 @@ TEST_CASE("cli: the README documents every command, option, mold, output and sta
       CHECK(outputs.find(f) != std::string::npos);
     }
   // Node statuses (report.json's nodes).
-  for (const char* st :
-       {"mapped", "auxiliary", "outside", "off_ply", "shear_limit", "failed", "overlap"}) {
+  for (const char* st : {"mapped", "auxiliary", "outside", "off_ply", "shear_limit", "failed",
+                         "overlap", "conflict", "failed_reasons", "conflict_reasons"}) {
     INFO("status " << st);
     std::string quoted = "`";
     quoted += st;

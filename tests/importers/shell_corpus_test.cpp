@@ -214,6 +214,7 @@ TEST_CASE("importers: a ply drapes over the deflector's 18 sewn faces, across it
   auto r = drape(sh, pb);
   REQUIRE(r.ok());
   CHECK(r->metrics.nodes.failed == 0);
+  CHECK(r->metrics.nodes.conflict == 0);
   CHECK(r->metrics.nodes.overlap == 0);
   CHECK(support::seam_gaps(*r) == 0);
   CHECK(r->metrics.crease_angle_max > 150.0 * kPiC / 180.0);

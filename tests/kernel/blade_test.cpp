@@ -107,6 +107,7 @@ TEST_CASE("blade: drapes along and across the span map every node they reach") {
     REQUIRE(r.ok());
     const DrapeMetrics& m = r->metrics;
     CHECK(m.nodes.failed == 0);
+    CHECK(m.nodes.conflict == 0);
     CHECK(m.nodes.mapped > 200);
     CHECK(m.edge_length_max_rel < 1e-9);
     CHECK(m.surface_distance_max < 1e-9 * f.size());

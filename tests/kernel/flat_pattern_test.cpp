@@ -30,6 +30,7 @@ FlatPattern drape_flat(const Face& f, double d, Vec2 b2, std::vector<Vec2> w2, V
   auto r = drape(f, support::problem(d, s2, b2, std::move(w2), s3, bn, std::move(w3)));
   REQUIRE(r.ok());
   REQUIRE(r->metrics.nodes.failed == 0);
+  REQUIRE(r->metrics.nodes.conflict == 0);
   return flat_pattern(f, *r);
 }
 
@@ -298,6 +299,7 @@ TEST_CASE(
                               Vec3(-20, 30, 0), Vec3(0, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)}));
     REQUIRE(res.ok());
     REQUIRE(res->metrics.nodes.failed == 0);
+    REQUIRE(res->metrics.nodes.conflict == 0);
     const FlatPattern fp = flat_pattern(*sh, *res);
     REQUIRE(fp.outline.size() == 1);
     const double arc_per_link = 2 * r * std::asin(d / (2 * r));

@@ -79,6 +79,7 @@ TEST_CASE("drape: a base path across a hole goes on beyond it, both sweeps from 
     REQUIRE(rr.ok());
     const DrapeResult& r = rr.value();
     CHECK(r.metrics.nodes.failed == 0);
+    CHECK(r.metrics.nodes.conflict == 0);
     CHECK_FALSE(r.partial);
     // Every node strictly inside the plate and off the hole's rim is mapped (on a plane the
     // ply lies on the face: ply point p is at (20, 30) + p), so no slit is left between the
@@ -154,6 +155,7 @@ TEST_CASE("drape: the dish with a hole is draped as the dish without it, less th
   const DrapeResult& h = rh.value();
   const DrapeResult& w = rw.value();
   CHECK(h.metrics.nodes.failed == 0);
+  CHECK(h.metrics.nodes.conflict == 0);
   CHECK(h.metrics.nodes.overlap == 0);
   CHECK(h.metrics.nodes.shear_limit == 0);
   CHECK_FALSE(h.partial);
@@ -256,6 +258,7 @@ TEST_CASE("drape: a base path stopped at a missing face warns of the slit", "[is
   CHECK(above->mapped());
   CHECK(below->mapped());
   CHECK(r.metrics.nodes.failed == 0);
+  CHECK(r.metrics.nodes.conflict == 0);
   CHECK(r.partial);
   bool named = false;
   for (const std::string& w : r.warnings)

@@ -69,6 +69,7 @@ TEST_CASE("drape: cloth landing on cloth already laid is flagged on an open face
     const DrapeResult& r = rr.value();
     CHECK(r.metrics.nodes.overlap > 0);
     CHECK(r.metrics.nodes.failed == 0);
+    CHECK(r.metrics.nodes.conflict == 0);
     CHECK(cloth_on_cloth(r, d) == 0);
     // A full turn of cloth is laid: about the face's circumference times its height.
     CHECK(r.metrics.surface_area > 0.9 * 2 * kPi * 10 * 20);

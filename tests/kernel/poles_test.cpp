@@ -222,6 +222,7 @@ TEST_CASE("drape: nodes landing on or next to a pole are mapped") {
         run(f, problem(d, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)}, Vec3(-d, -d, 1),
                        Vec3(0, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)}));
     CHECK(r.metrics.nodes.failed == 0);
+    CHECK(r.metrics.nodes.conflict == 0);
     CHECK_FALSE(r.partial);
     CHECK(unmapped_near_start(r, 10 * d, false) == 0);
     CHECK(r.metrics.edge_length_max_rel < kConstraintRel);
@@ -247,6 +248,7 @@ TEST_CASE("drape: nodes landing on or next to a pole are mapped") {
         INFO("start " << ab.transpose() << " d, base plane at " << az << " degrees");
         const DrapeResult h = run(hemi, pb);
         CHECK(h.metrics.nodes.failed == 0);
+        CHECK(h.metrics.nodes.conflict == 0);
         CHECK(unmapped_near_start(h, 8 * d, false) == 0);
         CHECK(h.metrics.edge_length_max_rel < kConstraintRel);
         // The sphere has no boundary: no node is outside it. Its base path goes all round.

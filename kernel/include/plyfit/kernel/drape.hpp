@@ -28,15 +28,23 @@ enum class NodeStatus : std::uint8_t {
                 ///< Tolerances::fold_angle of 0 or pi, or its cell would fold (the net around
                 ///< it is sheared flat), or the node has one mapped neighbour and a locked one
                 ///< (its thread would fold past it)
-  kFailed,      ///< the solver found no solution (see the solver's reason), or two fronts
-                ///< met at the node and disagree (a further link would be off)
+  kFailed,      ///< the solver found no solution (see the solver's reason)
   kOverlap,     ///< the cloth would lie on cloth already laid: the base path or the surface
                 ///< closes on itself (a closed plane section, a seam crossed all round), a
                 ///< thread turns back on itself, or a net sheared past 60 degrees comes back
                 ///< over itself
-  kPending,     ///< internal: in the frontier
+  /// Two fronts of cloth met at the node and disagree: no point of the surface satisfies all
+  /// its links (over-determined on a 2-D surface), so the cloth cannot be laid there without a
+  /// dart or a splice. Either the node was solved from two neighbours and its link to a
+  /// further mapped neighbour is off by more than 1e-9 d (the scan's kFrontMismatchRel:
+  /// "the fronts disagree: a third link is off"), or its only mapped neighbours lie on one
+  /// thread, farther apart than its two links ("the fronts disagree: the thread between them
+  /// would stretch"). The cloth's own incompatibility (a CAD draping tool's "conflict"), not
+  /// a failure of the solver; the cloth goes no further from it, as from a failed node.
+  kConflict,
+  kPending,  ///< internal: in the frontier
 };
-/// "mapped", "outside", "off_ply", "shear_limit", "failed", "overlap", "pending".
+/// "mapped", "outside", "off_ply", "shear_limit", "failed", "overlap", "conflict", "pending".
 const char* to_string(NodeStatus s);
 
 /// A node the drape reached.
@@ -182,10 +190,15 @@ struct NodeCounts {
   std::uint64_t off_ply = 0;
   std::uint64_t shear_limit = 0;
   std::uint64_t failed = 0;
-  std::uint64_t overlap = 0;  ///< stopped where the cloth would lie on itself
-  /// The failed nodes counted by the solver's reason (SolveResult::reason, e.g. "the fronts
-  /// disagree: a third link is off"); the counts add up to `failed`.
+  std::uint64_t overlap = 0;   ///< stopped where the cloth would lie on itself
+  std::uint64_t conflict = 0;  ///< where two fronts of cloth met and disagree (kConflict)
+  /// The failed nodes counted by the solver's reason (SolveResult::reason, e.g. "no convergence
+  /// within the iteration cap"); the counts add up to `failed`.
   std::map<std::string, std::uint64_t> failed_reasons;
+  /// The conflict nodes counted by their reason ("the fronts disagree: a third link is off",
+  /// "the fronts disagree: the thread between them would stretch"); the counts add up to
+  /// `conflict`.
+  std::map<std::string, std::uint64_t> conflict_reasons;
 };
 
 /// The metrics of §7.1 and independent residual checks.
@@ -245,12 +258,13 @@ struct DrapeMetrics {
 
 /// Everything the drape computed.
 struct DrapeResult {
-  bool partial = false;                  ///< stopped early or some nodes failed
+  bool partial = false;                  ///< stopped early, or some nodes failed or conflict
   std::vector<std::string> warnings;     ///< why partial, and other notes
   std::vector<DrapeNode> nodes;          ///< every node reached, in resolution order
   NodeIndex index;                       ///< NodeId -> position in `nodes`
   std::vector<std::uint32_t> base_path;  ///< base-path nodes in order, mapped or kInHole
-  /// Why each failed node failed: (index in `nodes`, the solver's reason), in resolution order.
+  /// Why each failed or conflict node (kFailed, kConflict: its status tells which) was not
+  /// mapped: (index in `nodes`, the reason), in resolution order.
   std::vector<std::pair<std::uint32_t, const char*>> failures;
   std::shared_ptr<const Ply> ply;
   DrapeMetrics metrics;

@@ -41,6 +41,9 @@ struct SolveResult {
   /// For kLeftFace: true when Newton converged on the surface extended past the face, so
   /// that at/point are the intersection there (used to find the exact boundary crossing).
   bool extended = false;
+  /// For kFailed: set by the drape's scan, never by the solvers, where two fronts of cloth met
+  /// at the node and disagree (NodeStatus::kConflict; `reason` says how).
+  bool fronts_disagree = false;
   /// Thread angle at the new node for the two-sphere solver (radians), else 0.
   double thread_angle = 0.0;
   const char* reason = "";  ///< why, for kFailed (and for kLeftFace: "outside" or "iterate")
