@@ -570,16 +570,25 @@ Table hard_case_table(int runs, bool* ok) {
       fmt("Hard cases, one full drape each (unbounded ply, default options unless stated). "
           "Status: complete, or partial with the drape's warnings. Nodes by status: mapped "
           "(regular + auxiliary), outside the face, at the shear limit, failed (no solution) / "
-          "overlap (the cloth would lie on itself). Max residual: "
+          "conflict (two fronts of cloth met and disagree) / overlap (the cloth would lie on "
+          "itself). Max residual: "
           "the solvers' largest final residual (|F1| + |F2|) / d "
           "(DrapeMetrics::solve_residual_max_rel); then, measured from the nodes, the largest "
           "link-length error / d over all links between mapped nodes (including links that no "
           "solve closed, where a node had more known neighbours than its solver uses) and the "
           "base-plane distance / d. Time: median of %d runs.",
           std::max(runs, kMinRuns));
-  t.header = {"case",         "status",           "mapped",           "outside",
-              "shear limit",  "failed / overlap", "solve residual/d", "link err/d",
-              "base-plane/d", "max shear (deg)",  "time (ms)"};
+  t.header = {"case",
+              "status",
+              "mapped",
+              "outside",
+              "shear limit",
+              "failed / conflict / overlap",
+              "solve residual/d",
+              "link err/d",
+              "base-plane/d",
+              "max shear (deg)",
+              "time (ms)"};
   t.right = {false, false, true, true, true, true, true, true, true, true, true};
   auto cases = hard_cases();
   if (!cases) {
@@ -602,7 +611,8 @@ Table hard_case_table(int runs, bool* ok) {
            fmt("%llu + %llu", (unsigned long long)m.mapped, (unsigned long long)m.auxiliary),
            fmt("%llu", (unsigned long long)m.outside),
            fmt("%llu", (unsigned long long)m.shear_limit),
-           fmt("%llu / %llu", (unsigned long long)m.failed, (unsigned long long)m.overlap),
+           fmt("%llu / %llu / %llu", (unsigned long long)m.failed, (unsigned long long)m.conflict,
+               (unsigned long long)m.overlap),
            fmt("%.1e", r.metrics.solve_residual_max_rel), fmt("%.1e", e.link_rel),
            fmt("%.1e", e.base_plane_rel), fmt("%.2f", e.max_shear * 180 / kPi),
            fmt("%.2f", *tm * 1e3)});
