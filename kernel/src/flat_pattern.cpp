@@ -1053,11 +1053,12 @@ class Builder {
         for (k = (k + 1) % n; items[k].kind == 0; k = (k + 1) % n) p.push_back(items[k].v);
         // k is an exit: the boundary from it to its entry.
         p.push_back(items[k].v);
-        const Vertex& x = verts_[static_cast<std::size_t>(items[k].v)];
+        // (By value: surface_vertex() appends to verts_, which may move it.)
+        const int bloop = verts_[static_cast<std::size_t>(items[k].v)].bloop;
         for (int lv : path[k]) {
           const SurfaceLocation& at =
-              boundary_[static_cast<std::size_t>(x.bloop)].points[static_cast<std::size_t>(lv)];
-          const Vec3 p3 = loop_point(x.bloop, lv);
+              boundary_[static_cast<std::size_t>(bloop)].points[static_cast<std::size_t>(lv)];
+          const Vec3 p3 = loop_point(bloop, lv);
           p.push_back(
               surface_vertex(at, to_ply(poly, cw, chart_point(chart, at, p3)), -1, -1, 0.0, &p3));
         }

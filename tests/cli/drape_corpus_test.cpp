@@ -105,3 +105,33 @@ TEST_CASE("cli: cloth that comes back over itself on an open face is stopped the
   CHECK(report.find("\"overlap\": 0,") == std::string::npos);
   CHECK(report.find("\"overlap\": ") != std::string::npos);
 }
+
+TEST_CASE(
+    "cli: the flat pattern of drapes the fuzz crashed on (a boundary walk appending vertices)") {
+  // Found by scripts/fuzz-drape (seed 29): the flat pattern's clip() read the exit vertex's
+  // boundary loop through a reference into its vertex vector while appending the walked
+  // boundary vertices to it; when the vector moved, the next read was freed memory
+  // (segmentation fault on both drapes). Each must now finish, with a flat pattern.
+  Scratch s("drape_clip");
+  const std::string cases[] = {
+      "--mold '" + shared_cad("occ22470.igs") +
+          "' --face 9 --spacing 1.06346 --start2d 0,0 --base2d 0.757086,0.653316 "
+          "--sweep2d 0.653316,-0.757086 --start3d 76.916620,29.975298,39.573303 "
+          "--base-normal -0.293356,0.405500,0.865743 --sweep3d 0.841690,0.297718,-0.450469 "
+          "--sweep2d -0.653316,0.757086 --sweep3d -0.841690,-0.297718,0.450469",
+      "--mold '" + shared_cad("bug27693_cornetta-step.stp") +
+          "' --face 1 --spacing 0.374019 --start2d 0,0 --base2d 0.443743,0.896154 "
+          "--sweep2d 0.896154,-0.443743 --start3d 98.052477,6.022945,17.246338 "
+          "--base-normal -0.605357,-0.071103,0.792772 --sweep3d 0.362707,0.827282,-0.429008 "
+          "--sweep2d -0.896154,0.443743 --sweep3d -0.362707,-0.827282,0.429008"};
+  int k = 0;
+  for (const std::string& args : cases) {
+    const std::string out = s.file("out" + std::to_string(k++));
+    const CliRun r = plyfit_run("drape " + args + " --outputs json -o '" + out + "'", s);
+    INFO(args << "\n" << r.out << r.err);
+    REQUIRE(r.code == 0);
+    const std::string report = slurp(out + "/report.json");
+    CHECK(report.find("\"flat_outline\"") != std::string::npos);
+    CHECK(report.find("\"loops\": []") == std::string::npos);
+  }
+}
