@@ -157,11 +157,11 @@ std::string report_json(const ExportContext& ctx) {
                 {"failed", m.nodes.failed},
                 {"conflict", m.nodes.conflict},
                 {"with_angle", m.angles}};
-  j["nodes"]["failed_reasons"] = nlohmann::json::object();
-  for (const auto& [why, count] : m.nodes.failed_reasons) j["nodes"]["failed_reasons"][why] = count;
-  j["nodes"]["conflict_reasons"] = nlohmann::json::object();
-  for (const auto& [why, count] : m.nodes.conflict_reasons)
-    j["nodes"]["conflict_reasons"][why] = count;
+  for (const auto& [key, reasons] : {std::pair{"failed_reasons", &m.nodes.failed_reasons},
+                                     std::pair{"conflict_reasons", &m.nodes.conflict_reasons}}) {
+    j["nodes"][key] = nlohmann::json::object();
+    for (const auto& [why, count] : *reasons) j["nodes"][key][why] = count;
+  }
   j["area_mesh_points"] = m.area_mesh_points;
   j["flat_area"] = m.flat_area;
   j["surface_area"] = m.surface_area;
