@@ -50,8 +50,13 @@ void thread_angles(DrapeResult& res) {
 
 // The paper's thread angles (eq. 12, as Table 2 reports them): at each mapped node solved from
 // a weft and a warp neighbour, the angle between its links to those two, each taken along +x or
-// +y; min, max, sum of cos^2 and the largest shear.
+// +y; min, max, sum of cos^2 and the largest shear. cos^2 needs no trigonometry, and the angle
+// falls as its cosine rises, so only the two extreme nodes' angles are evaluated (atan2, which
+// stays accurate near 0 and pi where acos of the cosine would not).
 void paper_angles(const DrapeResult& res, DrapeMetrics::PaperFigures& pf) {
+  Vec3 lo_f = Vec3::Zero(), lo_p = lo_f, hi_f = lo_f,
+       hi_p = lo_f;  // links of the nodes with the largest / smallest cosine
+  double c_max = 0.0, c_min = 0.0;
   for (const DrapeNode& n : res.nodes) {
     if (!n.mapped() || n.id.is_path_only() || !n.has(DrapeNode::kSolvedTwo)) continue;
     const ThreadDir dw = n.has(DrapeNode::kFromPlusX) ? ThreadDir::kPlusX : ThreadDir::kMinusX;
@@ -61,15 +66,19 @@ void paper_angles(const DrapeResult& res, DrapeMetrics::PaperFigures& pf) {
     if (!a || !b || !a->mapped() || !b->mapped()) continue;
     const Vec3 wf = dw == ThreadDir::kPlusX ? Vec3(a->point - n.point) : Vec3(n.point - a->point);
     const Vec3 wp = dv == ThreadDir::kPlusY ? Vec3(b->point - n.point) : Vec3(n.point - b->point);
-    if (!(wf.norm() > 0.0) || !(wp.norm() > 0.0)) continue;
-    const double g = std::atan2(wf.cross(wp).norm(), wf.dot(wp));
-    pf.gamma_min = pf.angles ? std::min(pf.gamma_min, g) : g;
-    pf.gamma_max = pf.angles ? std::max(pf.gamma_max, g) : g;
-    pf.energy += std::cos(g) * std::cos(g);
+    const double ff = wf.squaredNorm(), pp = wp.squaredNorm();
+    if (!(ff > 0.0) || !(pp > 0.0)) continue;
+    const double dot = wf.dot(wp);
+    const double c = dot / std::sqrt(ff * pp);
+    if (!pf.angles || c > c_max) c_max = c, lo_f = wf, lo_p = wp;
+    if (!pf.angles || c < c_min) c_min = c, hi_f = wf, hi_p = wp;
+    pf.energy += dot * dot / (ff * pp);
     ++pf.angles;
   }
-  if (pf.angles)
-    pf.shear_max = std::max(std::abs(kHalfPi - pf.gamma_min), std::abs(pf.gamma_max - kHalfPi));
+  if (!pf.angles) return;
+  pf.gamma_min = std::atan2(lo_f.cross(lo_p).norm(), lo_f.dot(lo_p));
+  pf.gamma_max = std::atan2(hi_f.cross(hi_p).norm(), hi_f.dot(hi_p));
+  pf.shear_max = std::max(std::abs(kHalfPi - pf.gamma_min), std::abs(pf.gamma_max - kHalfPi));
 }
 
 // 2D and 3D area of the mapped cells (each part as a fan of triangles), and per face the 3D
