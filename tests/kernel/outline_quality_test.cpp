@@ -289,8 +289,17 @@ TEST_CASE("outline checks: faults of the exact outline at poles and face corners
 TEST_CASE("outline checks (open): spikes not explained yet", "[.][issue13]") {
   const SpikeCase cases[] = {
       // The built-in blade (a 40 mm chord) at a spacing of 13.6 mm, a lock of 48 degrees: a
-      // run of six vertices, each turning back by 171-173 degrees (branch blade, found when the
-      // blade joined the random drapes below, which leave it out until this is explained).
+      // run of six vertices within d/2 turning back by 171-173 degrees in all (branch blade,
+      // found when the blade joined the random drapes below, which leave it out until this is
+      // explained). Looked at (branch flatfaults): it is one sliver, and likely the draped
+      // region's own: the face's edge (its boundary vertices 322-328 nearly on a line) meets
+      // the base path of this one-sided drape at 8.4 degrees at outline vertex 161; vertices
+      // 161 and 162 and the loop's vertices 0-3 lie on the base path's line, as in the saddle
+      // case of "narrow shapes of the draped region" above. What is left is the check:
+      // draped_at() cannot decide the cells beyond row j = -3 (their corners (-3, -4),
+      // (-2, -4) have no drape_position: the drape never reached them and two spheres from
+      // drape nodes do not solve them; the flat pattern solves them as virtual corners), so
+      // the sliver's inside counts as unknown inside the outline. Not verified further.
       {"blade: a sawtooth run at a coarse spacing", "blade", 13.574968586419011,
        Vec2(0.57592318800610431, 0.81750381131642769),
        Vec2(-0.81750381131642769, 0.57592318800610431),
