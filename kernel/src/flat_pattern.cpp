@@ -1250,10 +1250,6 @@ class Builder {
   // a loop of its own with no mapped node, issue 13.) Pieces with a mapped corner, and so
   // every whole cell, are reached.
   void drop_unreached(std::vector<Polygon>& polys) const {
-    std::map<std::pair<int, int>, std::size_t> edge_of;  // directed edge -> piece
-    for (std::size_t k = 0; k < polys.size(); ++k)
-      for (std::size_t q = 0; q < polys[k].size(); ++q)
-        edge_of.emplace(std::pair{polys[k][q], polys[k][(q + 1) % polys[k].size()]}, k);
     std::vector<char> reached(polys.size(), 0);
     std::vector<std::size_t> todo;
     for (std::size_t k = 0; k < polys.size(); ++k)
@@ -1263,15 +1259,28 @@ class Builder {
           reached[k] = 1;
           todo.push_back(k);
         }
+    if (todo.size() == polys.size()) return;  // every piece has a mapped corner (most drapes)
+    struct Edge {
+      int a, b;
+      std::size_t poly;
+      bool operator<(const Edge& o) const { return a != o.a ? a < o.a : b < o.b; }
+    };
+    std::vector<Edge> edges;  // directed edges of the pieces, sorted
+    for (std::size_t k = 0; k < polys.size(); ++k)
+      for (std::size_t q = 0; q < polys[k].size(); ++q)
+        edges.push_back({polys[k][q], polys[k][(q + 1) % polys[k].size()], k});
+    std::sort(edges.begin(), edges.end());
     while (!todo.empty()) {  // each piece is pushed once
       const std::size_t k = todo.back();
       todo.pop_back();
       for (std::size_t q = 0; q < polys[k].size(); ++q) {
-        const auto it = edge_of.find({polys[k][(q + 1) % polys[k].size()], polys[k][q]});
-        if (it != edge_of.end() && !reached[it->second]) {
-          reached[it->second] = 1;
-          todo.push_back(it->second);
-        }
+        const Edge back{polys[k][(q + 1) % polys[k].size()], polys[k][q], 0};
+        for (auto it = std::lower_bound(edges.begin(), edges.end(), back);
+             it != edges.end() && it->a == back.a && it->b == back.b; ++it)
+          if (!reached[it->poly]) {
+            reached[it->poly] = 1;
+            todo.push_back(it->poly);
+          }
       }
     }
     std::size_t kept = 0;
