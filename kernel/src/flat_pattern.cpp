@@ -55,6 +55,7 @@ struct Vertex {
   Vec3 p3 = Vec3::Zero();  // its 3D point (if has_uv)
   bool has_uv = false;
   bool in = false;            // on the surface
+  bool node = false;          // a node of the ply (not a crossing or boundary vertex)
   bool pole = false;          // at a degenerate point (a collapsed edge): its free parameter means
                               // nothing and is taken from its neighbours when interpolating
   int free = 1;               // at a pole: 0 if u is the free parameter, 1 if v
@@ -196,6 +197,7 @@ class Builder {
           edges_.push_back({w.v[k], w.v[(k + 1) % 4]});
       }
     FlatPattern fp;
+    drop_unreached(exact_);
     fp.outline = assemble(exact_, edges_);
     fp.staircase = assemble(stair_, edges_);
     for (const auto& l : fp.outline) {
@@ -328,6 +330,15 @@ class Builder {
     return true;
   }
 
+  // False when p lies on the wrong side of the line a -> b (side > 0: to its left about the
+  // outward normal) near a pole, seen about the pole's normal; true elsewhere (the solver's
+  // own side test holds there).
+  bool on_side(const Vec3& a, const Vec3& b, const Vec3& p, double side) const {
+    const int q = nearest_pole(0.5 * (a + b));
+    if (q < 0) return true;
+    return pole_normals_[static_cast<std::size_t>(q)].dot((b - a).cross(p - a)) * side > 0.0;
+  }
+
   // A virtual corner from a weft and a warp neighbour with positions.
   bool virtual_by_spheres(const NodeId& id) {
     const std::vector<Nb> nbs = virtual_neighbours(id);
@@ -337,11 +348,22 @@ class Builder {
         if (!is_weft(a.dir) || is_weft(b.dir)) continue;
         const double side =
             cross2(ply_.pos(b.id) - ply_.pos(a.id), q2 - ply_.pos(a.id)) > 0 ? 1.0 : -1.0;
-        if (accept_virtual(id, solve_two_spheres(s_,
-                                                 {a.p.point, a.p.at, a.rest, b.p.point, b.p.at,
-                                                  b.rest, side, std::nullopt},
-                                                 st_)))
-          return true;
+        auto solve = [&](double sd) {
+          return solve_two_spheres(
+              s_, {a.p.point, a.p.at, a.rest, b.p.point, b.p.at, b.rest, sd, std::nullopt}, st_);
+        };
+        SolveResult res = solve(side);
+        // Past a pole (u < 0 on a surface of revolution) the surface's own normal is turned
+        // over and the solver's branch with it: the corner came out mirrored across the line
+        // a-b, on the point of the cell's opposite corner (sphere-octant, issue 13: the outline
+        // ran out and back along the wedge at the pole). The other branch is then the one.
+        if (res.status == SolveStatus::kLeftFace && res.extended &&
+            !on_side(a.p.point, b.p.point, res.point, side))
+          res = solve(-side);
+        if (res.status == SolveStatus::kLeftFace && res.extended &&
+            !on_side(a.p.point, b.p.point, res.point, side))
+          continue;
+        if (accept_virtual(id, res)) return true;
       }
     return false;
   }
@@ -381,6 +403,7 @@ class Builder {
     }
     if (*slot >= 0) return *slot;
     Vertex v;
+    v.node = true;
     v.p2 = ply_.pos(id);
     if (const auto p = n && (n->mapped() || n->has(DrapeNode::kExtended))
                            ? std::optional<Position>(Position{n->at(), n->point, n->mapped()})
@@ -488,6 +511,19 @@ class Builder {
         const SurfaceNormal nn = s_.normal(s_.wrap(b.points[k]));
         pole_normals_.push_back(nn.ok ? nn.n : Vec3::Zero());
       }
+  }
+
+  // The pole nearest p within kPolarSpacings spacings whose normal is known, or -1.
+  int nearest_pole(const Vec3& p) const {
+    double best = kPolarSpacings * dmax_;
+    int out = -1;
+    for (std::size_t q = 0; q < poles_.size(); ++q)
+      if (const double dq = (poles_[q] - p).norm();
+          dq <= best && pole_normals_[q].squaredNorm() > 0.0) {
+        best = dq;
+        out = static_cast<int>(q);
+      }
+    return out;
   }
 
   // True when p lies within kPolarSpacings spacings of a pole.
@@ -666,7 +702,12 @@ class Builder {
     const Vec3 d3 = Q.p3 - P.p3;
     const double len = d3.norm();
     if (!(len > 0.0)) return out;
-    Vec3 n = normal_at(P) + normal_at(Q);
+    // The two ends' normals turned to agree first: a corner solved past a pole, on the surface
+    // extended beyond it, has its parameters' normal turned over (u < 0 on a surface of
+    // revolution), and the plain sum nearly cancelled, so the plane stood on edge and the
+    // chord met no piece (revolution-third, issue 13: a slit out to the pole and back).
+    Vec3 n = normal_at(P), nq = normal_at(Q);
+    n += n.dot(nq) < 0.0 ? -nq : nq;
     Vec3 e1 = d3 - n * (n.dot(d3) / std::max(n.squaredNorm(), 1e-300));
     if (!(n.norm() > 0.0) || !(e1.norm() > 0.0)) return out;
     n.normalize();
@@ -926,15 +967,10 @@ class Builder {
     // Near a pole, the plane through the pole normal to the surface there: its meridians
     // (the lines through the pole) project onto straight lines, on a surface of revolution
     // exactly, so a boundary along one stays on the part's edge along it.
-    double best = kPolarSpacings * dmax_;
-    const Vec3 centroid = c.o;
-    for (std::size_t q = 0; q < poles_.size(); ++q)
-      if (const double dq = (poles_[q] - centroid).norm();
-          dq <= best && pole_normals_[q].squaredNorm() > 0.0) {
-        best = dq;
-        c.o = poles_[q];
-        n = pole_normals_[q];
-      }
+    if (const int q = nearest_pole(c.o); q >= 0) {
+      c.o = poles_[static_cast<std::size_t>(q)];
+      n = pole_normals_[static_cast<std::size_t>(q)];
+    }
     const Vec3 a =
         verts_[static_cast<std::size_t>(poly[1])].p3 - verts_[static_cast<std::size_t>(poly[0])].p3;
     Vec3 e1 = a - n * (n.dot(a) / std::max(n.squaredNorm(), 1e-300));
@@ -1205,6 +1241,55 @@ class Builder {
       if (mn >= -kBarycentricSlack) break;
     }
     return best;
+  }
+
+  // Drops the clipped pieces the cloth does not reach: those joined to no piece with a
+  // mapped corner through a chain of shared edges. (A piece of a cell all of whose corners
+  // lie beyond the face, where a face corner pokes into it, whose neighbour towards the face
+  // the drape stopped short of, as at a lock: the cloth never gets there, but the piece made
+  // a loop of its own with no mapped node, issue 13.) Pieces with a mapped corner, and so
+  // every whole cell, are reached.
+  void drop_unreached(std::vector<Polygon>& polys) const {
+    std::vector<char> reached(polys.size(), 0);
+    std::vector<std::size_t> todo;
+    for (std::size_t k = 0; k < polys.size(); ++k)
+      for (int v : polys[k])
+        if (!reached[k] && verts_[static_cast<std::size_t>(v)].node &&
+            verts_[static_cast<std::size_t>(v)].in) {
+          reached[k] = 1;
+          todo.push_back(k);
+        }
+    if (todo.size() == polys.size()) return;  // every piece has a mapped corner (most drapes)
+    struct Edge {
+      int a, b;
+      std::size_t poly;
+      bool operator<(const Edge& o) const { return a != o.a ? a < o.a : b < o.b; }
+    };
+    std::vector<Edge> edges;  // directed edges of the pieces, sorted
+    for (std::size_t k = 0; k < polys.size(); ++k)
+      for (std::size_t q = 0; q < polys[k].size(); ++q)
+        edges.push_back({polys[k][q], polys[k][(q + 1) % polys[k].size()], k});
+    std::sort(edges.begin(), edges.end());
+    while (!todo.empty()) {  // each piece is pushed once
+      const std::size_t k = todo.back();
+      todo.pop_back();
+      for (std::size_t q = 0; q < polys[k].size(); ++q) {
+        const Edge back{polys[k][(q + 1) % polys[k].size()], polys[k][q], 0};
+        for (auto it = std::lower_bound(edges.begin(), edges.end(), back);
+             it != edges.end() && it->a == back.a && it->b == back.b; ++it)
+          if (!reached[it->poly]) {
+            reached[it->poly] = 1;
+            todo.push_back(it->poly);
+          }
+      }
+    }
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < polys.size(); ++k)
+      if (reached[k]) {
+        if (kept != k) polys[kept] = std::move(polys[k]);
+        ++kept;
+      }
+    polys.resize(kept);
   }
 
   // Boundary of the union of counter-clockwise polygons: edges shared by two polygons (in

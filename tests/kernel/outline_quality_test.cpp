@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <random>
 #include <sstream>
 
@@ -124,13 +125,17 @@ struct SpikeCase {
   double lock = 0.0;  // radians; 0: the default lock angle
 };
 
-Checked check_case(const SpikeCase& c) {
+// Drapes case c and checks its outline; `more`, if given, checks the drape further.
+Checked check_case(
+    const SpikeCase& c,
+    const std::function<void(const DrapeResult&, const FlatPattern&)>& more = nullptr) {
   const Face f = builtin(c.mold);
   DrapeOptions opt;
   if (c.lock > 0.0) opt.lock_angle = c.lock;
   const auto r = drape(f, random_problem(c.d, c.b2, c.w2, c.start, c.bn, c.sw, c.both), opt);
   REQUIRE(r.ok());
   const FlatPattern fp = flat_pattern(f, *r);
+  if (more) more(*r, fp);
   return check_outline(f, *r, fp.outline, c.d);
 }
 
@@ -229,31 +234,36 @@ TEST_CASE("outline checks: narrow shapes of the draped region are no defects") {
   }
 }
 
-// Hidden: spikes found by more random drapes (60 per mold, other seeds) that the drape does
-// not explain; issue 13 open. At a pole (the flat pattern's tangent charts; draped_at()
-// does not follow them), a slit where a node sits on the face edge, and tiny loops.
-TEST_CASE("outline checks (open): spikes not explained yet", "[.][issue13]") {
+// Spikes found by more random drapes (60 per mold, other seeds) that the drape did not
+// explain: faults of the exact outline, each failed before its fix (issue 13). The outline of
+// each is now free of any geometric spike, one loop, every loop holding a mapped node, and no
+// point of the mold in two places of the ply.
+TEST_CASE("outline checks: faults of the exact outline at poles and face corners") {
   const SpikeCase cases[] = {
-      // The outline zigzags next to the octant's pole (turns 187 degrees within 0.2 d);
-      // draped_at() disagrees up to 0.12 d there, near the pole where it cannot be trusted.
+      // The outline zigzagged next to the octant's pole (turns of 170-187 degrees within
+      // 0.2 d): the virtual corner (-1, 18), solved past the pole where the surface's normal is
+      // turned over, came out mirrored across the line of its neighbours, on the point of
+      // corner (0, 17).
       {"sphere-octant: near the pole", "sphere-octant", 1.2950513267414197,
        Vec2(-0.74746613518783522, 0.66429991475790573),
        Vec2(-0.66429991475790573, -0.74746613518783522),
        Vec3(13.707934246429375, 9.5066040853652076, 8.4008515147194114),
        Vec3(-0.67023659691666204, 0.28773985266276808, 0.68409698241052075),
        Vec3(-0.29795063772662417, -0.79535273566274833, -0.5278630914849799), true},
-      // A slit (the outline turns back by 180.0000 degrees): node (16, 1), outside by the
-      // drape, lies on the face edge; the boundary walk between two crossings 1e-9 d from
-      // it goes out 0.14 to a boundary vertex and back.
-      {"revolution-third: a slit at a node on the face edge", "revolution-third",
-       0.90945018569637281, Vec2(-0.94308292321922516, 0.33255766407088116),
+      // A slit (the outline turned back by 180.0000 degrees): the edges from node (16, 1),
+      // solved past the pole, met no boundary piece in their tangent plane (the ends' normals
+      // nearly cancelled), and the fallback put both crossings 1e-9 d from the node; the
+      // boundary walk between them went out 0.14 to the pole and back.
+      {"revolution-third: a slit at a node past the pole", "revolution-third", 0.90945018569637281,
+       Vec2(-0.94308292321922516, 0.33255766407088116),
        Vec2(0.33255766407088116, 0.94308292321922516),
        Vec3(6.0595112018465791, 12.051681233137371, 6.8669809774933013),
        Vec3(0.41867821856177634, -0.67995239868280033, -0.60197448851877722),
        Vec3(0.7587485170160998, 0.46781850093380173, 0.45326210751608159), true,
        0.98081698304218179},
       // A loop of three points, 0.008 d wide: a face corner inside a cell all of whose
-      // corners are beyond the face, next to a cell dropped at the lock.
+      // corners are beyond the face, next to a cell dropped at the lock: cloth never gets
+      // there.
       {"saddle: a tiny loop at a face corner", "saddle", 1.0995805630790003,
        Vec2(0.9348704698392083, 0.35498902042544633),
        Vec2(0.35498902042544633, -0.9348704698392083),
@@ -261,9 +271,35 @@ TEST_CASE("outline checks (open): spikes not explained yet", "[.][issue13]") {
        Vec3(-0.075287878260115793, 0.88947202561877037, 0.45074521742191725),
        Vec3(-0.70184141042739223, 0.048206644704051192, 0.71070018574337401), true,
        0.61875749200595509},
+  };
+  for (const SpikeCase& c : cases) {
+    INFO(c.what);
+    const Checked k = check_case(c, [&](const DrapeResult& r, const FlatPattern& fp) {
+      CHECK(fp.outline.size() == 1);
+      CHECK(support::loops_without_mapped_node(r, fp.outline, c.d).empty());
+      CHECK(support::one_point_two_places(fp.outline, c.d).empty());
+    });
+    INFO(support::describe(k.all));
+    CHECK(k.all.empty());
+  }
+}
+
+// Hidden: a spike found by more random drapes that the drape does not explain; issue 13
+// open.
+TEST_CASE("outline checks (open): spikes not explained yet", "[.][issue13]") {
+  const SpikeCase cases[] = {
       // The built-in blade (a 40 mm chord) at a spacing of 13.6 mm, a lock of 48 degrees: a
-      // run of six vertices, each turning back by 171-173 degrees (branch blade, found when the
-      // blade joined the random drapes below, which leave it out until this is explained).
+      // run of six vertices within d/2 turning back by 171-173 degrees in all (branch blade,
+      // found when the blade joined the random drapes below, which leave it out until this is
+      // explained). Looked at (branch flatfaults): it is one sliver, and likely the draped
+      // region's own: the face's edge (its boundary vertices 322-328 nearly on a line) meets
+      // the base path of this one-sided drape at 8.4 degrees at outline vertex 161; vertices
+      // 161 and 162 and the loop's vertices 0-3 lie on the base path's line, as in the saddle
+      // case of "narrow shapes of the draped region" above. What is left is the check:
+      // draped_at() cannot decide the cells beyond row j = -3 (their corners (-3, -4),
+      // (-2, -4) have no drape_position: the drape never reached them and two spheres from
+      // drape nodes do not solve them; the flat pattern solves them as virtual corners), so
+      // the sliver's inside counts as unknown inside the outline. Not verified further.
       {"blade: a sawtooth run at a coarse spacing", "blade", 13.574968586419011,
        Vec2(0.57592318800610431, 0.81750381131642769),
        Vec2(-0.81750381131642769, 0.57592318800610431),

@@ -339,6 +339,52 @@ inline std::string spike_reason(const DrapeSurface& s, const DrapeResult& r,
                       : "a narrow notch of the draped region, as draped_at() finds it";
 }
 
+/// The outer loops of `loops` with no mapped node of `r` on them (within 1e-9 d of a vertex) or
+/// inside them: cloth the drape never reached (issue 13: a face corner poking into a cell
+/// beyond the face made a loop of its own).
+inline std::vector<int> loops_without_mapped_node(const DrapeResult& r,
+                                                  const std::vector<OutlineLoop>& loops, double d) {
+  std::vector<int> out;
+  for (int l = 0; l < static_cast<int>(loops.size()); ++l) {
+    const OutlineLoop& L = loops[static_cast<std::size_t>(l)];
+    if (L.hole) continue;
+    bool found = false;
+    for (const DrapeNode& n : r.nodes) {
+      if (!n.mapped()) continue;
+      found = inside_outline({L}, n.ply);
+      for (const Vec2& p : L.points) found = found || (p - n.ply).norm() <= 1e-9 * d;
+      if (found) break;
+    }
+    if (!found) out.push_back(l);
+  }
+  return out;
+}
+
+/// Pairs of outline vertices (loop, index) that lie on one point of the mold (within 1e-9 d)
+/// but apart in the ply (by more than 1e-6 d): the cloth cannot be in two places of the ply
+/// at one point of the mold (issue 13: a corner solved past a pole on the wrong branch put
+/// two ply points on one).
+inline std::vector<std::pair<std::pair<int, int>, std::pair<int, int>>> one_point_two_places(
+    const std::vector<OutlineLoop>& loops, double d) {
+  std::vector<std::pair<std::pair<int, int>, std::pair<int, int>>> out;
+  std::vector<std::pair<int, int>> all;
+  for (int l = 0; l < static_cast<int>(loops.size()); ++l)
+    for (int k = 0; k < static_cast<int>(loops[static_cast<std::size_t>(l)].points.size()); ++k)
+      all.push_back({l, k});
+  auto p2 = [&](const std::pair<int, int>& v) {
+    return loops[static_cast<std::size_t>(v.first)].points[static_cast<std::size_t>(v.second)];
+  };
+  auto p3 = [&](const std::pair<int, int>& v) {
+    return loops[static_cast<std::size_t>(v.first)].points3d[static_cast<std::size_t>(v.second)];
+  };
+  for (std::size_t a = 0; a < all.size(); ++a)
+    for (std::size_t b = a + 1; b < all.size(); ++b)
+      if ((p3(all[a]) - p3(all[b])).norm() <= 1e-9 * d &&
+          (p2(all[a]) - p2(all[b])).norm() > 1e-6 * d)
+        out.push_back({all[a], all[b]});
+  return out;
+}
+
 /// The defects as text, one a line.
 inline std::string describe(const std::vector<OutlineDefect>& defects) {
   std::ostringstream s;
