@@ -183,7 +183,7 @@ Figures figures_of(const Face& face, const DrapeResult& res) {
   Figures f;
   f.energy = m.shear_energy;
   f.max_shear_deg = m.shear_max * kRadToDeg;
-  f.flat_area = flat.area;
+  f.flat_area = flat.cut_area;
   f.mapped = m.nodes.mapped;
   f.shear_limit = m.nodes.shear_limit;
   f.overlap = m.nodes.overlap;
