@@ -254,6 +254,7 @@ double hull_width(std::vector<Vec2> p) {
     const Vec2 a = h[i], e = h[(i + 1) % hn] - a;
     const double len = e.norm();
     auto dist = [&](std::size_t x) { return cross2(e, h[x % hn] - a) / len; };
+    j = std::max(j, i + 1);
     while (dist(j + 1) >= dist(j) && j < i + 2 * hn) ++j;
     best = std::min(best, dist(j));
   }
