@@ -228,13 +228,17 @@ std::optional<Cut> cut_tip(const std::vector<Loop>& loops, std::size_t li, Index
   return best;
 }
 
-// The smallest width of the convex hull of p (rotating calipers; 0 for collinear points).
-double hull_width(std::vector<Vec2> p) {
+// Whether the convex hull of p is narrower than w in some direction: all of it within w of
+// the line of one of its edges (then the loop is narrower than w everywhere). Each edge's
+// farthest point is first looked for by climbing from the last edge's (the rotating
+// calipers); only when that point is nearer than w are all points measured, so the answer
+// does not depend on how rounding breaks ties between nearly collinear hull points.
+bool hull_narrower(std::vector<Vec2> p, double w) {
   std::sort(p.begin(), p.end(), [](const Vec2& a, const Vec2& b) {
     return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
   });
   p.erase(std::unique(p.begin(), p.end()), p.end());
-  if (p.size() < 3) return 0.0;
+  if (p.size() < 3) return true;
   std::vector<Vec2> h(2 * p.size());
   std::size_t k = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -247,18 +251,19 @@ double hull_width(std::vector<Vec2> p) {
   }
   h.resize(k - 1);
   const std::size_t hn = h.size();
-  if (hn < 3) return 0.0;
-  double best = INFINITY;
-  std::size_t j = 1;
+  if (hn < 3) return true;
+  std::size_t j = 0;
   for (std::size_t i = 0; i < hn; ++i) {
     const Vec2 a = h[i], e = h[(i + 1) % hn] - a;
     const double len = e.norm();
     auto dist = [&](std::size_t x) { return cross2(e, h[x % hn] - a) / len; };
-    j = std::max(j, i + 1);
-    while (dist(j + 1) >= dist(j) && j < i + 2 * hn) ++j;
-    best = std::min(best, dist(j));
+    for (std::size_t step = 0; step < hn && dist(j + 1) > dist(j); ++step) j = (j + 1) % hn;
+    if (dist(j) >= w) continue;
+    double far = 0.0;
+    for (std::size_t x = 0; x < hn; ++x) far = std::max(far, dist(x));
+    if (far < w) return true;
   }
-  return best;
+  return false;
 }
 
 void finish(const Loop& l, OutlineLoop& out) {
@@ -306,7 +311,7 @@ OutlineCleanupResult outline_cleanup(const std::vector<OutlineLoop>& loops,
     ++res.slivers;
   };
   for (std::size_t li = 0; li < work.size(); ++li)
-    if (work[li].n() < 3 || hull_width(work[li].p) < w) drop(li);
+    if (work[li].n() < 3 || hull_narrower(work[li].p, w)) drop(li);
   for (std::size_t li = 0; li < work.size(); ++li) {
     if (dropped[li]) continue;
     std::vector<Vec2> left;  // tips no cut was found for (their first vertex)
@@ -334,7 +339,7 @@ OutlineCleanupResult outline_cleanup(const std::vector<OutlineLoop>& loops,
       ++res.slivers;
       ++cuts;
       work[li] = apply(l, *c);
-      if (work[li].n() < 3 || hull_width(work[li].p) < w) drop(li);
+      if (work[li].n() < 3 || hull_narrower(work[li].p, w)) drop(li);
     }
   }
   for (std::size_t li = 0; li < work.size(); ++li) {

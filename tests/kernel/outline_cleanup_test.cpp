@@ -143,6 +143,21 @@ TEST_CASE("outline cleanup: a rectangle, a disk with a hole of radius 3w, a slow
   CHECK(res.added_area == 0.0);
 }
 
+TEST_CASE("outline cleanup: a turned rectangle with many points per side stays") {
+  // 100 x 80 turned by 43 degrees, 40 points per side (collinear to rounding).
+  const double c = std::cos(43.0 * kPi / 180.0), s = std::sin(43.0 * kPi / 180.0);
+  const Vec2 u(c, s), v(-s, c);
+  std::vector<Vec2> p;
+  const Vec2 corner[4] = {Vec2::Zero(), Vec2(100 * u), Vec2(100 * u + 80 * v), Vec2(80 * v)};
+  for (int side = 0; side < 4; ++side)
+    for (int k = 0; k < 40; ++k)
+      p.push_back(corner[side] + (k / 40.0) * (corner[(side + 1) % 4] - corner[side]));
+  const auto res = outline_cleanup({loop(p)}, {0.5});
+  REQUIRE(res.loops.size() == 1);
+  CHECK(res.loops[0].points == p);
+  CHECK(res.slivers == 0);
+}
+
 TEST_CASE("outline cleanup: loops narrower than w everywhere are dropped") {
   const double w = 0.5;
   const OutlineLoop sq = square_with({});
@@ -195,6 +210,10 @@ void check_cut(const FlatPattern& fp, double d) {
   }
   CHECK(std::abs(fp.cut_area - (fp.area - fp.cut_removed_area + fp.cut_added_area)) <=
         1e-9 * std::max(1.0, std::abs(fp.area)));
+  // Only narrow features go: each is narrower than w along its length, so its area is below
+  // w times half the outline it takes away (a strip: w L against 2 L of outline; a dropped
+  // loop: its hull width times its diameter); in all, below w times the exact perimeter.
+  CHECK(fp.cut_removed_area + fp.cut_added_area <= fp.min_width * fp.perimeter);
 }
 
 // The random drapes of tests/kernel/outline_quality_test.cpp (same seeds and draws); the
@@ -249,6 +268,28 @@ TEST_CASE("outline cleanup: a drape's strip narrower than w is cut off (hemisphe
   for (std::size_t k = 0; k < fo.cut.size(); ++k) CHECK(fo.cut[k].points == fo.outline[k].points);
   CHECK(fo.cut_area == fo.area);
   CHECK(fo.slivers == 0);
+}
+
+TEST_CASE("outline cleanup: a wide pattern whose hull has points collinear to rounding stays") {
+  // Random drape 0 on the plane (seed 6 of the drapes below): the outline's convex hull has
+  // a run of points along the base path, collinear to rounding, where the distance from the
+  // first hull edge dips by 1e-15; the rotating calipers stopped there and took the
+  // 100 x 80 pattern for one 2e-14 wide, and the clean-up dropped it whole.
+  const Face f = builtin("plane");
+  const double d = 6.4274606472429019;
+  const auto r = drape(
+      f, support::problem(d, Vec2(0, 0), Vec2(-0.68504804119089324, 0.72849789379278251),
+                          {Vec2(0.72849789379278251, 0.68504804119089324)},
+                          Vec3(67.899043056116071, 38.376254628710257, 0),
+                          Vec3(-0.8805831463862257, -0.45741355188933158, 0.12387963855501359),
+                          {Vec3(-0.84717622892816025, 0.41809783251337729, 0.32785155114270426)}));
+  REQUIRE(r.ok());
+  const FlatPattern fp = flat_pattern(f, *r);
+  REQUIRE(fp.outline.size() == 1);
+  REQUIRE(fp.cut.size() == 1);
+  CHECK(fp.cut[0].points == fp.outline[0].points);
+  CHECK(fp.slivers == 0);
+  CHECK(fp.cut_area == fp.area);
 }
 
 TEST_CASE("outline cleanup: cut outlines are simple and spike-free on every built-in mold") {
