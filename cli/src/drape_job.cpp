@@ -98,6 +98,10 @@ const std::vector<OptionSpec>& drape_options() {
        "output"},
       {"dxf-threads", "true|false", "false",
        "THREADS layer (thread grid) in flat.dxf (a cutter would cut it)", false, "output"},
+      {"min-width", "W", "",
+       "cut outline: slivers of cloth and notches narrower than W are cut off or closed, "
+       "model units (default: half the spacing; 0: the exact outline)",
+       false, "output"},
   };
   return list;
 }
@@ -481,6 +485,12 @@ Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
     job.dxf_threads = *b;
   else
     return b.error();
+  if (auto m = one("min-width")) {
+    auto x = parse_number(*m, name("min-width"));
+    if (!x) return x.error();
+    if (!(*x >= 0)) return Error{name("min-width") + ": must be >= 0 (0: the exact outline)"};
+    job.min_width = *x;
+  }
   job.scene = raw.origin == "command line" ? "" : raw.origin;
   return job;
 }
@@ -545,6 +555,7 @@ std::string dump_scene(const DrapeJob& job) {
   v["curve-degree"] = {std::to_string(job.curve_degree)};
   v["view"] = {fmt(job.view)};
   v["dxf-threads"] = {job.dxf_threads ? "true" : "false"};
+  if (job.min_width) v["min-width"] = {fmt(*job.min_width)};
   std::ostringstream os;
   os << "# plyfit scene (plyfit drape --dump-scene)\n";
   std::string section;
@@ -712,7 +723,9 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   if (!res) return Error{with_input_name(job, res.error().message)};
   if (cancel && cancel->load()) return Error{"cancelled"};
   run.drape_ms = res->drape_ms;
-  const FlatPattern flat = flat_pattern(*surface, *res);
+  FlatPatternOptions fo;
+  fo.min_width = job.min_width;
+  const FlatPattern flat = flat_pattern(*surface, *res, fo);
   exporters::ExportOptions eo;
   eo.warn_shear = job.warn_angle_deg * kDegToRad;
   eo.curve_degree = job.curve_degree;
@@ -733,7 +746,7 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   out.shear_max_deg = m.shear_max / kDegToRad;
   out.metrics = m;
   out.face_area = surface->area();
-  out.flat_outline_area = flat.area;
+  out.flat_outline_area = flat.cut_area;
   out.outline_coverage = out.face_area > 0 ? outline_surface_area(*res, flat) / out.face_area : 0.0;
   out.warnings = res->warnings;
   for (const auto& k : job.outputs)

@@ -62,6 +62,8 @@ struct DrapeJob {
   int curve_degree = 1;
   Vec3 view = Vec3(1, 1, 1);
   bool dxf_threads = false;  ///< THREADS layer in flat.dxf
+  /// --min-width: the cut outline's minimum width; empty: half the spacing.
+  std::optional<double> min_width;
   double warn_angle_deg = 25.0;
   std::string ply_name = "ply";
   double ply_angle_deg = 0.0;      ///< the ply's fibre direction on the part (labels)
@@ -99,7 +101,7 @@ struct JobOutcome {
   std::vector<std::string> files;
   DrapeMetrics metrics;
   double face_area = 0.0;
-  double flat_outline_area = 0.0;
+  double flat_outline_area = 0.0;  ///< area of the cut outline (FlatPattern::cut_area)
   /// The share of the surface the flat pattern's outline covers (outline_coverage.hpp).
   double outline_coverage = 0.0;
   std::vector<std::string> warnings;  ///< the drape's (why partial, and notes)

@@ -177,13 +177,15 @@ Result<DrapeProblem> candidate_problem(const DrapeJob& scene, const Face& face,
   return pb;
 }
 
-Figures figures_of(const Face& face, const DrapeResult& res) {
-  const FlatPattern flat = flat_pattern(face, res);
+Figures figures_of(const Face& face, const DrapeResult& res, const DrapeJob& scene) {
+  FlatPatternOptions fo;
+  fo.min_width = scene.min_width;  // the flat area is the cut outline's, as plyfit drape's
+  const FlatPattern flat = flat_pattern(face, res, fo);
   const DrapeMetrics& m = res.metrics;
   Figures f;
   f.energy = m.shear_energy;
   f.max_shear_deg = m.shear_max * kRadToDeg;
-  f.flat_area = flat.area;
+  f.flat_area = flat.cut_area;
   f.mapped = m.nodes.mapped;
   f.shear_limit = m.nodes.shear_limit;
   f.overlap = m.nodes.overlap;
@@ -202,7 +204,8 @@ std::string percent(double fraction) {
 }
 
 /// Drapes a problem and fills an evaluation's figures and status (not its feasibility).
-void drape_into(const Face& face, const DrapeProblem& pb, const DrapeOptions& opt, Evaluation& ev) {
+void drape_into(const Face& face, const DrapeProblem& pb, const DrapeOptions& opt,
+                const DrapeJob& scene, Evaluation& ev) {
   try {
     auto res = drape(face, pb, opt);
     if (!res) {
@@ -212,7 +215,7 @@ void drape_into(const Face& face, const DrapeProblem& pb, const DrapeOptions& op
     }
     ev.status = res->partial ? "partial" : "ok";
     for (const auto& w : res->warnings) ev.note += (ev.note.empty() ? "partial: " : "; ") + w;
-    ev.figures = figures_of(face, *res);
+    ev.figures = figures_of(face, *res, scene);
   } catch (const std::exception& e) {
     ev.status = "error";
     ev.note = std::string("internal error: ") + e.what();
@@ -310,7 +313,7 @@ class Search {
       }
       auto pb = candidate_problem(*sp_.scene, *sp_.face, sp_.reference, ev.candidate, &ev.seed);
       if (pb) {
-        drape_into(*sp_.face, *pb, drape_, ev);
+        drape_into(*sp_.face, *pb, drape_, *sp_.scene, ev);
       } else {
         ev.status = "error";
         ev.note = pb.error().message;
@@ -518,7 +521,7 @@ Result<OptimizeResult> optimize(const DrapeJob& scene, const Face& face, const O
   }
   ref.status = scene_res.partial ? "partial" : "ok";
   for (const auto& w : scene_res.warnings) ref.note += (ref.note.empty() ? "partial: " : "; ") + w;
-  ref.figures = figures_of(face, scene_res);
+  ref.figures = figures_of(face, scene_res, scene);
   ref.candidate.uv = scene_res.start_at.uv;
   ref.seed = scene_res.start_point;
   r.evaluations.push_back(ref);

@@ -1,8 +1,9 @@
 // flat.dxf: the flat pattern as ASCII DXF R2000 (AC1015), millimetres ($INSUNITS 4), in ply
 // coordinates, for a cutter or a nesting program. The contours to cut are on their own
 // layers; everything else is marking (pen or ink) on layers of its own:
-//   OUTLINE     closed LWPOLYLINEs: the outer loops of the exact outline, counter-clockwise
-//               (FlatPattern::outline)
+//   OUTLINE     closed LWPOLYLINEs: the outer loops of the cut outline, counter-clockwise
+//               (FlatPattern::cut: the exact outline without slivers and notches narrower
+//               than the minimum width; the exact outline is in report.json)
 //   HOLES       closed LWPOLYLINEs: its inner loops (holes), clockwise
 //   THREADS     LINEs: the warp (x = i d_weft) and weft (y = j d_warp) grid lines clipped to
 //               the outline (even-odd over all loops); only when ExportOptions::dxf_threads
@@ -305,7 +306,7 @@ std::string build_dxf(const ExportContext& ctx) {
   const DrapeResult& r = ctx.result;
   const PlySpec& spec = ctx.problem.ply;
   const std::vector<OutlineLoop> no_loops;
-  const std::vector<OutlineLoop>& loops = ctx.flat ? ctx.flat->outline : no_loops;
+  const std::vector<OutlineLoop>& loops = ctx.flat ? ctx.flat->cut : no_loops;
 
   // Extents: the outline, the mapped nodes and the start.
   Box2 box;
@@ -368,7 +369,7 @@ std::string build_dxf(const ExportContext& ctx) {
       "PLY ANGLE: " + degrees(ctx.options.ply_angle_deg, 2),
       "SPACING: " + fixed_text(spec.d_weft, 6) + " x " + fixed_text(spec.d_warp, 6) +
           " mm (weft x warp link)",
-      "AREA: " + fixed_text(ctx.flat ? ctx.flat->area : 0.0, 3) + " mm\u00b2",
+      "AREA: " + fixed_text(ctx.flat ? ctx.flat->cut_area : 0.0, 3) + " mm\u00b2",
       "SHEAR: max " + degrees(shear_max_deg, 2) + ", warning " +
           degrees(warn * detail::kRadToDeg, 2) + ", limit " +
           (lock_deg >= 90.0 ? std::string("none") : degrees(lock_deg, 2)),

@@ -186,15 +186,27 @@ std::string report_json(const ExportContext& ctx) {
                  {"mean_iterations", m.solves ? double(m.iterations) / m.solves : 0.0},
                  {"mean_evaluations", m.solves ? double(m.evaluations) / m.solves : 0.0}};
   if (ctx.flat) {
-    json loops = json::array();
-    for (const auto& l : ctx.flat->outline) {
-      json pts = json::array();
-      for (const auto& q : l.points) pts.push_back(vec(q));
-      loops.push_back(
-          {{"hole", l.hole}, {"area", l.area}, {"perimeter", l.perimeter}, {"points", pts}});
-    }
-    j["flat_outline"] = {
-        {"area", ctx.flat->area}, {"perimeter", ctx.flat->perimeter}, {"loops", loops}};
+    auto loops_of = [&](const std::vector<OutlineLoop>& outline) {
+      json loops = json::array();
+      for (const auto& l : outline) {
+        json pts = json::array();
+        for (const auto& q : l.points) pts.push_back(vec(q));
+        loops.push_back(
+            {{"hole", l.hole}, {"area", l.area}, {"perimeter", l.perimeter}, {"points", pts}});
+      }
+      return loops;
+    };
+    const FlatPattern& fp = *ctx.flat;
+    // The cut outline (what flat.dxf's cutter cuts) and the exact outline it was made from.
+    j["flat_outline"] = {{"area", fp.cut_area},
+                         {"perimeter", fp.cut_perimeter},
+                         {"min_width", fp.min_width},
+                         {"removed_area", fp.cut_removed_area},
+                         {"added_area", fp.cut_added_area},
+                         {"slivers", fp.slivers},
+                         {"loops", loops_of(fp.cut)}};
+    j["flat_outline_exact"] = {
+        {"area", fp.area}, {"perimeter", fp.perimeter}, {"loops", loops_of(fp.outline)}};
   }
   j["memory_bytes_per_node"] = r.bytes_per_node();
   j["timing_ms"] = {

@@ -1,4 +1,5 @@
 #include <plyfit/kernel/flat_pattern.hpp>
+#include <plyfit/kernel/outline_cleanup.hpp>
 #include <plyfit/kernel/solvers.hpp>
 
 #include <plyfit/kernel/cells.hpp>
@@ -1410,9 +1411,21 @@ class Builder {
 }  // namespace
 
 FlatPattern flat_pattern(const DrapeSurface& surface, const DrapeResult& result,
-                         const FlatPatternOptions&) {
+                         const FlatPatternOptions& options) {
   if (!result.ply || result.nodes.empty()) return {};
-  return Builder(surface, result).run();
+  FlatPattern fp = Builder(surface, result).run();
+  const PlySpec& spec = result.ply->spec();
+  fp.min_width = options.min_width.value_or(0.5 * std::max(spec.d_weft, spec.d_warp));
+  OutlineCleanupResult cut = outline_cleanup(fp.outline, {fp.min_width});
+  fp.cut = std::move(cut.loops);
+  for (const auto& l : fp.cut) {
+    fp.cut_area += l.hole ? -l.area : l.area;
+    fp.cut_perimeter += l.perimeter;
+  }
+  fp.cut_removed_area = cut.removed_area;
+  fp.cut_added_area = cut.added_area;
+  fp.slivers = cut.slivers;
+  return fp;
 }
 
 }  // namespace plyfit

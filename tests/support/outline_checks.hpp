@@ -7,12 +7,14 @@
 // counterpart.
 
 #include <plyfit/kernel/cells.hpp>
+#include <plyfit/kernel/drape.hpp>
 #include <plyfit/kernel/flat_pattern.hpp>
 #include <plyfit/kernel/solvers.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <random>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -383,6 +385,61 @@ inline std::vector<std::pair<std::pair<int, int>, std::pair<int, int>>> one_poin
           (p2(all[a]) - p2(all[b])).norm() > 1e-6 * d)
         out.push_back({all[a], all[b]});
   return out;
+}
+
+/// A random drape on a surface as scripts/fuzz-drape picks one (and the random drapes of
+/// tests/kernel/outline_quality_test.cpp, draw for draw): a start in the middle of the box,
+/// random base normal and sweep direction, one or both sweeps, a spacing of 1/15 to 1/60 of
+/// the size, sometimes a lock angle; `what` says how to rebuild it.
+struct RandomDrape {
+  DrapeProblem problem;
+  DrapeOptions options;
+  double d = 0.0;
+  std::string what;
+};
+
+/// The next random drape on `s` from `g`, called `name` in `what`.
+inline RandomDrape random_drape(const DrapeSurface& s, const std::string& name, int k,
+                                std::mt19937& g) {
+  constexpr double kPi = 3.14159265358979323846;
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  auto unit = [&] {  // a fresh distribution each time (it keeps a spare draw)
+    std::normal_distribution<double> nd;
+    Vec3 v(nd(g), nd(g), nd(g));
+    return Vec3(v.normalized());
+  };
+  RandomDrape rd;
+  const BBox3 box = s.bbox();
+  Vec3 start;
+  for (int i = 0; i < 3; ++i)
+    start[i] = box.min[i] + (box.max[i] - box.min[i]) * (0.3 + 0.4 * u01(g));
+  const double t = 2.0 * kPi * u01(g);
+  const Vec2 b2(std::cos(t), std::sin(t));
+  const double side = u01(g) < 0.5 ? 1.0 : -1.0;
+  const Vec2 w2 = side * Vec2(-b2.y(), b2.x());
+  const Vec3 bn = unit(), sw = unit();
+  rd.d = s.size() / (15.0 + 45.0 * u01(g));
+  DrapeProblem& pb = rd.problem;
+  pb.ply.d_weft = pb.ply.d_warp = rd.d;
+  pb.ply.start = Vec2(0, 0);
+  pb.ply.base_dir = b2;
+  pb.ply.sweeps = {w2};
+  pb.start = start;
+  pb.base_normal = bn;
+  pb.sweeps = {sw};
+  if (u01(g) < 0.5) {
+    pb.ply.sweeps.push_back(-w2);
+    pb.sweeps.push_back(-sw);
+  }
+  if (u01(g) < 0.3) rd.options.lock_angle = (20.0 + 40.0 * u01(g)) * kPi / 180.0;
+  std::ostringstream what;
+  what.precision(17);
+  what << name << " drape " << k << ": d " << rd.d << " b2 " << b2.transpose() << " w2 "
+       << w2.transpose() << " start " << start.transpose() << " bn " << bn.transpose() << " sweep "
+       << sw.transpose() << " sweeps " << pb.sweeps.size();
+  what << " lock " << rd.options.lock_angle;
+  rd.what = what.str();
+  return rd;
 }
 
 /// The defects as text, one a line.

@@ -5,6 +5,7 @@
 #include <plyfit/kernel/drape.hpp>
 #include <plyfit/kernel/face.hpp>
 
+#include <optional>
 #include <vector>
 
 namespace plyfit {
@@ -31,11 +32,25 @@ struct FlatPattern {
   std::vector<OutlineLoop> staircase;
   double area = 0.0;       ///< outline area, holes subtracted
   double perimeter = 0.0;  ///< outline length, holes included
+  /// Cut outline: the exact outline without the features narrower than min_width (slivers
+  /// of cloth cut off, notches and slits closed, loops narrower than it dropped;
+  /// outline_cleanup.hpp). What a cutter cuts; equal to `outline` when min_width is 0.
+  std::vector<OutlineLoop> cut;
+  double cut_area = 0.0;          ///< cut outline area, holes subtracted
+  double cut_perimeter = 0.0;     ///< cut outline length, holes included
+  double min_width = 0.0;         ///< the minimum width w the cut outline was made with
+  double cut_removed_area = 0.0;  ///< area of cloth cut away (slivers, narrow loops)
+  double cut_added_area = 0.0;    ///< area of gaps closed (notches, slits, narrow holes)
+  int slivers = 0;                ///< narrow features removed (loops dropped included)
 };
 
-/// Options of the flat pattern (none yet: the crossings are exact to rounding and the
-/// boundary is followed through every vertex of the face's boundary polylines).
-struct FlatPatternOptions {};
+/// Options of the flat pattern (the crossings are exact to rounding and the boundary is
+/// followed through every vertex of the face's boundary polylines).
+struct FlatPatternOptions {
+  /// Minimum width of cloth and of gaps in the cut outline (model units); 0 makes the cut
+  /// outline the exact one; empty: half the net spacing (the larger of d_weft, d_warp).
+  std::optional<double> min_width;
+};
 
 /// Computes the flat pattern of a drape on `surface`.
 FlatPattern flat_pattern(const DrapeSurface& surface, const DrapeResult& result,
