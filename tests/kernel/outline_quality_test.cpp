@@ -48,56 +48,16 @@ bool check_drape(const DrapeSurface& s, const DrapeProblem& pb, const std::strin
   return true;
 }
 
-Vec3 unit(std::mt19937& g) {
-  std::normal_distribution<double> n;
-  Vec3 v(n(g), n(g), n(g));
-  return v.normalized();
-}
-
-// Random initial conditions on `s` (as scripts/fuzz-drape picks them): a start in the middle
-// of the box, random base normal and sweep direction, one or both sweeps, a spacing of 1/15
-// to 1/60 of the size, sometimes a lock angle. Returns the number of drapes checked.
+// Random initial conditions on `s` (support::random_drape, as scripts/fuzz-drape picks them).
+// Returns the number of drapes checked.
 int random_drapes(const DrapeSurface& s, const std::string& name, unsigned seed, int count) {
   std::mt19937 g(seed);
-  std::uniform_real_distribution<double> u01(0.0, 1.0);
   int checked = 0;
   for (int k = 0; k < count; ++k) {
-    const BBox3 box = s.bbox();
-    Vec3 start;
-    for (int i = 0; i < 3; ++i)
-      start[i] = box.min[i] + (box.max[i] - box.min[i]) * (0.3 + 0.4 * u01(g));
-    const double t = 2.0 * 3.14159265358979323846 * u01(g);
-    const Vec2 b2(std::cos(t), std::sin(t));
-    const double side = u01(g) < 0.5 ? 1.0 : -1.0;
-    const Vec2 w2 = side * Vec2(-b2.y(), b2.x());
-    const Vec3 bn = unit(g), sw = unit(g);
-    const double d = s.size() / (15.0 + 45.0 * u01(g));
-    DrapeProblem pb = support::problem(d, Vec2(0, 0), b2, {w2}, start, bn, {sw});
-    if (u01(g) < 0.5) {
-      pb.ply.sweeps.push_back(-w2);
-      pb.sweeps.push_back(-sw);
-    }
-    DrapeOptions opt;
-    if (u01(g) < 0.3) opt.lock_angle = (20.0 + 40.0 * u01(g)) * 3.14159265358979323846 / 180.0;
-    std::ostringstream what;
-    what.precision(17);
-    what << name << " drape " << k << ": d " << d << " b2 " << b2.transpose() << " w2 "
-         << w2.transpose() << " start " << start.transpose() << " bn " << bn.transpose()
-         << " sweep " << sw.transpose() << " sweeps " << pb.sweeps.size();
-    what << " lock " << opt.lock_angle;
-    if (check_drape(s, pb, what.str(), opt)) ++checked;
+    const support::RandomDrape rd = support::random_drape(s, name, k, g);
+    if (check_drape(s, rd.problem, rd.what, rd.options)) ++checked;
   }
   return checked;
-}
-
-// A drape as random_drapes() builds it, from the figures it prints.
-DrapeProblem random_problem(double d, Vec2 b2, Vec2 w2, Vec3 start, Vec3 bn, Vec3 sw, bool both) {
-  DrapeProblem pb = support::problem(d, Vec2(0, 0), b2, {w2}, start, bn, {sw});
-  if (both) {
-    pb.ply.sweeps.push_back(-w2);
-    pb.sweeps.push_back(-sw);
-  }
-  return pb;
 }
 
 // The outline's defects by the geometric check alone, and those spike_reason() does not
@@ -115,24 +75,14 @@ Checked check_outline(const DrapeSurface& s, const DrapeResult& r,
 }
 
 // A drape as random_drapes() builds it, and what to call it.
-struct SpikeCase {
-  const char* what;
-  const char* mold;
-  double d;
-  Vec2 b2, w2;
-  Vec3 start, bn, sw;
-  bool both;
-  double lock = 0.0;  // radians; 0: the default lock angle
-};
+using SpikeCase = support::DrapeCase;
 
 // Drapes case c and checks its outline; `more`, if given, checks the drape further.
 Checked check_case(
     const SpikeCase& c,
     const std::function<void(const DrapeResult&, const FlatPattern&)>& more = nullptr) {
   const Face f = builtin(c.mold);
-  DrapeOptions opt;
-  if (c.lock > 0.0) opt.lock_angle = c.lock;
-  const auto r = drape(f, random_problem(c.d, c.b2, c.w2, c.start, c.bn, c.sw, c.both), opt);
+  const auto r = drape(f, c.problem(), c.options());
   REQUIRE(r.ok());
   const FlatPattern fp = flat_pattern(f, *r);
   if (more) more(*r, fp);
@@ -239,40 +189,7 @@ TEST_CASE("outline checks: narrow shapes of the draped region are no defects") {
 // each is now free of any geometric spike, one loop, every loop holding a mapped node, and no
 // point of the mold in two places of the ply.
 TEST_CASE("outline checks: faults of the exact outline at poles and face corners") {
-  const SpikeCase cases[] = {
-      // The outline zigzagged next to the octant's pole (turns of 170-187 degrees within
-      // 0.2 d): the virtual corner (-1, 18), solved past the pole where the surface's normal is
-      // turned over, came out mirrored across the line of its neighbours, on the point of
-      // corner (0, 17).
-      {"sphere-octant: near the pole", "sphere-octant", 1.2950513267414197,
-       Vec2(-0.74746613518783522, 0.66429991475790573),
-       Vec2(-0.66429991475790573, -0.74746613518783522),
-       Vec3(13.707934246429375, 9.5066040853652076, 8.4008515147194114),
-       Vec3(-0.67023659691666204, 0.28773985266276808, 0.68409698241052075),
-       Vec3(-0.29795063772662417, -0.79535273566274833, -0.5278630914849799), true},
-      // A slit (the outline turned back by 180.0000 degrees): the edges from node (16, 1),
-      // solved past the pole, met no boundary piece in their tangent plane (the ends' normals
-      // nearly cancelled), and the fallback put both crossings 1e-9 d from the node; the
-      // boundary walk between them went out 0.14 to the pole and back.
-      {"revolution-third: a slit at a node past the pole", "revolution-third", 0.90945018569637281,
-       Vec2(-0.94308292321922516, 0.33255766407088116),
-       Vec2(0.33255766407088116, 0.94308292321922516),
-       Vec3(6.0595112018465791, 12.051681233137371, 6.8669809774933013),
-       Vec3(0.41867821856177634, -0.67995239868280033, -0.60197448851877722),
-       Vec3(0.7587485170160998, 0.46781850093380173, 0.45326210751608159), true,
-       0.98081698304218179},
-      // A loop of three points, 0.008 d wide: a face corner inside a cell all of whose
-      // corners are beyond the face, next to a cell dropped at the lock: cloth never gets
-      // there.
-      {"saddle: a tiny loop at a face corner", "saddle", 1.0995805630790003,
-       Vec2(0.9348704698392083, 0.35498902042544633),
-       Vec2(0.35498902042544633, -0.9348704698392083),
-       Vec3(0.11378114762570135, -5.6103148327224623, 2.7624312195010461),
-       Vec3(-0.075287878260115793, 0.88947202561877037, 0.45074521742191725),
-       Vec3(-0.70184141042739223, 0.048206644704051192, 0.71070018574337401), true,
-       0.61875749200595509},
-  };
-  for (const SpikeCase& c : cases) {
+  for (const SpikeCase& c : support::fixed_outline_faults()) {
     INFO(c.what);
     const Checked k = check_case(c, [&](const DrapeResult& r, const FlatPattern& fp) {
       CHECK(fp.outline.size() == 1);
@@ -287,28 +204,7 @@ TEST_CASE("outline checks: faults of the exact outline at poles and face corners
 // Hidden: a spike found by more random drapes that the drape does not explain; issue 13
 // open.
 TEST_CASE("outline checks (open): spikes not explained yet", "[.][issue13]") {
-  const SpikeCase cases[] = {
-      // The built-in blade (a 40 mm chord) at a spacing of 13.6 mm, a lock of 48 degrees: a
-      // run of six vertices within d/2 turning back by 171-173 degrees in all (branch blade,
-      // found when the blade joined the random drapes below, which leave it out until this is
-      // explained). Looked at (branch flatfaults): it is one sliver, and likely the draped
-      // region's own: the face's edge (its boundary vertices 322-328 nearly on a line) meets
-      // the base path of this one-sided drape at 8.4 degrees at outline vertex 161; vertices
-      // 161 and 162 and the loop's vertices 0-3 lie on the base path's line, as in the saddle
-      // case of "narrow shapes of the draped region" above. What is left is the check:
-      // draped_at() cannot decide the cells beyond row j = -3 (their corners (-3, -4),
-      // (-2, -4) have no drape_position: the drape never reached them and two spheres from
-      // drape nodes do not solve them; the flat pattern solves them as virtual corners), so
-      // the sliver's inside counts as unknown inside the outline. Not verified further.
-      {"blade: a sawtooth run at a coarse spacing", "blade", 13.574968586419011,
-       Vec2(0.57592318800610431, 0.81750381131642769),
-       Vec2(-0.81750381131642769, 0.57592318800610431),
-       Vec3(79.547281562101972, 19.841803335737787, 3.2370037323035135),
-       Vec3(-0.034994170035169379, 0.81442916637288909, 0.57920682059581319),
-       Vec3(-0.13384285011911323, 0.99095163632199046, 0.010047185813056136), false,
-       0.8332393555231189},
-  };
-  for (const SpikeCase& c : cases) {
+  for (const SpikeCase& c : support::open_outline_faults()) {
     INFO(c.what);
     const Checked k = check_case(c);
     INFO(support::describe(k.unexplained));

@@ -387,6 +387,106 @@ inline std::vector<std::pair<std::pair<int, int>, std::pair<int, int>>> one_poin
   return out;
 }
 
+/// A drape on a built-in mold by its initial conditions, as a random drape prints them: ply
+/// start (0, 0), base direction b2, sweep w2 (and -w2 when `both`), start point, base-plane
+/// normal, sweep direction sw (and -sw), a lock angle in radians (0: the default).
+struct DrapeCase {
+  const char* what;
+  const char* mold;
+  double d;
+  Vec2 b2, w2;
+  Vec3 start, bn, sw;
+  bool both;
+  double lock = 0.0;
+  /// The drape problem of the case.
+  DrapeProblem problem() const {
+    DrapeProblem pb;
+    pb.ply.d_weft = pb.ply.d_warp = d;
+    pb.ply.start = Vec2(0, 0);
+    pb.ply.base_dir = b2;
+    pb.ply.sweeps = {w2};
+    pb.start = start;
+    pb.base_normal = bn;
+    pb.sweeps = {sw};
+    if (both) {
+      pb.ply.sweeps.push_back(-w2);
+      pb.sweeps.push_back(-sw);
+    }
+    return pb;
+  }
+  /// The drape options of the case (its lock angle).
+  DrapeOptions options() const {
+    DrapeOptions o;
+    if (lock > 0.0) o.lock_angle = lock;
+    return o;
+  }
+};
+
+/// Faults of the exact outline found by random drapes that the drape did not explain, each
+/// failed before its fix (issue 13; tests/kernel/outline_quality_test.cpp checks the exact
+/// outlines, outline_cleanup_test.cpp the cut ones).
+inline std::vector<DrapeCase> fixed_outline_faults() {
+  return {
+      // The outline zigzagged next to the octant's pole (turns of 170-187 degrees within
+      // 0.2 d): the virtual corner (-1, 18), solved past the pole where the surface's normal is
+      // turned over, came out mirrored across the line of its neighbours, on the point of
+      // corner (0, 17).
+      {"sphere-octant: near the pole", "sphere-octant", 1.2950513267414197,
+       Vec2(-0.74746613518783522, 0.66429991475790573),
+       Vec2(-0.66429991475790573, -0.74746613518783522),
+       Vec3(13.707934246429375, 9.5066040853652076, 8.4008515147194114),
+       Vec3(-0.67023659691666204, 0.28773985266276808, 0.68409698241052075),
+       Vec3(-0.29795063772662417, -0.79535273566274833, -0.5278630914849799), true},
+      // A slit (the outline turned back by 180.0000 degrees): the edges from node (16, 1),
+      // solved past the pole, met no boundary piece in their tangent plane (the ends' normals
+      // nearly cancelled), and the fallback put both crossings 1e-9 d from the node; the
+      // boundary walk between them went out 0.14 to the pole and back.
+      {"revolution-third: a slit at a node past the pole", "revolution-third", 0.90945018569637281,
+       Vec2(-0.94308292321922516, 0.33255766407088116),
+       Vec2(0.33255766407088116, 0.94308292321922516),
+       Vec3(6.0595112018465791, 12.051681233137371, 6.8669809774933013),
+       Vec3(0.41867821856177634, -0.67995239868280033, -0.60197448851877722),
+       Vec3(0.7587485170160998, 0.46781850093380173, 0.45326210751608159), true,
+       0.98081698304218179},
+      // A loop of three points, 0.008 d wide: a face corner inside a cell all of whose
+      // corners are beyond the face, next to a cell dropped at the lock: cloth never gets
+      // there.
+      {"saddle: a tiny loop at a face corner", "saddle", 1.0995805630790003,
+       Vec2(0.9348704698392083, 0.35498902042544633),
+       Vec2(0.35498902042544633, -0.9348704698392083),
+       Vec3(0.11378114762570135, -5.6103148327224623, 2.7624312195010461),
+       Vec3(-0.075287878260115793, 0.88947202561877037, 0.45074521742191725),
+       Vec3(-0.70184141042739223, 0.048206644704051192, 0.71070018574337401), true,
+       0.61875749200595509},
+  };
+}
+
+/// Spikes of the exact outline found by random drapes that the drape does not explain yet
+/// (issue 13, open; outline_quality_test.cpp's hidden test).
+inline std::vector<DrapeCase> open_outline_faults() {
+  return {
+      // The built-in blade (a 40 mm chord) at a spacing of 13.6 mm, a lock of 48 degrees: a
+      // run of six vertices within d/2 turning back by 171-173 degrees in all (branch blade,
+      // found when the blade joined the random drapes below, which leave it out until this is
+      // explained). Looked at (branch flatfaults): it is one sliver, and likely the draped
+      // region's own: the face's edge (its boundary vertices 322-328 nearly on a line) meets
+      // the base path of this one-sided drape at 8.4 degrees at outline vertex 161; vertices
+      // 161 and 162 and the loop's vertices 0-3 lie on the base path's line, as in the saddle
+      // case of "narrow shapes of the draped region" above. What is left is the check:
+      // draped_at() cannot decide the cells beyond row j = -3 (their corners (-3, -4),
+      // (-2, -4) have no drape_position: the drape never reached them and two spheres from
+      // drape nodes do not solve them; the flat pattern solves them as virtual corners), so
+      // the sliver's inside counts as unknown inside the outline. Not verified further.
+      {"blade: a sawtooth run at a coarse spacing", "blade", 13.574968586419011,
+       Vec2(0.57592318800610431, 0.81750381131642769),
+       Vec2(-0.81750381131642769, 0.57592318800610431),
+       Vec3(79.547281562101972, 19.841803335737787, 3.2370037323035135),
+       Vec3(-0.034994170035169379, 0.81442916637288909, 0.57920682059581319),
+       Vec3(-0.13384285011911323, 0.99095163632199046, 0.010047185813056136), false,
+       0.8332393555231189},
+  };
+}
+
 /// A random drape on a surface as scripts/fuzz-drape picks one (and the random drapes of
 /// tests/kernel/outline_quality_test.cpp, draw for draw): a start in the middle of the box,
 /// random base normal and sweep direction, one or both sweeps, a spacing of 1/15 to 1/60 of
