@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <iostream>
 #include <sstream>
 
@@ -718,6 +719,83 @@ Table overlap_table(int runs, std::vector<int> sizes, bool* ok) {
 
 namespace {
 
+// One face of the overlap table at one size, with and without the overlap test (runs
+// alternating), or one of the two alone (`--only on|off`, e.g. under callgrind): median wall
+// and thread CPU time per node, peak heap per node, and a digest of every node's status and
+// point (equal digests: the same drape).
+int run_overlap_ab(const std::vector<std::string>& args) {
+  const std::string which = option_value(args, "--face", "wave");
+  const int size = std::stoi(option_value(args, "--size", "300"));
+  const int runs = std::max(1, std::stoi(option_value(args, "--runs", "1")));
+  const std::string only = option_value(args, "--only", "");
+  auto faces = report_faces();
+  auto hemi = hemisphere_face();
+  if (!faces || !hemi) {
+    print_error("overlap-ab", faces ? hemi.error() : faces.error());
+    return 1;
+  }
+  faces->push_back(*hemi);
+  const ReportFace* rf = nullptr;
+  for (const ReportFace& f : *faces)
+    if (f.name.find(which) != std::string::npos) rf = &f;
+  if (!rf) {
+    std::fprintf(stderr, "plyfit-bench: overlap-ab: no face named like '%s'\n", which.c_str());
+    return 1;
+  }
+  auto pb = rf->problem(spacing_for_nodes(*rf->face, static_cast<double>(size) * size));
+  if (!pb) {
+    print_error(rf->name, pb.error());
+    return 1;
+  }
+  std::vector<int> modes;
+  if (only != "off") modes.push_back(1);
+  if (only != "on") modes.push_back(0);
+  std::vector<double> wall[2], cpu[2];
+  std::uint64_t nodes = 0;
+  for (int k = 0; k < runs; ++k)
+    for (int m : modes) {
+      DrapeOptions o;
+      o.overlap_test = m == 1;
+      timespec c0{}, c1{};
+      clock_gettime(CLOCK_THREAD_CPUTIME_ID, &c0);
+      auto r = run_drape(*rf->face, *pb, o);
+      clock_gettime(CLOCK_THREAD_CPUTIME_ID, &c1);
+      if (!r) {
+        print_error(rf->name, r.error());
+        return 1;
+      }
+      wall[m].push_back(r->seconds);
+      cpu[m].push_back(static_cast<double>(c1.tv_sec - c0.tv_sec) +
+                       1e-9 * static_cast<double>(c1.tv_nsec - c0.tv_nsec));
+      if (k > 0) continue;
+      nodes = net_nodes(r->result);
+      std::uint64_t h = 1469598103934665603ULL;  // FNV-1a over statuses and point bits
+      auto feed = [&h](const void* p, std::size_t n) {
+        for (std::size_t b = 0; b < n; ++b)
+          h = (h ^ static_cast<const unsigned char*>(p)[b]) * 1099511628211ULL;
+      };
+      for (const DrapeNode& n : r->result.nodes) {
+        feed(&n.status, sizeof n.status);
+        feed(n.point.data(), 3 * sizeof(double));
+      }
+      std::printf(
+          "%s %d^2 overlap test %s: %llu nodes, %llu overlap, peak heap %.1f B/node, digest "
+          "%016llx\n",
+          rf->name.c_str(), size, m ? "on" : "off", (unsigned long long)nodes,
+          (unsigned long long)r->result.metrics.nodes.overlap,
+          static_cast<double>(r->peak_heap) / static_cast<double>(nodes), (unsigned long long)h);
+    }
+  const double n = static_cast<double>(nodes);
+  for (int m : modes)
+    std::printf("test %s: wall %.0f ns/node, cpu %.0f ns/node (median of %d)\n", m ? "on" : "off",
+                median(wall[m]) * 1e9 / n, median(cpu[m]) * 1e9 / n, runs);
+  if (modes.size() == 2)
+    std::printf("cost: wall %+.1f %%, cpu %+.1f %%\n",
+                (median(wall[1]) / median(wall[0]) - 1) * 100,
+                (median(cpu[1]) / median(cpu[0]) - 1) * 100);
+  return 0;
+}
+
 int run_throughput(const std::vector<std::string>& args) {
   ThroughputOptions o;
   const std::string sizes = option_value(args, "--sizes", "");
@@ -769,6 +847,11 @@ int run_overlap(const std::vector<std::string>& args) {
   return ok ? 0 : 1;
 }
 
+const BenchmarkRegistrar kOverlapAb{
+    {"overlap-ab",
+     "one face of the overlap table with and without the test: wall and CPU ns/node, heap, "
+     "digest of the nodes [--face wave|octant|CAD|hemisphere --size N --runs R --only on|off]",
+     run_overlap_ab}};
 const BenchmarkRegistrar kOverlap{
     {"overlap",
      "cost of the overlap test (with and without, alternating) and closed against open faces "
