@@ -76,9 +76,9 @@ TEST_CASE("drape: cloth landing on cloth already laid is flagged on an open face
   }
 }
 
-TEST_CASE("overlap grid: the float-filtered test answers as the all-double one, at the radius") {
-  // OverlapGrid filters in floats relative to its cells and leaves the decision to the exact
-  // test: it must find every recorded node the exact test accepts, whatever the scale and
+TEST_CASE("overlap grid: the filtered test answers as the all-double one, at the radius") {
+  // OverlapGrid filters in 16-bit integer units relative to its cells and leaves the decision to
+  // the exact test: it must find every recorded node the exact test accepts, whatever the scale and
   // the distance from the origin. A flat sheet of recorded nodes; then cloth coming back
   // over it (ply positions far away) at unfavourable places: within a hair of the radius of
   // a recorded node (inside and outside), on cell boundaries, between recorded nodes, and
