@@ -44,6 +44,10 @@ struct SolveResult {
   /// For kFailed: set by the drape's scan, never by the solvers, where two fronts of cloth met
   /// at the node and disagree (NodeStatus::kConflict; `reason` says how).
   bool fronts_disagree = false;
+  /// For the two-sphere solver: no point of the face fits both links, as shown by the
+  /// spheres' circle of intersection passing the face at a distance (kShearLimit where the
+  /// links are a weft and a warp link, else kFailed).
+  bool no_point = false;
   /// Thread angle at the new node for the two-sphere solver (radians), else 0.
   double thread_angle = 0.0;
   const char* reason = "";  ///< why, for kFailed (and for kLeftFace: "outside" or "iterate")
@@ -129,6 +133,10 @@ struct UvDirection {
   /// At a degenerate point: no direction the face offers (the fan of the collapsed edge's
   /// derivatives) points along `dir`, so a step along it leaves the face at once.
   bool leaves_face = false;
+  /// The known point lies on a degenerate edge that is no pole (the derivative across the
+  /// edge vanishes, the one along it does not) and the step goes into the face: from_at is
+  /// a point across the edge, where the metric is regular.
+  bool from_singular_edge = false;
 };
 UvDirection uv_direction(const DrapeSurface& surface, const SurfaceLocation& at, const Vec3& dir);
 
