@@ -55,6 +55,9 @@ constexpr double kSettleReachRel = 0.1;
 // a circle smaller than kCircleMinRel of the radii (the spheres just touch) is not tried.
 constexpr int kCircleSamples = 8;
 constexpr int kCircleIterations = 100;
+// A plane-sphere step that no march solves is outside when the plane's and the sphere's
+// circle of intersection, sampled at this many points, passes the face at a distance.
+constexpr int kSectionSamples = 64;
 constexpr double kCircleMinRel = 1e-6;
 // Two solutions of one plane-sphere step are distinct when they lie further apart than this
 // fraction of the radius (the forward and backward ones lie about two radii apart).
@@ -614,6 +617,32 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
   SolveResult out = first;
   out.iterations = c.res.iterations;
   out.evaluations = c.res.evaluations;
+  // No point of the face lies on the circle where the plane meets the sphere when each of
+  // kSectionSamples points on it lies further from the face than the longest distance from a
+  // point of the circle to the nearest sample (their nearest points of the face found from
+  // the last one and from x0): the plane section through x0 closes, or leaves the face,
+  // within rho of it (a face narrower than the step). The step has no place on the face: the
+  // node is outside.
+  const Vec3 w = pn.cross(t);
+  const double reach = 2.0 * rho * std::sin(kPi / (2.0 * kSectionSamples));
+  SurfaceLocation seed = at0;
+  bool misses = true;
+  for (int k = 0; k < kSectionSamples && misses; ++k) {
+    const double th = 2.0 * kPi * k / kSectionSamples;
+    const Vec3 q = x0 + rho * (std::cos(th) * t + std::sin(th) * w);
+    Foot f = foot_near(s, st, q, seed, out.evaluations);
+    if (seed != at0) {
+      const Foot g = foot_near(s, st, q, at0, out.evaluations);
+      if (g.ok && (!f.ok || (g.p - q).norm() < (f.p - q).norm())) f = g;
+    }
+    misses = f.ok && (f.p - q).norm() > reach;
+    seed = f.at;
+  }
+  if (misses) {
+    out.status = SolveStatus::kLeftFace;
+    out.extended = false;
+    out.reason = "outside";
+  }
   return out;
 }
 

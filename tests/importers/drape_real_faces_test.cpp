@@ -229,6 +229,21 @@ TEST_CASE("drape: the solver places every node of the fuzz's failed drapes, or s
         Vec3(-0.314306, 0.942020, -0.117512), Vec2(0.059212, -0.998245), Vec2(-0.998245, -0.059212),
         Vec3(0.775455, 0.353231, 0.523352), true},
        24.3},
+      // Base-path steps from starts near that pinch whose plane section closes, or leaves the
+      // face, within the link length of the start: no point of the face on the step's
+      // circle, outside (were "no convergence" and "no intersection").
+      {{"surf114.igs", 3, 1.7211, Vec3(-24.814532, 30.583266, 59.236682),
+        Vec3(-0.149494, 0.944948, 0.291074), Vec2(-0.474019, 0.880515), Vec2(-0.880515, -0.474019),
+        Vec3(-0.523831, 0.270033, 0.807888), false},
+       90.0},
+      {{"surf114.igs", 3, 5.96022, Vec3(-36.348158, 22.972131, 67.628314),
+        Vec3(0.157407, -0.716464, -0.679634), Vec2(0.935203, -0.354111), Vec2(-0.354111, -0.935203),
+        Vec3(-0.973221, 0.229873, 0.000181), true},
+       90.0},
+      {{"surf114.igs", 3, 2.61943, Vec3(-23.390977, 22.688583, 55.967737),
+        Vec3(-0.103548, 0.647327, 0.755146), Vec2(0.996582, -0.082607), Vec2(-0.082607, -0.996582),
+        Vec3(0.690849, 0.580095, -0.431529), true},
+       90.0},
       {{"trj8_c2-db-214.stp", 0, 0.357266, Vec3(0.060902, 7.733558, 13.744241),
         Vec3(0.052916, 0.843536, -0.534460), Vec2(0.159222, -0.987243), Vec2(-0.987243, -0.159222),
         Vec3(0.457404, 0.429004, 0.778934), true},

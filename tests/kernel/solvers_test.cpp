@@ -596,3 +596,31 @@ TEST_CASE("solvers: steps from an edge where S_u vanishes but the edge is no pol
     }
   }
 }
+
+TEST_CASE("solvers: a step longer than the face's plane section is outside, not a failure") {
+  // Unit hemisphere z >= 0; P at latitude 45 degrees on the meridian y = 0, and a base plane
+  // through P with its normal m at latitude 25 degrees: it cuts the sphere in a circle of
+  // radius sin 20 degrees about (cos 20) m, all on the face, whose points lie at most its
+  // diameter 2 sin 20 = 0.684 from P. A base-path step of 1.0 has no place on the face; one of
+  // 0.3 has (a point of that circle).
+  const Face f = make_face(sphere_patch(1.0, 0.0, kPi / 2, -kPi, kPi));
+  const double c45 = std::cos(kPi / 4);
+  const Vec3 p(c45, 0, c45), m(std::cos(25 * kPi / 180), 0, std::sin(25 * kPi / 180));
+  const Projection at = f.project(p);
+  REQUIRE((at.point - p).norm() < 1e-12);
+  SolverSettings st;
+  st.spacing = 1.0;
+  for (const double rho : {0.3, 1.0}) {
+    const SolveResult r = solve_base_path(f, {p, at.at, m, Vec3(0, 1, 0), rho}, st);
+    INFO("rho " << rho << ": " << to_string(r.status) << " " << r.reason);
+    if (rho < 2 * std::sin(20 * kPi / 180)) {
+      REQUIRE(r.status == SolveStatus::kConverged);
+      CHECK(std::abs((r.point - p).dot(m)) < kConstraintRel);
+      CHECK(sphere_error(r.point, p, rho) < kConstraintRel);
+      CHECK(std::abs(r.point.norm() - 1) < kConstraintRel);
+      CHECK(r.point.y() > 0);
+    } else {
+      CHECK(r.status == SolveStatus::kLeftFace);
+    }
+  }
+}
