@@ -124,8 +124,10 @@ Vec3 rotate_about(const Vec3& v, const Vec3& axis, double angle);
 /// The (u, v) direction whose image J*a under the surface's first derivatives at a location
 /// is the component of `dir` in the tangent plane (least squares), together with the location
 /// to step from: at a degenerate point (a pole) the collapsed edge is searched for the
-/// parameter whose non-vanishing derivative best matches `dir`. The direction is scaled so
-/// that |J a| = 1 (a unit 3D step), in the chart of from_at.
+/// parameter whose non-vanishing derivative best matches `dir`; on a domain edge across which
+/// the derivative vanishes but which is no pole (from_singular_edge), the step leaves the face
+/// unless `dir` points into it, and starts from a point a short way across the edge. The
+/// direction is scaled so that |J a| = 1 (a unit 3D step), in the chart of from_at.
 struct UvDirection {
   SurfaceLocation from_at;
   Vec2 dir_uv = Vec2::Zero();
