@@ -64,10 +64,11 @@ SolveResult Scanner::solve_two(const DrapeNode& q, const DrapeNode& a, ThreadDir
   SolverSettings st = st_;
   if (is_weft(da) == is_weft(db)) st.gamma_min = 0.0;  // same thread: no thread angle
   SolveResult r = solve_two_spheres(s_, step, st);
-  // Two mapped nodes on one thread farther apart than the two links between them: fronts of
-  // cloth that met from both sides of the node, and no point joins them (a conflict).
+  // Two mapped nodes on one thread farther apart than the two links between them, or so
+  // little closer that the links would pass below the face (SolveResult::no_point): fronts
+  // of cloth that met from both sides of the node, and no point joins them (a conflict).
   if (is_weft(da) == is_weft(db) && r.status == SolveStatus::kFailed &&
-      (b.point - a.point).norm() > ra + rb) {
+      ((b.point - a.point).norm() > ra + rb || r.no_point)) {
     r.reason = "the fronts disagree: the thread between them would stretch";
     r.fronts_disagree = true;
   }

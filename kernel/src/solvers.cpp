@@ -26,6 +26,21 @@ constexpr double kStepCapSteps = 10.0;
 // solve, the solver marches along the curve in kMarchSteps sub-steps.
 constexpr double kTrustRatio = 0.5;
 constexpr int kMarchSteps[] = {4, 16};
+// An iterate where a first derivative of the surface vanishes (a pole, or an edge along
+// which the derivative across it vanishes: a degenerate parametrisation of a regular
+// surface) has a zero Jacobian column, and neither Newton nor Levenberg-Marquardt can move
+// it in that parameter. It is moved into the domain by this fraction of the domain's width in
+// that parameter, at most kMaxNudges times per solve.
+constexpr double kNudgeRel = 1e-6;
+constexpr int kMaxNudges = 4;
+// A step from a degenerate edge that is no pole (see singular_edge_direction) is told into
+// or off the face by the chord to the surface across the edge, of this fraction of the
+// step's length, found among parameter steps halved at most kSingularEdgeHalvings times.
+constexpr double kProbeRel = 1e-3;
+constexpr int kSingularEdgeHalvings = 60;
+// A degenerate point lies on a domain edge when within this fraction of the domain's width
+// of it (a start projected onto the edge lands within rounding of it, or a hair inside).
+constexpr double kEdgeNearRel = 1e-6;
 // Sine of the angle between base plane and tangent plane below which the plane is taken
 // as tangent to the surface (no intersection curve direction).
 constexpr double kTangentPlaneSin = 1e-6;
@@ -33,10 +48,16 @@ constexpr double kTangentPlaneSin = 1e-6;
 // from the point's projection there (DrapeSurface::settle).
 constexpr double kSettleReachRel = 0.1;
 // The two-sphere fallback across creases samples this many points on each quarter of the
-// spheres' circle of intersection and bisects the sign change for at most this many steps;
+// spheres' circle of intersection (the requested side's half first, then the other half:
+// where the normals at a and b disagree, at a pinch of the face, "the requested side" of the
+// circle may hold no solution while the other does, on the requested branch) and bisects
+// the sign change for at most this many steps;
 // a circle smaller than kCircleMinRel of the radii (the spheres just touch) is not tried.
 constexpr int kCircleSamples = 8;
 constexpr int kCircleIterations = 100;
+// A plane-sphere step that no march solves is outside when the plane's and the sphere's
+// circle of intersection, sampled at this many points, passes the face at a distance.
+constexpr int kSectionSamples = 64;
 constexpr double kCircleMinRel = 1e-6;
 // Two solutions of one plane-sphere step are distinct when they lie further apart than this
 // fraction of the radius (the forward and backward ones lie about two radii apart).
@@ -120,7 +141,7 @@ bool newton(Ctx& c, SurfaceLocation at, Resid&& resid) {
   Eigen::Matrix2d J;
   resid(e, f, J);
   double r = f.cwiseAbs().sum();
-  int outside_strikes = 0;
+  int outside_strikes = 0, nudges = 0;
   for (int it = 0;; ++it) {
     if (!(r == r) || !f.allFinite()) break;  // defensive: never iterate on NaN
     if (r < c.eps) {
@@ -154,6 +175,25 @@ bool newton(Ctx& c, SurfaceLocation at, Resid&& resid) {
       A(0, 0) += kLmDampingRel * D.x();
       A(1, 1) += kLmDampingRel * D.y();
       step = -A.inverse() * (J.transpose() * f);
+    }
+    if ((!step.allFinite() || !(c0 > 0.0 && c1 > 0.0)) && nudges < kMaxNudges) {
+      // A vanishing derivative (a zero column): the iterate is moved off the point along that
+      // parameter, into the domain, where the derivative no longer vanishes.
+      const SurfaceLocation w = c.s.wrap(at);
+      const ParamDomain& d = c.s.domain(w);
+      Vec2 uv = w.uv;
+      if (!(c0 > 0.0)) uv.x() += kNudgeRel * d.width_u() * (uv.x() < 0.5 * (d.u0 + d.u1) ? 1 : -1);
+      if (!(c1 > 0.0)) uv.y() += kNudgeRel * d.width_v() * (uv.y() < 0.5 * (d.v0 + d.v1) ? 1 : -1);
+      const SurfaceEval1 e2 = c.s.eval1(w.with_uv(uv));
+      ++c.res.evaluations;
+      ++nudges;
+      if (e2.ok && (c0 > 0.0 || c1 > 0.0)) {
+        at = w.with_uv(uv);
+        e = e2;
+        resid(e, f, J);
+        r = f.cwiseAbs().sum();
+        continue;
+      }
     }
     if (!step.allFinite() || !(c0 + c1 > 0.0)) {
       c.res.iterations += it;
@@ -354,9 +394,70 @@ Vec3 rotate_about(const Vec3& v, const Vec3& axis, double angle) {
 
 namespace {
 
-// uv_direction with the evaluation e and the face normal n at uv already known.
+// At a degenerate point on a domain edge across which the derivative vanishes while the one
+// along the edge does not (the edge is no pole: a regular surface parametrised as
+// S(u0 + s^(1/k), v) near u = u0, k > 1), a step leaves the face unless it has a component
+// into the face, along the chord from the point to the surface a short way across the edge
+// (its length kProbeRel of the step's). Otherwise it starts from a point across the edge,
+// the farthest of the parameter steps width * 2^-j whose chord is at most half the step's
+// length, with the direction of the metric there (the first-order model at the edge itself
+// cannot move across it). False when the point is not of this kind.
+bool singular_edge_direction(const DrapeSurface& surface, const SurfaceLocation& at,
+                             const SurfaceEval1& e, const Vec3& n, const Vec3& dt, double reach,
+                             UvDirection& out) {
+  const Vec2 sp = surface.speeds(at);
+  const bool across_u = e.du.norm() * sp.y() < e.dv.norm() * sp.x();  // S_u vanishes
+  const ParamDomain& d = surface.domain(at);
+  const double lo = across_u ? d.u0 : d.v0, hi = across_u ? d.u1 : d.v1;
+  const double x = across_u ? at.uv.x() : at.uv.y(), y = across_u ? at.uv.y() : at.uv.x();
+  const double ylo = across_u ? d.v0 : d.u0, yhi = across_u ? d.v1 : d.u1;
+  const double px = kEdgeNearRel * (hi - lo), py = kEdgeNearRel * (yhi - ylo);
+  const bool on_edge = std::abs(x - lo) <= px || std::abs(x - hi) <= px;
+  const bool on_cross_edge = std::abs(y - ylo) <= py || std::abs(y - yhi) <= py;
+  if (!on_edge || on_cross_edge) return false;  // a pole, or a corner: see fan_fit
+  const Vec2 axis = (std::abs(x - lo) <= px ? 1.0 : -1.0) * (across_u ? Vec2(1, 0) : Vec2(0, 1));
+  const Vec3 along = (across_u ? e.dv : e.du).normalized();
+  if (!along.allFinite()) return false;
+  // The parameter steps width * 2^-j, j = 0, 1, ...: the chords to the surface there.
+  const double len = reach > 0.0 ? reach : kProbeRel * surface.size();
+  Vec3 probe = Vec3::Zero();
+  SurfaceLocation start;
+  bool have_start = false;
+  const double dt_len = dt.norm();
+  for (int j = 0; j < kSingularEdgeHalvings; ++j) {
+    const SurfaceLocation q = at.with_uv(at.uv + std::ldexp(hi - lo, -j) * axis);
+    const SurfaceEval1 eq = surface.eval1(q);
+    if (!eq.ok) continue;
+    Vec3 c = eq.p - e.p;
+    c -= c.dot(n) * n + c.dot(along) * along;  // the inward part, in the tangent plane
+    if (!have_start && c.norm() <= 0.5 * len) {
+      start = q;
+      have_start = true;
+    }
+    if (c.norm() <= kProbeRel * len && c.norm() > 0.0) {
+      probe = c.normalized();
+      break;
+    }
+  }
+  if (!(probe.norm() > 0.0) || !(dt_len > 0.0)) return false;
+  const double beta = dt.dot(probe) / dt_len;
+  if (beta <= detail::kMinFanCos) {
+    out.leaves_face = true;
+    return true;
+  }
+  if (!have_start) return false;
+  out.from_at = start;
+  out.from_singular_edge = true;
+  const SurfaceEval1 ef = surface.eval1(start);
+  out.ok = ef.ok && metric_direction(ef, dt, out.dir_uv);
+  return true;
+}
+
+// uv_direction with the evaluation e and the face normal n at uv already known; `reach` is
+// the length of the step to be taken (see singular_edge_direction), 0 if unknown.
 UvDirection uv_direction_at(const DrapeSurface& surface, const SurfaceLocation& at,
-                            const SurfaceEval1& e, const Vec3& n, const Vec3& dir) {
+                            const SurfaceEval1& e, const Vec3& n, const Vec3& dir,
+                            double reach = 0.0) {
   UvDirection out;
   out.from_at = at;
   if (!e.ok) return out;
@@ -368,6 +469,7 @@ UvDirection uv_direction_at(const DrapeSurface& surface, const SurfaceLocation& 
     out.ok = metric_direction(e, dt, out.dir_uv);
     return out;
   }
+  if (singular_edge_direction(surface, at, e, n, dt, reach, out)) return out;
   // A pole: one derivative vanishes along a collapsed edge. Slide along that edge to the
   // parameter whose remaining derivative points best along dir.
   const bool v_collapsed = e.dv.norm() * sp.x() <= e.du.norm() * sp.y();
@@ -420,10 +522,11 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
                               const SurfaceEval1& e0, const Vec3& n0, const Vec3& pn, const Vec3& t,
                               double rho, const SolverSettings& st) {
   Ctx c(s, st);
-  const UvDirection ud = uv_direction_at(s, at0, e0, n0, t);
+  const UvDirection ud = uv_direction_at(s, at0, e0, n0, t, rho);
   if (ud.leaves_face) {
     c.res.status = SolveStatus::kLeftFace;
-    c.res.reason = "the step leaves the face at a collapsed edge (pole)";
+    c.res.reason =
+        "the step leaves the face at a degenerate edge (a pole, or a singular parametrisation)";
     return c.res;
   }
   if (!ud.ok) {
@@ -463,13 +566,16 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
   };
   // Direct attempt from the first-order guess (eqs. 7-8).
   const SurfaceLocation guess = s.locate(ud.from_at, ud.from_at.uv + rho * ud.dir_uv);
+  // From a singular edge into the face, a solution past the edge is no continuation of the
+  // curve (the direct guess lies far across the edge, where other solutions may be): the
+  // march decides.
   if (solve_from(guess)) {
     classify_converged(c);
-    return c.res;
+    if (!(ud.from_singular_edge && c.res.status == SolveStatus::kLeftFace)) return c.res;
   }
   // Leaving the face is the answer when the first-order model is trustworthy: the surface
   // point at the guess is close to the intended 3D point.
-  if (c.res.status == SolveStatus::kLeftFace) {
+  if (c.res.status == SolveStatus::kLeftFace && !ud.from_singular_edge) {
     const SurfaceEval1 eg = s.eval1(guess);
     ++c.res.evaluations;
     if (eg.ok && (eg.p - (x0 + rho * t)).norm() <= kTrustRatio * rho) return c.res;
@@ -478,11 +584,14 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
   // extrapolated from the previous two solutions.
   const SolveResult first = c.res;
   for (int K : kMarchSteps) {
-    SurfaceLocation prev = ud.from_at, prev2 = ud.from_at, g = ud.from_at;
+    // From a singular edge, the first sub-step starts where the metric models it.
+    const UvDirection uk = ud.from_singular_edge ? uv_direction_at(s, at0, e0, n0, t, rho / K) : ud;
+    if (!uk.ok) continue;
+    SurfaceLocation prev = uk.from_at, prev2 = uk.from_at, g = uk.from_at;
     bool ok = true;
     for (int k = 1; k <= K && ok; ++k) {
       rad = rho * k / K;
-      g = k == 1 ? s.locate(ud.from_at, ud.from_at.uv + rad * ud.dir_uv)
+      g = k == 1 ? s.locate(uk.from_at, uk.from_at.uv + rad * uk.dir_uv)
                  : continue_step(s, prev2, prev);
       ok = solve_from(g);
       if (ok) {
@@ -498,7 +607,7 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
     // already off the face ends the march: the node is outside. (Its iterate left the margin, or
     // Newton stalled on the surface extended past a domain edge, which need not go on.)
     // Otherwise try finer sub-steps.
-    if (!s.contains(g) || (prev != ud.from_at && !s.contains(prev))) {
+    if (!s.contains(g) || (prev != uk.from_at && !s.contains(prev))) {
       c.res.status = SolveStatus::kLeftFace;
       c.res.extended = false;
       c.res.reason = "outside";
@@ -508,6 +617,32 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
   SolveResult out = first;
   out.iterations = c.res.iterations;
   out.evaluations = c.res.evaluations;
+  // No point of the face lies on the circle where the plane meets the sphere when each of
+  // kSectionSamples points on it lies further from the face than the longest distance from a
+  // point of the circle to the nearest sample (their nearest points of the face found from
+  // the last one and from x0): the plane section through x0 closes, or leaves the face,
+  // within rho of it (a face narrower than the step). The step has no place on the face: the
+  // node is outside.
+  const Vec3 w = pn.cross(t);
+  const double reach = 2.0 * rho * std::sin(kPi / (2.0 * kSectionSamples));
+  SurfaceLocation seed = at0;
+  bool misses = true;
+  for (int k = 0; k < kSectionSamples && misses; ++k) {
+    const double th = 2.0 * kPi * k / kSectionSamples;
+    const Vec3 q = x0 + rho * (std::cos(th) * t + std::sin(th) * w);
+    Foot f = foot_near(s, st, q, seed, out.evaluations);
+    if (seed != at0) {
+      const Foot g = foot_near(s, st, q, at0, out.evaluations);
+      if (g.ok && (!f.ok || (g.p - q).norm() < (f.p - q).norm())) f = g;
+    }
+    misses = f.ok && (f.p - q).norm() > reach;
+    seed = f.at;
+  }
+  if (misses) {
+    out.status = SolveStatus::kLeftFace;
+    out.extended = false;
+    out.reason = "outside";
+  }
   return out;
 }
 
@@ -723,17 +858,15 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
       seed = f.at;
       return (q - f.p).dot(f.n);
     };
-    // The half circle from below the surface (-pi/2) to above it (pi/2), sampled from its
-    // middle (the planar solution) outwards for the sign change nearest the middle.
-    // Sampled from the middle (the planar solution) outwards on both sides, for the sign
-    // change nearest the middle.
+    // The whole circle, sampled from the middle of the requested side's half (the planar
+    // solution) outwards on both sides, for the sign change nearest the middle.
     Foot f0, f1;
     const double fmid = signed_distance(0.0, f0);
     if (!(fmid == fmid)) return false;
     double lo = 0.0, hi = 0.0, flo = fmid, fhi = fmid;
     bool bracket = std::abs(fmid) < 0.5 * c.eps;  // the planar solution is on the surface
     double prev_th[2] = {0.0, 0.0}, prev_f[2] = {fmid, fmid};
-    for (int k = 1; k <= kCircleSamples && !bracket; ++k)
+    for (int k = 1; k <= 2 * kCircleSamples && !bracket; ++k)
       for (int side = 0; side < 2 && !bracket; ++side) {
         const double th = (side ? -1.0 : 1.0) * 0.5 * kPi * k / kCircleSamples;
         const double f = signed_distance(th, f1);
@@ -835,6 +968,37 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
   //    side of the line a-b, crosses the surface where its signed distance to it changes
   //    sign: found by bisection on the circle's angle.
   if (c.res.status != SolveStatus::kLeftFace && attempt_circle()) return c.res;
+  // No point of the face fits both links when the spheres' circle of intersection (centre m,
+  // radius h) passes the face at a distance: every point of the circle lies within h of m,
+  // so a face whose nearest point to m is further than h from it misses the circle. With
+  // the spheres meeting (checked above), the links, straight chords, would pass below a
+  // curved face: for a weft and a warp link a cell sheared so nearly flat that the cloth
+  // stops there as at the shear limit (its thread angle, fixed by the three lengths, is
+  // reported); for two links of one thread, a thread that would have to stretch.
+  if (c.res.status == SolveStatus::kFailed) {
+    const double x = (L * L + ra * ra - rb * rb) / (2 * L);
+    const double h = std::sqrt(std::max(ra * ra - x * x, 0.0));
+    const Vec3 m = a + x * e_ab;
+    double gap = std::numeric_limits<double>::infinity();
+    for (const SurfaceLocation* from : {&step.a_at, &step.b_at}) {
+      const Foot f = foot_near(s, st, m, *from, c.res.evaluations);
+      gap = f.ok ? std::min(gap, (f.p - m).norm()) : -1.0;
+      if (!(gap > h + c.eps)) break;
+    }
+    if (gap > h + c.eps) {
+      c.res.no_point = true;
+      c.res.reason = "no point of the face fits both links (they would pass below the face)";
+      if (st.gamma_min > 0.0) {
+        c.res.status = SolveStatus::kShearLimit;
+        c.res.thread_angle =
+            std::acos(std::clamp((ra * ra + rb * rb - L * L) / (2 * ra * rb), -1.0, 1.0));
+        c.res.reason =
+            "no point of the face fits both links (the cell is sheared so flat that "
+            "they pass below the curved face)";
+      }
+      return c.res;
+    }
+  }
   // Near the shear limit the spheres meet almost tangentially and Newton may stall:
   // eq. (12) on the last iterate tells the shear limit from a plain failure.
   if (c.res.status == SolveStatus::kFailed && st.gamma_min > 0.0 && c.res.point.allFinite()) {

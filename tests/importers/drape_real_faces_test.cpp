@@ -200,3 +200,68 @@ TEST_CASE(
     CHECK(crossings == 0);
   }
 }
+
+TEST_CASE("drape: the solver places every node of the fuzz's failed drapes, or says why") {
+  // Found by scripts/fuzz-drape (seed 29), each with failed nodes before:
+  // - surf114 face 3 has an edge u = 0 along which S_u vanishes (S ~ u^3 across it; no pole:
+  //   S_v does not vanish) and, close to it, a pinch where the face narrows to a point. Starts
+  //   projected onto that edge failed with "degenerate Jacobian" (Newton cannot move u off
+  //   the edge), "converged backwards" (the step's direction taken along the edge), and "only
+  //   the folded branch was found" (the other branch lies on the far side of the spheres'
+  //   circle, beyond the half the solver searched).
+  // - a weft and a warp link whose spheres meet in a circle that passes below the curved face
+  //   (trj8 face 0: the cell sheared to 178.4 degrees): no point fits both, the shear limit;
+  //   two links of one thread in that state (trj8, surf114 face 1): a conflict.
+  const std::vector<std::pair<Case, double>> cases = {
+      {{"surf114.igs", 3, 3.51496, Vec3(-40.673514, 31.639339, 65.676737),
+        Vec3(0.874413, 0.230201, 0.427093), Vec2(0.914695, 0.404146), Vec2(0.404146, -0.914695),
+        Vec3(-0.874930, 0.214282, -0.434259), true},
+       90.0},
+      {{"surf114.igs", 3, 1.95826, Vec3(-27.745601, 26.844705, 65.556859),
+        Vec3(0.259642, -0.428250, -0.865556), Vec2(0.990955, 0.134196), Vec2(-0.134196, 0.990955),
+        Vec3(-0.985481, 0.015104, -0.169114), false},
+       90.0},
+      {{"surf114.igs", 3, 4.46383, Vec3(-24.227701, 29.273242, 59.588073),
+        Vec3(-0.324742, 0.856559, 0.401061), Vec2(0.548904, 0.835885), Vec2(-0.835885, 0.548904),
+        Vec3(-0.715126, 0.420300, 0.558518), true},
+       54.5},
+      {{"surf114.igs", 1, 0.186507, Vec3(-41.364929, 64.101833, 64.163413),
+        Vec3(-0.314306, 0.942020, -0.117512), Vec2(0.059212, -0.998245), Vec2(-0.998245, -0.059212),
+        Vec3(0.775455, 0.353231, 0.523352), true},
+       24.3},
+      // Base-path steps from starts near that pinch whose plane section closes, or leaves the
+      // face, within the link length of the start: no point of the face on the step's
+      // circle, outside (were "no convergence" and "no intersection").
+      {{"surf114.igs", 3, 1.7211, Vec3(-24.814532, 30.583266, 59.236682),
+        Vec3(-0.149494, 0.944948, 0.291074), Vec2(-0.474019, 0.880515), Vec2(-0.880515, -0.474019),
+        Vec3(-0.523831, 0.270033, 0.807888), false},
+       90.0},
+      {{"surf114.igs", 3, 5.96022, Vec3(-36.348158, 22.972131, 67.628314),
+        Vec3(0.157407, -0.716464, -0.679634), Vec2(0.935203, -0.354111), Vec2(-0.354111, -0.935203),
+        Vec3(-0.973221, 0.229873, 0.000181), true},
+       90.0},
+      {{"surf114.igs", 3, 2.61943, Vec3(-23.390977, 22.688583, 55.967737),
+        Vec3(-0.103548, 0.647327, 0.755146), Vec2(0.996582, -0.082607), Vec2(-0.082607, -0.996582),
+        Vec3(0.690849, 0.580095, -0.431529), true},
+       90.0},
+      {{"trj8_c2-db-214.stp", 0, 0.357266, Vec3(0.060902, 7.733558, 13.744241),
+        Vec3(0.052916, 0.843536, -0.534460), Vec2(0.159222, -0.987243), Vec2(-0.987243, -0.159222),
+        Vec3(0.457404, 0.429004, 0.778934), true},
+       90.0},
+      {{"trj8_c2-db-214.stp", 0, 0.334995, Vec3(1.515969, -3.484702, 40.852554),
+        Vec3(0.108322, -0.459263, 0.881671), Vec2(-0.993260, 0.115906), Vec2(0.115906, 0.993260),
+        Vec3(0.264778, 0.903347, 0.337427), true},
+       90.0},
+  };
+  for (const auto& [c, lock_deg] : cases) {
+    INFO(c.file << " face " << c.face << " d " << c.d << " lock " << lock_deg);
+    const Face face = load(c);
+    DrapeOptions opt;
+    opt.lock_angle = lock_deg * 3.14159265358979323846 / 180;
+    auto r = drape(face, problem(c), opt);
+    REQUIRE(r.ok());
+    int failed = 0;
+    for (const DrapeNode& n : r->nodes) failed += n.status == NodeStatus::kFailed;
+    CHECK(failed == 0);
+  }
+}

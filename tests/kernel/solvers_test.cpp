@@ -508,3 +508,119 @@ TEST_CASE("solvers: a cell sheared nearly flat across two faces of sphere-8 is s
   CHECK(sphere_error(r.point, a, d) < kConstraintRel * d);
   CHECK(sphere_error(r.point, b, d) < kConstraintRel * d);
 }
+
+TEST_CASE("solvers: links that would pass below a curved face are the shear limit, not a failure") {
+  // Unit sphere; a and b on the equator 60 degrees apart (|a - b| = 1). The points at equal
+  // distance r from both lie on the meridian plane y = 0, (cos phi, 0, sin phi), at distance
+  // sqrt(2 - sqrt(3) cos phi) >= sqrt(2 - sqrt(3)) = 0.5176 from them: for r below that no
+  // point of the sphere fits both links, although the spheres about a and b meet (2 r > 1).
+  const Face f = make_face(sphere_patch(1.0, -kPi / 4, kPi / 4, -kPi / 3, kPi / 3));
+  const Vec3 a(std::cos(kPi / 6), -0.5, 0), b(std::cos(kPi / 6), 0.5, 0);
+  SolverSettings st;
+  st.spacing = 0.5;
+  auto step = [&](double r) {
+    return TwoSphereStep{a, f.project(a).at, r, b, f.project(b).at, r, 1.0, std::nullopt};
+  };
+  SECTION("a solution exists: found, on the meridian") {
+    const double r = 0.55;
+    st.gamma_min = st.tol.fold_angle;
+    const SolveResult q = solve_two_spheres(f, step(r), st);
+    REQUIRE(q.status == SolveStatus::kConverged);
+    const double cos_phi = (2 - r * r) / std::sqrt(3.0);
+    CHECK(std::abs(q.point.y()) < kConstraintRel);
+    CHECK(std::abs(std::abs(q.point.z()) - std::sqrt(1 - cos_phi * cos_phi)) < kConstraintRel);
+    CHECK(sphere_error(q.point, a, r) < kConstraintRel);
+    CHECK(sphere_error(q.point, b, r) < kConstraintRel);
+  }
+  SECTION("no solution: the shear limit for a weft and a warp link, with its thread angle") {
+    const double r = 0.505;
+    st.gamma_min = st.tol.fold_angle;  // no lock angle: only the fold angle, 1 degree
+    const SolveResult q = solve_two_spheres(f, step(r), st);
+    INFO(to_string(q.status) << " " << q.reason);
+    CHECK(q.status == SolveStatus::kShearLimit);
+    CHECK(q.no_point);
+    // The thread angle of the three lengths: cos = (2 r^2 - 1) / (2 r^2), 163.9 degrees.
+    CHECK(std::abs(q.thread_angle - std::acos((2 * r * r - 1) / (2 * r * r))) < 1e-12);
+  }
+  SECTION("no solution: two links of one thread fail, saying that no point fits") {
+    st.gamma_min = 0.0;
+    const SolveResult q = solve_two_spheres(f, step(0.505), st);
+    CHECK(q.status == SolveStatus::kFailed);
+    CHECK(q.no_point);
+  }
+}
+
+TEST_CASE("solvers: steps from an edge where S_u vanishes but the edge is no pole") {
+  // The square [0, 10]^2 in z = 0 with x = 10 u^k (k = 2, 3): S_u = 0 all along the edge u = 0,
+  // which is 10 long (S_v does not vanish there). From its middle, a step across the edge into
+  // the face lands at the exact point; a step out of the face leaves it.
+  for (const int k : {2, 3}) {
+    NurbsSurfaceData d;
+    d.degree_u = k;
+    d.count_u = k + 1;
+    d.degree_v = 1;
+    d.count_v = 2;
+    d.knots_u.assign(static_cast<std::size_t>(k + 1), 0.0);
+    d.knots_u.resize(static_cast<std::size_t>(2 * k + 2), 1.0);
+    d.knots_v = {0, 0, 1, 1};
+    for (int i = 0; i <= k; ++i)
+      for (int j = 0; j < 2; ++j) d.poles.emplace_back(i == k ? 10.0 : 0.0, 10.0 * j, 0.0);
+    const Face f = make_face(d);
+    const Vec3 x0(0, 5, 0);
+    const SurfaceLocation at0(Vec2(0, 0.5));
+    REQUIRE((f.eval1(at0).p - x0).norm() < 1e-14);
+    REQUIRE(f.eval1(at0).du.norm() == 0.0);
+    SolverSettings st;
+    st.spacing = 1.0;
+    INFO("x = 10 u^" << k);
+    SECTION("base path") {
+      const SolveResult in = solve_base_path(f, {x0, at0, Vec3(0, 1, 0), Vec3(1, 0, 0), 1.0}, st);
+      INFO(to_string(in.status) << " " << in.reason);
+      REQUIRE(in.status == SolveStatus::kConverged);
+      CHECK((in.point - Vec3(1, 5, 0)).norm() < kConstraintRel);
+      check_on_surface(f, in);
+      const SolveResult out = solve_base_path(f, {x0, at0, Vec3(0, 1, 0), Vec3(-1, 0, 0), 1.0}, st);
+      INFO(to_string(out.status) << " " << out.reason);
+      CHECK(out.status == SolveStatus::kLeftFace);
+    }
+    SECTION("plane-sphere, across the edge and obliquely") {
+      for (const Vec3& dir : {Vec3(1, 0, 0), Vec3(0.6, 0.8, 0), Vec3(0.6, -0.8, 0)}) {
+        const SolveResult in = solve_plane_sphere(f, {x0, at0, 1.0, dir}, st);
+        INFO(dir.transpose() << ": " << to_string(in.status) << " " << in.reason);
+        REQUIRE(in.status == SolveStatus::kConverged);
+        CHECK((in.point - (x0 + dir)).norm() < kConstraintRel);
+        check_on_surface(f, in);
+      }
+      const SolveResult out = solve_plane_sphere(f, {x0, at0, 1.0, Vec3(-0.6, 0.8, 0)}, st);
+      CHECK(out.status == SolveStatus::kLeftFace);
+    }
+  }
+}
+
+TEST_CASE("solvers: a step longer than the face's plane section is outside, not a failure") {
+  // Unit hemisphere z >= 0; P at latitude 45 degrees on the meridian y = 0, and a base plane
+  // through P with its normal m at latitude 25 degrees: it cuts the sphere in a circle of
+  // radius sin 20 degrees about (cos 20) m, all on the face, whose points lie at most its
+  // diameter 2 sin 20 = 0.684 from P. A base-path step of 1.0 has no place on the face; one of
+  // 0.3 has (a point of that circle).
+  const Face f = make_face(sphere_patch(1.0, 0.0, kPi / 2, -kPi, kPi));
+  const double c45 = std::cos(kPi / 4);
+  const Vec3 p(c45, 0, c45), m(std::cos(25 * kPi / 180), 0, std::sin(25 * kPi / 180));
+  const Projection at = f.project(p);
+  REQUIRE((at.point - p).norm() < 1e-12);
+  SolverSettings st;
+  st.spacing = 1.0;
+  for (const double rho : {0.3, 1.0}) {
+    const SolveResult r = solve_base_path(f, {p, at.at, m, Vec3(0, 1, 0), rho}, st);
+    INFO("rho " << rho << ": " << to_string(r.status) << " " << r.reason);
+    if (rho < 2 * std::sin(20 * kPi / 180)) {
+      REQUIRE(r.status == SolveStatus::kConverged);
+      CHECK(std::abs((r.point - p).dot(m)) < kConstraintRel);
+      CHECK(sphere_error(r.point, p, rho) < kConstraintRel);
+      CHECK(std::abs(r.point.norm() - 1) < kConstraintRel);
+      CHECK(r.point.y() > 0);
+    } else {
+      CHECK(r.status == SolveStatus::kLeftFace);
+    }
+  }
+}

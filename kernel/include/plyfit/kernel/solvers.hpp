@@ -44,6 +44,10 @@ struct SolveResult {
   /// For kFailed: set by the drape's scan, never by the solvers, where two fronts of cloth met
   /// at the node and disagree (NodeStatus::kConflict; `reason` says how).
   bool fronts_disagree = false;
+  /// For the two-sphere solver: no point of the face fits both links, as shown by the
+  /// spheres' circle of intersection passing the face at a distance (kShearLimit where the
+  /// links are a weft and a warp link, else kFailed).
+  bool no_point = false;
   /// Thread angle at the new node for the two-sphere solver (radians), else 0.
   double thread_angle = 0.0;
   const char* reason = "";  ///< why, for kFailed (and for kLeftFace: "outside" or "iterate")
@@ -120,8 +124,10 @@ Vec3 rotate_about(const Vec3& v, const Vec3& axis, double angle);
 /// The (u, v) direction whose image J*a under the surface's first derivatives at a location
 /// is the component of `dir` in the tangent plane (least squares), together with the location
 /// to step from: at a degenerate point (a pole) the collapsed edge is searched for the
-/// parameter whose non-vanishing derivative best matches `dir`. The direction is scaled so
-/// that |J a| = 1 (a unit 3D step), in the chart of from_at.
+/// parameter whose non-vanishing derivative best matches `dir`; on a domain edge across which
+/// the derivative vanishes but which is no pole (from_singular_edge), the step leaves the face
+/// unless `dir` points into it, and starts from a point a short way across the edge. The
+/// direction is scaled so that |J a| = 1 (a unit 3D step), in the chart of from_at.
 struct UvDirection {
   SurfaceLocation from_at;
   Vec2 dir_uv = Vec2::Zero();
@@ -129,6 +135,10 @@ struct UvDirection {
   /// At a degenerate point: no direction the face offers (the fan of the collapsed edge's
   /// derivatives) points along `dir`, so a step along it leaves the face at once.
   bool leaves_face = false;
+  /// The known point lies on a degenerate edge that is no pole (the derivative across the
+  /// edge vanishes, the one along it does not) and the step goes into the face: from_at is
+  /// a point across the edge, where the metric is regular.
+  bool from_singular_edge = false;
 };
 UvDirection uv_direction(const DrapeSurface& surface, const SurfaceLocation& at, const Vec3& dir);
 
