@@ -192,7 +192,8 @@ std::optional<Cut> cut_tip(const std::vector<Loop>& loops, std::size_t li, Index
   const Index ha = (rest + 1) / 2, hb = rest - ha;
   // The two sides of the tip: A backwards from k, B forwards from q, half the rest each.
   const Arc A{&l, k, -1, 1 + ha}, B{&l, q, 1, 1 + hb};
-  const auto ma = mouth(A, 0, B, w), mb = mouth(B, 0, A, w);
+  const double wc = w * (1.0 + kCutChordMargin);
+  const auto ma = mouth(A, 0, B, wc), mb = mouth(B, 0, A, wc);
   if (!ma || !mb) {
     *whole_loop = true;
     return std::nullopt;

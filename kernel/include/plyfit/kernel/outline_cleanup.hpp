@@ -23,6 +23,13 @@ namespace plyfit {
 /// (degrees) is the tip of a narrow feature (the outline checks' kSpikeTurnDeg).
 inline constexpr double kSliverTurnDeg = 170.0;
 
+/// A chord is placed where the width reaches w (1 + kCutChordMargin), not w: a chord of
+/// exactly w comes out an ulp or so short from its rounded end points, and a check of the
+/// cut outline (a run shorter than w that turns back is a spike) would then count the chord
+/// itself as part of a spike. The margin is far below any length that matters and far
+/// above rounding.
+inline constexpr double kCutChordMargin = 1e-9;
+
 /// Options of outline_cleanup().
 struct OutlineCleanupOptions {
   /// Minimum width w (model units) of cloth and of gaps in the cut outline; 0 turns the
