@@ -227,8 +227,10 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
     res.partial = true;
     res.warnings.push_back(
         "the base path stops at ply (" + brief(slit.stop.x()) + ", " + brief(slit.stop.y()) +
-        ") at a gap in the surface that is no hole of one face (a missing face, or a notch "
-        "outside the face's outer boundary) while the cloth goes on beyond it: " +
+        ") while the cloth goes on beyond it along the path's line (the base plane's section "
+        "ends there: at a gap in the surface that is no hole of one face, such as a missing "
+        "face or a notch outside the face's outer boundary, or where the section leaves the "
+        "face or curls back on itself): " +
         std::to_string(slit.links) +
         " thread link(s) across the path's line there join the two sweeps' cloth unsolved "
         "(a slit in the flat pattern)");

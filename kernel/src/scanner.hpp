@@ -70,7 +70,8 @@ class Scanner {
   std::uint64_t path_off_ply() const { return path_off_ply_; }
   /// A slit along the base path's line: thread links across the line beyond the path's
   /// ends that join cloth mapped by the two sweeps (the path stopped where the surface has a
-  /// gap that is no hole of one face, and the face goes on beyond it; see path_slits()).
+  /// gap that is no hole of one face, or where its plane's section left the face or curled
+  /// back, and the cloth goes on beyond it; see path_slits()).
   struct PathSlit {
     std::uint64_t links = 0;   ///< such links (0: no slit)
     Vec2 stop = Vec2::Zero();  ///< ply position of the path node where the path stopped
