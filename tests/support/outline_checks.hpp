@@ -519,19 +519,12 @@ inline RandomDrape random_drape(const DrapeSurface& s, const std::string& name, 
   const Vec2 w2 = side * Vec2(-b2.y(), b2.x());
   const Vec3 bn = unit(), sw = unit();
   rd.d = s.size() / (15.0 + 45.0 * u01(g));
-  DrapeProblem& pb = rd.problem;
-  pb.ply.d_weft = pb.ply.d_warp = rd.d;
-  pb.ply.start = Vec2(0, 0);
-  pb.ply.base_dir = b2;
-  pb.ply.sweeps = {w2};
-  pb.start = start;
-  pb.base_normal = bn;
-  pb.sweeps = {sw};
-  if (u01(g) < 0.5) {
-    pb.ply.sweeps.push_back(-w2);
-    pb.sweeps.push_back(-sw);
-  }
-  if (u01(g) < 0.3) rd.options.lock_angle = (20.0 + 40.0 * u01(g)) * kPi / 180.0;
+  const bool both = u01(g) < 0.5;
+  const double lock = u01(g) < 0.3 ? (20.0 + 40.0 * u01(g)) * kPi / 180.0 : 0.0;
+  const DrapeCase c{"", "", rd.d, b2, w2, start, bn, sw, both, lock};
+  rd.problem = c.problem();
+  rd.options = c.options();
+  const DrapeProblem& pb = rd.problem;
   std::ostringstream what;
   what.precision(17);
   what << name << " drape " << k << ": d " << rd.d << " b2 " << b2.transpose() << " w2 "
