@@ -164,7 +164,8 @@ int run_drape(const std::vector<std::string>& args_in) {
             << m.nodes.auxiliary << " auxiliary base-path points), " << m.nodes.outside
             << " outside, " << m.nodes.off_ply << " off the ply, " << m.nodes.shear_limit
             << " at the shear limit, " << m.nodes.failed << " failed, " << m.nodes.overlap
-            << " overlapping, " << m.nodes.conflict << " in conflict; max shear "
+            << " overlapping, " << m.nodes.conflict << " in conflict"
+            << (m.nodes.path_end ? ", base path ended early" : "") << "; max shear "
             << out->shear_max_deg << " deg; " << static_cast<long>(out->total_ms) << " ms -> "
             << job->outdir << "\n";
   if (!quiet)

@@ -11,7 +11,8 @@ std::string outcome_to_json(const JobOutcome& o, int exit_code) {
                       {"auxiliary", n.auxiliary}, {"outside", n.outside},
                       {"off_ply", n.off_ply},     {"shear_limit", n.shear_limit},
                       {"failed", n.failed},       {"overlap", n.overlap},
-                      {"conflict", n.conflict},   {"shear_max_deg", o.shear_max_deg},
+                      {"conflict", n.conflict},   {"path_end", n.path_end},
+                      {"shear_max_deg", o.shear_max_deg},
                       {"total_ms", o.total_ms},   {"files", o.files}};
   return j.dump(2) + "\n";
 }
@@ -31,6 +32,7 @@ Result<JobOutcome> outcome_from_json(const std::string& text, int* exit_code) {
     o.metrics.nodes.failed = j.at("failed").get<std::uint64_t>();
     o.metrics.nodes.overlap = j.value("overlap", std::uint64_t{0});
     o.metrics.nodes.conflict = j.value("conflict", std::uint64_t{0});
+    o.metrics.nodes.path_end = j.value("path_end", std::uint64_t{0});
     o.shear_max_deg = j.at("shear_max_deg").get<double>();
     o.total_ms = j.at("total_ms").get<double>();
     o.files = j.at("files").get<std::vector<std::string>>();

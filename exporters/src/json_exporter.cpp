@@ -156,6 +156,7 @@ std::string report_json(const ExportContext& ctx) {
                 {"overlap", m.nodes.overlap},
                 {"failed", m.nodes.failed},
                 {"conflict", m.nodes.conflict},
+                {"path_end", m.nodes.path_end},
                 {"with_angle", m.angles}};
   for (const auto& [key, reasons] : {std::pair{"failed_reasons", &m.nodes.failed_reasons},
                                      std::pair{"conflict_reasons", &m.nodes.conflict_reasons}}) {

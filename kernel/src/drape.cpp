@@ -121,6 +121,31 @@ void judge_drape(const DrapeSurface& s, const DrapeProblem& pb, const Tolerances
                              "side (the start on the face's edge?)");
 }
 
+// A warning for each end of the base path (one for a path of one point) where the base
+// plane's section turned back or ended within one link (NodeStatus::kPathEnd): where, and the angle between the base plane
+// and the tangent plane at the path's last point there.
+void warn_path_ends(const DrapeSurface& s, DrapeResult& res) {
+  if (res.metrics.nodes.path_end == 0 || res.base_path.empty()) return;
+  const DrapeNode* warned = nullptr;  // a path of one point ends both ways there: one warning
+  for (const DrapeNode& n : res.nodes) {
+    if (n.status != NodeStatus::kPathEnd) continue;
+    const DrapeNode& a = res.nodes[res.base_path.front()];
+    const DrapeNode& b = res.nodes[res.base_path.back()];
+    const DrapeNode& last = (a.ply - n.ply).norm() <= (b.ply - n.ply).norm() ? a : b;
+    if (&last == warned) continue;
+    warned = &last;
+    const SurfaceNormal sn = s.normal(last.at());
+    const double sine = std::min(sn.n.cross(res.base_normal).norm(), 1.0);
+    res.partial = true;
+    res.warnings.push_back(
+        "the base path ends at ply (" + brief(last.ply.x()) + ", " + brief(last.ply.y()) +
+        "): the base plane lies " + brief(std::asin(sine) * kRadToDeg) +
+        " deg from the surface's tangent plane there and its section turns back (or ends where "
+        "the plane touches the surface) within one link ahead, so the path cannot go on; a "
+        "base-plane normal more nearly along the surface there carries the path further");
+  }
+}
+
 }  // namespace
 
 Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const DrapeOptions& opt) {
@@ -223,6 +248,7 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
         "fits all their links), so the cloth cannot be laid there as one piece: a dart or a "
         "splice is needed there, or another start or base path");
   }
+  warn_path_ends(s, res);
   if (const auto slit = scanner.path_slits(); slit.links > 0) {
     res.partial = true;
     res.warnings.push_back(

@@ -40,6 +40,8 @@ const char* to_string(NodeStatus s) {
       return "overlap";
     case NodeStatus::kConflict:
       return "conflict";
+    case NodeStatus::kPathEnd:
+      return "path_end";
     case NodeStatus::kPending:
       return "pending";
   }

@@ -145,6 +145,9 @@ void compute_metrics(const DrapeSurface& s, DrapeResult& res) {
       case NodeStatus::kConflict:
         ++m.nodes.conflict;
         break;
+      case NodeStatus::kPathEnd:
+        ++m.nodes.path_end;
+        break;
       case NodeStatus::kPending:
         break;
     }

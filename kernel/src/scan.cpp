@@ -110,6 +110,10 @@ void Scanner::resolve(std::uint32_t idx, const SolveResult& r) {
       n.status = NodeStatus::kShearLimit;
       break;
     case SolveStatus::kFailed:
+      if (r.section_ends) {
+        n.status = NodeStatus::kPathEnd;
+        break;
+      }
       n.status = r.fronts_disagree ? NodeStatus::kConflict : NodeStatus::kFailed;
       res_.failures.emplace_back(idx, r.reason);
       break;

@@ -59,6 +59,17 @@ constexpr int kCircleIterations = 100;
 // circle of intersection, sampled at this many points, passes the face at a distance.
 constexpr int kSectionSamples = 64;
 constexpr double kCircleMinRel = 1e-6;
+// A base-path step that neither the direct solve nor the march solves is traced along the
+// plane's section of the surface (see trace_section): steps of kTraceStepRel of the link
+// at first, halved while the section's tangent turns by more than kTraceTurnMax radians in
+// one step or Newton fails, down to kTraceMinStepRel of the link; at most kTraceMaxSteps
+// steps. The section ends where the plane comes within kSectionEndSin (the sine of the angle)
+// of the surface's tangent plane: a point where the section stops, or crosses itself.
+constexpr double kTraceStepRel = 1.0 / 8.0;
+constexpr double kTraceMinStepRel = 1.0 / 4096.0;
+constexpr double kTraceTurnMax = 0.35;
+constexpr int kTraceMaxSteps = 512;
+constexpr double kSectionEndSin = 1e-3;
 // Two solutions of one plane-sphere step are distinct when they lie further apart than this
 // fraction of the radius (the forward and backward ones lie about two radii apart).
 constexpr double kDistinctSolutionRel = 0.5;
@@ -508,6 +519,130 @@ UvDirection uv_direction(const DrapeSurface& surface, const SurfaceLocation& at,
 
 namespace {
 
+// The base plane's section of the surface traced forward from x0 (a known point of it, with
+// the section's unit tangent t there), by arc length: a step h along the tangent, then Newton
+// back onto the plane, on the plane through the predicted point square to the tangent (which
+// needs no monotone distance from x0, so it goes round the section's turns where the
+// plane-sphere march, stepping in that distance, stops). Used where the plane-sphere solve
+// failed: the plane nearly touches the surface ahead, and its section turns tightly or closes.
+// Returns
+// - the solution, where the traced section reaches distance rho from x0 (the first point of
+//   the section going forward at that distance, Newton on the plane and the sphere from the
+//   bracketing traced points), classified as any solve (on the face, or past it);
+// - kFailed with section_ends, where the section turns back towards x0 (its distance from x0
+//   decreases) before reaching rho, or reaches a point where the plane touches the surface:
+//   no forward point exists, the path ends there;
+// - kLeftFace "outside", where the traced section leaves the face (past its edge, not into one
+//   of its holes) before reaching rho;
+// - nothing where the trace could not go on (Newton failing at the smallest step).
+std::optional<SolveResult> trace_section(const DrapeSurface& s, const Vec3& x0,
+                                         const SurfaceLocation& at0, const Vec3& pn, Vec3 t,
+                                         double rho, const SolverSettings& st) {
+  Ctx c(s, st);
+  c.eps = residual_tolerance(s, st, x0, rho);
+  SurfaceLocation at = at0;
+  Vec3 p = x0;
+  double chord = 0.0;
+  double h = kTraceStepRel * rho;
+  const double h_min = kTraceMinStepRel * rho;
+  auto ends = [&](const char* reason) {
+    SolveResult r;
+    r.status = SolveStatus::kFailed;
+    r.section_ends = true;
+    r.reason = reason;
+    r.iterations = c.res.iterations;
+    r.evaluations = c.res.evaluations;
+    return r;
+  };
+  auto outside = [&]() {
+    SolveResult r;
+    r.status = SolveStatus::kLeftFace;
+    r.reason = "outside";
+    r.iterations = c.res.iterations;
+    r.evaluations = c.res.evaluations;
+    return r;
+  };
+  for (int step = 0; step < kTraceMaxSteps; ++step) {
+    const SurfaceEval1 e = s.eval1(at);
+    ++c.res.evaluations;
+    if (!e.ok) return std::nullopt;
+    const Vec3 n = face_normal(s, at, e);
+    Vec3 tn = n.cross(pn);
+    if (!(tn.norm() > kSectionEndSin))
+      return ends("the base plane touches the surface ahead: its section ends within one link");
+    tn.normalize();
+    if (tn.dot(t) < 0.0) tn = -tn;
+    Vec2 dir_uv;
+    if (!metric_direction(e, tn, dir_uv)) return std::nullopt;
+    const Vec3 q = p + h * tn;
+    auto resid = [&](const SurfaceEval1& ev, Vec2& f, Eigen::Matrix2d& J) {
+      f << pn.dot(ev.p - x0), tn.dot(ev.p - q);
+      J << pn.dot(ev.du), pn.dot(ev.dv), tn.dot(ev.du), tn.dot(ev.dv);
+    };
+    const SurfaceLocation guess = s.locate(at, at.uv + h * dir_uv);
+    setup_margins(c, at, guess);
+    bool ok = newton(c, guess, resid);
+    Vec3 t_next = tn;
+    if (ok) {
+      const SurfaceEval1 en = c.last;
+      Vec3 tt = face_normal(s, c.res.at, en).cross(pn);
+      if (tt.norm() > kSectionEndSin) {
+        tt.normalize();
+        t_next = tt.dot(tn) < 0.0 ? Vec3(-tt) : tt;
+      }
+      ok = std::acos(std::clamp(t_next.dot(tn), -1.0, 1.0)) <= kTraceTurnMax;
+    }
+    if (!ok) {
+      if (c.res.status == SolveStatus::kLeftFace && h <= h_min) return outside();
+      if (h <= h_min) {
+        // A turn this sharp at the smallest step: the section has a corner or crosses itself.
+        if (c.res.status == SolveStatus::kConverged || c.res.status == SolveStatus::kFailed)
+          return ends("the base plane's section turns back within one link (the plane nearly "
+                      "touches the surface ahead)");
+        return std::nullopt;
+      }
+      h *= 0.5;
+      c.res.status = SolveStatus::kFailed;
+      continue;
+    }
+    const SurfaceLocation at_next = c.res.at;
+    const Vec3 p_next = c.res.point;
+    // Past the face's edge (not into a hole of it, under which the path goes on) the section
+    // has left the face before reaching rho: outside, as the march finds at an edge.
+    if (!s.contains(at_next) && !s.in_hole(at_next)) return outside();
+    const double chord_next = (p_next - x0).norm();
+    if (chord_next >= rho) {
+      // The section passes distance rho between p and p_next: solve there.
+      const double w = (rho - chord) / std::max(chord_next - chord, 1e-300);
+      const SurfaceLocation g = s.locate(at, at.uv + w * s.delta(at, at_next));
+      auto sphere = [&](const SurfaceEval1& ev, Vec2& f, Eigen::Matrix2d& J) {
+        const Vec3 r = ev.p - x0;
+        f << pn.dot(r), (r.squaredNorm() - rho * rho) / (2 * rho);
+        J << pn.dot(ev.du), pn.dot(ev.dv), r.dot(ev.du) / rho, r.dot(ev.dv) / rho;
+      };
+      setup_margins(c, at, g);
+      if (newton(c, g, sphere) && (c.res.point - p).norm() <= 2.0 * (p_next - p).norm()) {
+        settle(c, sphere);
+        classify_converged(c);
+        return c.res;
+      }
+      if (h <= h_min) return std::nullopt;
+      h *= 0.5;  // trace closer to the crossing and try again
+      c.res.status = SolveStatus::kFailed;
+      continue;
+    }
+    if (chord_next < chord)
+      return ends("the base plane's section turns back within one link (the plane nearly "
+                  "touches the surface ahead)");
+    at = at_next;
+    p = p_next;
+    chord = chord_next;
+    t = t_next;
+    h = std::min(2.0 * h, kTraceStepRel * rho);
+  }
+  return std::nullopt;
+}
+
 // Plane through x0 with unit normal `pn`, sphere of radius `rho` about x0, surface; the
 // solution going forward along the unit tangent `t` (which lies in the plane). Solvers 1
 // and 3 are this problem with different planes.
@@ -520,7 +655,7 @@ SurfaceLocation continue_step(const DrapeSurface& s, const SurfaceLocation& a,
 
 SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const SurfaceLocation& at0,
                               const SurfaceEval1& e0, const Vec3& n0, const Vec3& pn, const Vec3& t,
-                              double rho, const SolverSettings& st) {
+                              double rho, const SolverSettings& st, bool trace = false) {
   Ctx c(s, st);
   const UvDirection ud = uv_direction_at(s, at0, e0, n0, t, rho);
   if (ud.leaves_face) {
@@ -608,6 +743,13 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
     // Newton stalled on the surface extended past a domain edge, which need not go on.)
     // Otherwise try finer sub-steps.
     if (!s.contains(g) || (prev != uk.from_at && !s.contains(prev))) {
+      if (trace) {
+        if (auto tr = trace_section(s, x0, at0, pn, t, rho, st)) {
+          tr->iterations += c.res.iterations;
+          tr->evaluations += c.res.evaluations;
+          return *tr;
+        }
+      }
       c.res.status = SolveStatus::kLeftFace;
       c.res.extended = false;
       c.res.reason = "outside";
@@ -617,6 +759,16 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
   SolveResult out = first;
   out.iterations = c.res.iterations;
   out.evaluations = c.res.evaluations;
+  // The base path: the plane's section traced forward tells a section that turns back or
+  // closes within rho (the path ends) from one that leaves the face (outside), and finds the
+  // point where the section turns too tightly for the march.
+  if (trace) {
+    if (auto tr = trace_section(s, x0, at0, pn, t, rho, st)) {
+      tr->iterations += out.iterations;
+      tr->evaluations += out.evaluations;
+      return *tr;
+    }
+  }
   // No point of the face lies on the circle where the plane meets the sphere when each of
   // kSectionSamples points on it lies further from the face than the longest distance from a
   // point of the circle to the nearest sample (their nearest points of the face found from
@@ -646,6 +798,7 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
   return out;
 }
 
+
 }  // namespace
 
 SolveResult solve_base_path(const DrapeSurface& s, const BasePathStep& step,
@@ -673,7 +826,8 @@ SolveResult solve_base_path(const DrapeSurface& s, const BasePathStep& step,
   } else {
     t = (fwd - fwd.dot(pn) * pn).normalized();
   }
-  SolveResult r = plane_sphere_core(s, step.from, step.from_at, e0, n0, pn, t, step.distance, st);
+  SolveResult r =
+      plane_sphere_core(s, step.from, step.from_at, e0, n0, pn, t, step.distance, st, true);
   ++r.evaluations;
   return r;
 }

@@ -74,7 +74,7 @@ TEST_CASE("cli: the README documents every command, option, mold, output and sta
     }
   // Node statuses (report.json's nodes).
   for (const char* st : {"mapped", "auxiliary", "outside", "off_ply", "shear_limit", "failed",
-                         "overlap", "conflict", "failed_reasons", "conflict_reasons"}) {
+                         "overlap", "conflict", "path_end", "failed_reasons", "conflict_reasons"}) {
     INFO("status " << st);
     std::string quoted = "`";
     quoted += st;

@@ -265,3 +265,65 @@ TEST_CASE("drape: the solver places every node of the fuzz's failed drapes, or s
     CHECK(failed == 0);
   }
 }
+
+TEST_CASE("drape: a base path whose plane nearly touches the face ahead ends there, or goes on") {
+  // Found by scripts/fuzz-drape (seeds 37 and 41), each with one failed base-path point
+  // before: at the path's last point the base plane lies 3.6 to 6.5 degrees from the tangent
+  // plane, and ahead the plane touches the surface (a dome under a nearly tangent plane): the
+  // section turns back towards the last point within one link, and no point of the face lies
+  // ahead at the link's distance on it. The path ends there (path_end), the drape is partial,
+  // and the warning says where. On occ22470 face 17 the section is a small closed curve of
+  // about 17 links round which the march could not step: traced, the path goes round it and
+  // stops where it comes back over its start (overlap).
+  struct EndCase {
+    Case c;
+    double lock_deg;
+    bool ends;
+  };
+  const std::vector<EndCase> cases = {
+      {{"surf114.igs", 1, 0.372028, Vec3(-42.253075, 55.128237, 63.006194),
+        Vec3(-0.808064, -0.127363, -0.575162), Vec2(0.147854, -0.989009),
+        Vec2(-0.989009, -0.147854), Vec3(-0.896779, 0.428998, -0.108384), false},
+       49.8, true},
+      {{"surf114.igs", 1, 0.240363, Vec3(-41.228569, 56.007372, 62.868460),
+        Vec3(-0.213365, -0.285832, 0.934225), Vec2(0.458945, 0.888464), Vec2(-0.888464, 0.458945),
+        Vec3(-0.912603, -0.009634, -0.408734), true},
+       90.0, true},
+      {{"occ22470.igs", 1, 0.929769, Vec3(55.852780, 62.822468, 57.367976),
+        Vec3(-0.370383, 0.926941, 0.059973), Vec2(0.155009, 0.987913), Vec2(-0.987913, 0.155009),
+        Vec3(0.464032, -0.512041, -0.722833), true},
+       42.4, true},
+      {{"occ22470.igs", 17, 1.60577, Vec3(149.023102, 46.482626, 113.704988),
+        Vec3(0.533399, 0.521790, 0.665748), Vec2(0.954961, -0.296732), Vec2(-0.296732, -0.954961),
+        Vec3(-0.379945, 0.442348, 0.812385), true},
+       54.1, false},
+  };
+  for (const auto& [c, lock_deg, ends] : cases) {
+    INFO(c.file << " face " << c.face << " d " << c.d);
+    const Face face = load(c);
+    DrapeOptions opt;
+    opt.lock_angle = lock_deg * 3.14159265358979323846 / 180;
+    auto r = drape(face, problem(c), opt);
+    REQUIRE(r.ok());
+    CHECK(r->metrics.nodes.failed == 0);
+    int ended = 0, path_end = 0;
+    for (const DrapeNode& n : r->nodes) {
+      path_end += n.status == NodeStatus::kPathEnd;
+      if (n.status == NodeStatus::kPathEnd) CHECK(n.id.is_path_only());
+    }
+    for (const auto& w : r->warnings) ended += w.find("the base path ends at ply") == 0;
+    CHECK(static_cast<std::uint64_t>(path_end) == r->metrics.nodes.path_end);
+    CHECK(r->partial);
+    if (ends) {
+      CHECK(path_end == 1);
+      CHECK(ended == 1);
+    } else {
+      CHECK(path_end == 0);
+      CHECK(ended == 0);
+      // Round the closed section: every path point mapped, until one lands on the start.
+      const auto& bp = r->base_path;
+      CHECK(bp.size() >= 12);
+      CHECK(r->metrics.nodes.overlap > 0);
+    }
+  }
+}

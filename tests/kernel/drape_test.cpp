@@ -877,3 +877,39 @@ TEST_CASE("drape: a cell sheared nearly flat across two faces of sphere-8 is map
   CHECK(std::acos((pa - q->point).normalized().dot((pb - q->point).normalized())) >
         169.0 * kPi / 180);
 }
+
+TEST_CASE("drape: a base plane nearly tangent to the face ends the path: partial, not failed") {
+  // Unit hemisphere, start P at latitude 45 degrees, base plane through P with its normal theta
+  // from the sphere's normal there: its section is a circle of radius sin(theta) through P.
+  // theta = 1 degree: the circle's diameter 0.035 is less than the link d = 0.05, so the path
+  // has no second point either way (the fuzz found such a drape, seed 37, with two failed
+  // base-path points): it ends at P, the drape is partial with one warning. theta = 10
+  // degrees: the circle (circumference 1.09, 21.8 links) is traced round until the path comes
+  // back over P (overlap), with no path end.
+  const Face f = builtin("hemisphere", {{"R", 1.0}});
+  const double c45 = std::cos(kPi / 4);
+  const Vec3 P(c45, 0, c45), n = P.normalized();
+  for (const double theta_deg : {1.0, 10.0}) {
+    INFO("theta " << theta_deg << " deg");
+    const double th = theta_deg * kPi / 180;
+    const Vec3 pn = std::cos(th) * n + std::sin(th) * Vec3(0, 1, 0);  // tilted towards +y
+    const Vec3 t3 = n.cross(pn).normalized(), across = n.cross(t3);
+    const DrapeProblem pb = problem(0.05, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)}, P,
+                                    pn, {across, Vec3(-across)});
+    const DrapeResult r = run(f, pb);
+    CHECK(r.metrics.nodes.failed == 0);
+    CHECK(r.metrics.nodes.conflict == 0);
+    CHECK(r.partial);
+    int warned = 0;
+    for (const auto& w : r.warnings) warned += w.find("the base path ends at ply (0, 0)") == 0;
+    if (theta_deg < 2) {
+      CHECK(r.base_path.size() == 1);
+      CHECK(r.metrics.nodes.path_end == 2);
+      CHECK(warned == 1);
+    } else {
+      CHECK(r.metrics.nodes.path_end == 0);
+      CHECK(warned == 0);
+      CHECK(r.base_path.size() >= 20);
+    }
+  }
+}

@@ -597,11 +597,12 @@ TEST_CASE("solvers: steps from an edge where S_u vanishes but the edge is no pol
   }
 }
 
-TEST_CASE("solvers: a step longer than the face's plane section is outside, not a failure") {
+TEST_CASE("solvers: a step longer than the face's plane section ends the path, not a failure") {
   // Unit hemisphere z >= 0; P at latitude 45 degrees on the meridian y = 0, and a base plane
   // through P with its normal m at latitude 25 degrees: it cuts the sphere in a circle of
   // radius sin 20 degrees about (cos 20) m, all on the face, whose points lie at most its
-  // diameter 2 sin 20 = 0.684 from P. A base-path step of 1.0 has no place on the face; one of
+  // diameter 2 sin 20 = 0.684 from P. A base-path step of 1.0 has no place on the face (the
+  // section closes within the step: the path ends there; it does not leave the face); one of
   // 0.3 has (a point of that circle).
   const Face f = make_face(sphere_patch(1.0, 0.0, kPi / 2, -kPi, kPi));
   const double c45 = std::cos(kPi / 4);
@@ -620,7 +621,46 @@ TEST_CASE("solvers: a step longer than the face's plane section is outside, not 
       CHECK(std::abs(r.point.norm() - 1) < kConstraintRel);
       CHECK(r.point.y() > 0);
     } else {
-      CHECK(r.status == SolveStatus::kLeftFace);
+      CHECK(r.status == SolveStatus::kFailed);
+      CHECK(r.section_ends);
+    }
+  }
+}
+
+TEST_CASE("solvers: a base plane nearly tangent to a sphere: its small section circle") {
+  // A plane through x0 = (R, 0, 0) whose normal lies theta from the sphere's normal there cuts
+  // the sphere in a circle of radius rs = R sin(theta) about c = R cos(theta) pn (Meusnier).
+  // Going forward along the section from x0, its point at arc angle phi lies at the chord
+  // 2 rs sin(phi / 2) from x0: a step of rho <= 2 rs lands at phi = 2 asin(rho / (2 rs)),
+  // past a quarter turn when rho > sqrt(2) rs (behind x0 along the section's tangent); a
+  // step longer than the circle's diameter has no point at all: the path ends there.
+  const double R = 1.0;
+  const Face f = make_face(sphere_patch(R, -1.2, 1.2, -1.5, 1.5));
+  SolverSettings st;
+  st.spacing = 0.1;
+  const Vec3 x0(R, 0, 0);
+  const Projection p0 = f.project(x0);
+  REQUIRE(p0.distance < 1e-12);
+  for (const double theta_deg : {1.0, 4.0, 10.0, 25.0}) {
+    const double theta = theta_deg * kPi / 180.0;
+    const Vec3 pn(std::cos(theta), 0, std::sin(theta));
+    const Vec3 fwd(0, 1, 0);  // the section's tangent at x0 is along y
+    const double rs = R * std::sin(theta);
+    const Vec3 c = R * std::cos(theta) * pn;
+    for (const double ratio : {0.5, 0.9, 0.99, 1.01, 1.3}) {
+      const double rho = ratio * 2.0 * rs;
+      INFO("theta " << theta_deg << " deg, rho / diameter " << ratio);
+      const SolveResult r = solve_base_path(f, {x0, p0.at, pn, fwd, rho}, st);
+      if (ratio > 1.0) {
+        CHECK(r.status == SolveStatus::kFailed);
+        CHECK(r.section_ends);
+        continue;
+      }
+      REQUIRE(r.status == SolveStatus::kConverged);
+      const double phi = 2.0 * std::asin(ratio);
+      const Vec3 exact = c + std::cos(phi) * (x0 - c) + std::sin(phi) * rs * fwd;
+      CHECK((r.point - exact).norm() < 1e-9 * rho);
+      CHECK(!r.section_ends);
     }
   }
 }

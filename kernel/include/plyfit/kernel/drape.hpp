@@ -42,9 +42,15 @@ enum class NodeStatus : std::uint8_t {
   /// would stretch"). The cloth's own incompatibility (a CAD draping tool's "conflict"), not
   /// a failure of the solver; the cloth goes no further from it, as from a failed node.
   kConflict,
+  /// A base-path point beyond the path's end: the base plane's section of the surface turns
+  /// back, or ends where the plane touches the surface, within one link ahead of the last path
+  /// point (the plane nearly tangent to the surface there; SolveResult::section_ends). No
+  /// point of the section lies ahead, so the path, the seed of the drape, stops there.
+  kPathEnd,
   kPending,  ///< internal: in the frontier
 };
-/// "mapped", "outside", "off_ply", "shear_limit", "failed", "overlap", "conflict", "pending".
+/// "mapped", "outside", "off_ply", "shear_limit", "failed", "overlap", "conflict", "path_end",
+/// "pending".
 const char* to_string(NodeStatus s);
 
 /// A node the drape reached.
@@ -192,6 +198,7 @@ struct NodeCounts {
   std::uint64_t failed = 0;
   std::uint64_t overlap = 0;   ///< stopped where the cloth would lie on itself
   std::uint64_t conflict = 0;  ///< where two fronts of cloth met and disagree (kConflict)
+  std::uint64_t path_end = 0;  ///< base-path points past where the path ends (kPathEnd)
   /// The failed nodes counted by the solver's reason (SolveResult::reason, e.g. "no convergence
   /// within the iteration cap"); the counts add up to `failed`.
   std::map<std::string, std::uint64_t> failed_reasons;

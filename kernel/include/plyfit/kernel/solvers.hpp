@@ -48,6 +48,11 @@ struct SolveResult {
   /// spheres' circle of intersection passing the face at a distance (kShearLimit where the
   /// links are a weft and a warp link, else kFailed).
   bool no_point = false;
+  /// For the base-path solver (kFailed): the base plane's section of the surface turns back
+  /// towards the known point, or ends where the plane touches the surface, before it reaches
+  /// the step's distance: no point ahead exists, and the path ends there (the plane nearly
+  /// touches the surface ahead: its section curves with kappa_n / sin(theta), Meusnier).
+  bool section_ends = false;
   /// Thread angle at the new node for the two-sphere solver (radians), else 0.
   double thread_angle = 0.0;
   const char* reason = "";  ///< why, for kFailed (and for kLeftFace: "outside" or "iterate")
