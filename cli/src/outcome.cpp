@@ -6,14 +6,21 @@ namespace plyfit::cli {
 
 std::string outcome_to_json(const JobOutcome& o, int exit_code) {
   const auto& n = o.metrics.nodes;
-  nlohmann::json j = {{"status", o.status},       {"error", o.error},
-                      {"exit_code", exit_code},   {"mapped", o.mapped},
-                      {"auxiliary", n.auxiliary}, {"outside", n.outside},
-                      {"off_ply", n.off_ply},     {"shear_limit", n.shear_limit},
-                      {"failed", n.failed},       {"overlap", n.overlap},
-                      {"conflict", n.conflict},   {"path_end", n.path_end},
+  nlohmann::json j = {{"status", o.status},
+                      {"error", o.error},
+                      {"exit_code", exit_code},
+                      {"mapped", o.mapped},
+                      {"auxiliary", n.auxiliary},
+                      {"outside", n.outside},
+                      {"off_ply", n.off_ply},
+                      {"shear_limit", n.shear_limit},
+                      {"failed", n.failed},
+                      {"overlap", n.overlap},
+                      {"conflict", n.conflict},
+                      {"path_end", n.path_end},
                       {"shear_max_deg", o.shear_max_deg},
-                      {"total_ms", o.total_ms},   {"files", o.files}};
+                      {"total_ms", o.total_ms},
+                      {"files", o.files}};
   return j.dump(2) + "\n";
 }
 

@@ -148,16 +148,11 @@ std::string report_json(const ExportContext& ctx) {
                 {"uv", vec(r.start_at.uv)},
                 {"moved", r.start_moved}};
   j["base_tangent"] = vec(r.base_tangent);
-  j["nodes"] = {{"mapped", m.nodes.mapped},
-                {"auxiliary", m.nodes.auxiliary},
-                {"outside", m.nodes.outside},
-                {"off_ply", m.nodes.off_ply},
-                {"shear_limit", m.nodes.shear_limit},
-                {"overlap", m.nodes.overlap},
-                {"failed", m.nodes.failed},
-                {"conflict", m.nodes.conflict},
-                {"path_end", m.nodes.path_end},
-                {"with_angle", m.angles}};
+  j["nodes"] = {{"mapped", m.nodes.mapped},           {"auxiliary", m.nodes.auxiliary},
+                {"outside", m.nodes.outside},         {"off_ply", m.nodes.off_ply},
+                {"shear_limit", m.nodes.shear_limit}, {"overlap", m.nodes.overlap},
+                {"failed", m.nodes.failed},           {"conflict", m.nodes.conflict},
+                {"path_end", m.nodes.path_end},       {"with_angle", m.angles}};
   for (const auto& [key, reasons] : {std::pair{"failed_reasons", &m.nodes.failed_reasons},
                                      std::pair{"conflict_reasons", &m.nodes.conflict_reasons}}) {
     j["nodes"][key] = nlohmann::json::object();

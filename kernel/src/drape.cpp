@@ -122,8 +122,8 @@ void judge_drape(const DrapeSurface& s, const DrapeProblem& pb, const Tolerances
 }
 
 // A warning for each end of the base path (one for a path of one point) where the base
-// plane's section turned back or ended within one link (NodeStatus::kPathEnd): where, and the angle between the base plane
-// and the tangent plane at the path's last point there.
+// plane's section turned back or ended within one link (NodeStatus::kPathEnd): where, and the angle
+// between the base plane and the tangent plane at the path's last point there.
 void warn_path_ends(const DrapeSurface& s, DrapeResult& res) {
   if (res.metrics.nodes.path_end == 0 || res.base_path.empty()) return;
   const DrapeNode* warned = nullptr;  // a path of one point ends both ways there: one warning

@@ -59,6 +59,10 @@ constexpr int kCircleIterations = 100;
 // circle of intersection, sampled at this many points, passes the face at a distance.
 constexpr int kSectionSamples = 64;
 constexpr double kCircleMinRel = 1e-6;
+// A sign change of the signed distance on that circle holds a crossing of the surface only
+// where the circle's point found in it lies within this fraction of the circle's radius of
+// the face (or within eq. (9)'s tolerance): not where the nearest point is on a face edge.
+constexpr double kCircleNearRel = 1e-3;
 // A base-path step that neither the direct solve nor the march solves is traced along the
 // plane's section of the surface (see trace_section): steps of kTraceStepRel of the link
 // at first, halved while the section's tangent turns by more than kTraceTurnMax radians in
@@ -597,8 +601,9 @@ std::optional<SolveResult> trace_section(const DrapeSurface& s, const Vec3& x0,
       if (h <= h_min) {
         // A turn this sharp at the smallest step: the section has a corner or crosses itself.
         if (c.res.status == SolveStatus::kConverged || c.res.status == SolveStatus::kFailed)
-          return ends("the base plane's section turns back within one link (the plane nearly "
-                      "touches the surface ahead)");
+          return ends(
+              "the base plane's section turns back within one link (the plane nearly "
+              "touches the surface ahead)");
         return std::nullopt;
       }
       h *= 0.5;
@@ -632,8 +637,9 @@ std::optional<SolveResult> trace_section(const DrapeSurface& s, const Vec3& x0,
       continue;
     }
     if (chord_next < chord)
-      return ends("the base plane's section turns back within one link (the plane nearly "
-                  "touches the surface ahead)");
+      return ends(
+          "the base plane's section turns back within one link (the plane nearly "
+          "touches the surface ahead)");
     at = at_next;
     p = p_next;
     chord = chord_next;
@@ -797,7 +803,6 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
   }
   return out;
 }
-
 
 }  // namespace
 
@@ -1012,68 +1017,71 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
       seed = f.at;
       return (q - f.p).dot(f.n);
     };
+    // Illinois (regula falsi) on the circle's angle in [lo, hi], bounded; then Newton from
+    // the point found, or that point itself if it meets eq. (9)'s tolerance. A sign change
+    // can be false: where the nearest point of the face lies on its edge (a free edge, or an
+    // edge where a derivative vanishes) the normal there does not measure the distance, and
+    // the signed distance changes sign away from the surface. The bracket counts only where
+    // the circle's point found in it lies on the surface (within kCircleNearRel of h, or
+    // eq. (9)'s tolerance).
+    auto solve_in_bracket = [&](double lo, double hi, double flo, double fhi, Foot f) {
+      double th = lo;
+      int side = 0;
+      for (int it = 0; it < kCircleIterations && hi != lo; ++it) {
+        th = (lo * fhi - hi * flo) / (fhi - flo);
+        const double fth = signed_distance(th, f);
+        if (!(fth == fth)) return false;
+        if (std::abs(fth) < 0.5 * c.eps) break;
+        if ((fth > 0.0) == (flo > 0.0)) {
+          lo = th;
+          flo = fth;
+          if (side == -1) fhi *= 0.5;
+          side = -1;
+        } else {
+          hi = th;
+          fhi = fth;
+          if (side == 1) flo *= 0.5;
+          side = 1;
+        }
+      }
+      if (!f.ok || (on_circle(th) - f.p).norm() > std::max(c.eps, kCircleNearRel * h)) return false;
+      if (attempt(f.at)) return true;
+      const SurfaceEval1 ef = s.eval1(f.at);
+      ++c.res.evaluations;
+      if (!ef.ok) return false;
+      Vec2 r;
+      Eigen::Matrix2d J;
+      resid(ef, r, J);
+      if (!(r.cwiseAbs().sum() < c.eps)) return false;
+      c.res.at = f.at;
+      c.res.point = ef.p;
+      c.res.residual = r.cwiseAbs().sum();
+      c.last = ef;
+      finish();
+      return true;
+    };
     // The whole circle, sampled from the middle of the requested side's half (the planar
-    // solution) outwards on both sides, for the sign change nearest the middle.
+    // solution) outwards on both sides; the sign changes are tried nearest the middle first,
+    // until one holds a solution.
     Foot f0, f1;
     const double fmid = signed_distance(0.0, f0);
     if (!(fmid == fmid)) return false;
-    double lo = 0.0, hi = 0.0, flo = fmid, fhi = fmid;
-    bool bracket = std::abs(fmid) < 0.5 * c.eps;  // the planar solution is on the surface
+    if (std::abs(fmid) < 0.5 * c.eps && solve_in_bracket(0.0, 0.0, fmid, fmid, f0)) return true;
     double prev_th[2] = {0.0, 0.0}, prev_f[2] = {fmid, fmid};
-    for (int k = 1; k <= 2 * kCircleSamples && !bracket; ++k)
-      for (int side = 0; side < 2 && !bracket; ++side) {
+    Foot prev_foot[2] = {f0, f0};
+    for (int k = 1; k <= 2 * kCircleSamples; ++k)
+      for (int side = 0; side < 2; ++side) {
         const double th = (side ? -1.0 : 1.0) * 0.5 * kPi * k / kCircleSamples;
         const double f = signed_distance(th, f1);
         if (!(f == f)) return false;
-        if ((f > 0.0) != (prev_f[side] > 0.0)) {
-          lo = prev_th[side];
-          flo = prev_f[side];
-          hi = th;
-          fhi = f;
-          bracket = true;
-        }
+        if ((f > 0.0) != (prev_f[side] > 0.0) &&
+            solve_in_bracket(prev_th[side], th, prev_f[side], f, prev_foot[side]))
+          return true;
         prev_th[side] = th;
         prev_f[side] = f;
+        prev_foot[side] = f1;
       }
-    if (!bracket) return false;
-    // Illinois (regula falsi) on [lo, hi], bounded.
-    Foot f = f0;
-    double th = lo;
-    int side = 0;
-    for (int it = 0; it < kCircleIterations && hi != lo; ++it) {
-      th = (lo * fhi - hi * flo) / (fhi - flo);
-      const double fth = signed_distance(th, f);
-      if (!(fth == fth)) return false;
-      if (std::abs(fth) < 0.5 * c.eps) break;
-      if ((fth > 0.0) == (flo > 0.0)) {
-        lo = th;
-        flo = fth;
-        if (side == -1) fhi *= 0.5;
-        side = -1;
-      } else {
-        hi = th;
-        fhi = fth;
-        if (side == 1) flo *= 0.5;
-        side = 1;
-      }
-    }
-    if (!f.ok) return false;
-    // Polished by Newton from there if it can; else the circle's point is the solution if it
-    // meets eq. (9)'s tolerance.
-    if (attempt(f.at)) return true;
-    const SurfaceEval1 ef = s.eval1(f.at);
-    ++c.res.evaluations;
-    if (!ef.ok) return false;
-    Vec2 r;
-    Eigen::Matrix2d J;
-    resid(ef, r, J);
-    if (!(r.cwiseAbs().sum() < c.eps)) return false;
-    c.res.at = f.at;
-    c.res.point = ef.p;
-    c.res.residual = r.cwiseAbs().sum();
-    c.last = ef;
-    finish();
-    return true;
+    return false;
   };
   // 1. The caller's guess (eqs. 10-11).
   if (step.guess && attempt(s.locate(step.a_at, *step.guess))) return c.res;

@@ -894,8 +894,8 @@ TEST_CASE("drape: a base plane nearly tangent to the face ends the path: partial
     const double th = theta_deg * kPi / 180;
     const Vec3 pn = std::cos(th) * n + std::sin(th) * Vec3(0, 1, 0);  // tilted towards +y
     const Vec3 t3 = n.cross(pn).normalized(), across = n.cross(t3);
-    const DrapeProblem pb = problem(0.05, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)}, P,
-                                    pn, {across, Vec3(-across)});
+    const DrapeProblem pb = problem(0.05, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)}, P, pn,
+                                    {across, Vec3(-across)});
     const DrapeResult r = run(f, pb);
     CHECK(r.metrics.nodes.failed == 0);
     CHECK(r.metrics.nodes.conflict == 0);
