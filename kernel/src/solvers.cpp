@@ -585,31 +585,28 @@ std::optional<SolveResult> trace_section(const DrapeSurface& s, const Vec3& x0,
     };
     const SurfaceLocation guess = s.locate(at, at.uv + h * dir_uv);
     setup_margins(c, at, guess);
-    bool ok = newton(c, guess, resid);
+    const bool converged = newton(c, guess, resid);
     Vec3 t_next = tn;
-    if (ok) {
-      const SurfaceEval1 en = c.last;
-      Vec3 tt = face_normal(s, c.res.at, en).cross(pn);
+    bool sharp = false;
+    if (converged) {
+      Vec3 tt = face_normal(s, c.res.at, c.last).cross(pn);
       if (tt.norm() > kSectionEndSin) {
         tt.normalize();
         t_next = tt.dot(tn) < 0.0 ? Vec3(-tt) : tt;
       }
-      ok = std::acos(std::clamp(t_next.dot(tn), -1.0, 1.0)) <= kTraceTurnMax;
+      sharp = std::acos(std::clamp(t_next.dot(tn), -1.0, 1.0)) > kTraceTurnMax;
     }
-    if (!ok) {
-      if (c.res.status == SolveStatus::kLeftFace && h <= h_min) return outside();
-      if (h <= h_min) {
-        // A turn this sharp at the smallest step: the section has a corner or crosses itself.
-        if (c.res.status == SolveStatus::kConverged || c.res.status == SolveStatus::kFailed)
-          return ends(
-              "the base plane's section turns back within one link (the plane nearly "
-              "touches the surface ahead)");
-        return std::nullopt;
+    if (!converged || (sharp && h > h_min)) {
+      if (h > h_min) {
+        h *= 0.5;
+        continue;
       }
-      h *= 0.5;
-      c.res.status = SolveStatus::kFailed;
-      continue;
+      // Newton fails at the smallest step: off the face's margin, outside; else unknown.
+      if (c.res.status == SolveStatus::kLeftFace) return outside();
+      return std::nullopt;
     }
+    // (A turn sharper than kTraceTurnMax at the smallest step is a corner of the section, at
+    // a crease of a shell: stepped over; whether it turns back the distance from x0 tells.)
     const SurfaceLocation at_next = c.res.at;
     const Vec3 p_next = c.res.point;
     // Past the face's edge (not into a hole of it, under which the path goes on) the section
