@@ -29,14 +29,14 @@ inline std::uint64_t mix(std::uint64_t k) {  // splitmix64 finaliser
 // `radius` (3D) of p that the caller's exact test accepts? If not, record p". The test runs
 // on every mapped node, so what it costs per node is what matters (issue 13: at most 10 % of
 // the drape): a few hundred instructions, few unpredictable branches, little memory, and
-// little code (the scan's loop already fills the instruction cache: what the test's code
-// evicts there costs as much as the test itself).
+// little code (the scan's loop fills the instruction cache: callgrind counts more misses
+// that the test causes in the scan's code than in its own).
 // - Points are rounded to integer units, kCellUnits (a power of two) to a cell's edge of
 //   kCellRadii * radius: a point's cell and its place in it are a shift and a mask.
 // - A node is recorded in its own cell. A test reads the cells p's ball (radius and two
 //   units) meets: its own and, per axis, the neighbour it lies within that of (one axis in
 //   four on average), found from p's integer coordinates without a floor() or a
-//   data-dependent loop per axis; one loop over those cells, p's own last.
+//   data-dependent loop per axis: p's own cell, then one loop over the others.
 // - Open addressing on a cell key linear in the cell's coordinates (a neighbour's key is
 //   the cell's plus a step; cells 2^21 apart share a key: that only adds candidates),
 //   multiplicative hashing.
@@ -111,7 +111,7 @@ class OverlapGrid {
       q[a] = static_cast<std::int32_t>(at - kCellUnits / 2);
       shift[a] = static_cast<std::int32_t>(side * kCellUnits);
     }
-    Filter f = filter_base();
+    const Filter f = filter_base();
     // p's own cell, then the others the ball meets: every non-empty subset m of `both` (bit
     // a: the neighbour along axis a).
     std::size_t own = find(own_key);
