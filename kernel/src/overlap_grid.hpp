@@ -28,28 +28,34 @@ inline std::uint64_t mix(std::uint64_t k) {  // splitmix64 finaliser
 // Spatial hash of mapped nodes for the overlap test "is there a recorded node within
 // `radius` (3D) of p that the caller's exact test accepts? If not, record p". The test runs
 // on every mapped node, so what it costs per node is what matters (issue 13: at most 10 % of
-// the drape): a few hundred instructions, few unpredictable branches, little memory.
+// the drape): a few hundred instructions, few unpredictable branches, little memory, and
+// little code (the scan's loop fills the instruction cache: callgrind counts more misses
+// that the test causes in the scan's code than in its own).
 // - Points are rounded to integer units, kCellUnits (a power of two) to a cell's edge of
 //   kCellRadii * radius: a point's cell and its place in it are a shift and a mask.
 // - A node is recorded in its own cell. A test reads the cells p's ball (radius and two
 //   units) meets: its own and, per axis, the neighbour it lies within that of (one axis in
 //   four on average), found from p's integer coordinates without a floor() or a
-//   data-dependent loop per axis.
-// - Open addressing on the cell's packed coordinates (cells 2^21 apart share a key: that
-//   only adds candidates), multiplicative hashing.
-// - A cell's nodes lie in chunks of kLanes: each node's point as 16-bit integers relative to
-//   the cell's centre (structure of arrays, unused lanes far away) and its index. A chunk is
-//   filtered whole with SSE2 integer arithmetic (no branch per node) by a distance two units
-//   wider than the ball (each integer is within half a unit of its point's exact scaled
-//   coordinate, so a difference of two within one, a distance within sqrt(3)); only a
-//   chunk with a node within it, rare unless the cloth comes back, goes to the caller's
-//   exact test on the node's own doubles. The answer is the same as an all-double test's.
+//   data-dependent loop per axis: p's own cell, then one loop over the others.
+// - Open addressing on a cell key linear in the cell's coordinates (a neighbour's key is
+//   the cell's plus a step; cells 2^21 apart share a key: that only adds candidates),
+//   multiplicative hashing.
+// - A cell's nodes lie in chunks of kLanes, one cache line each: the nodes' points as 16-bit
+//   integers relative to the cell's centre (structure of arrays, unused lanes far away) and
+//   a pointer to the cell's previous chunk; the node indices lie apart, read only on a hit.
+//   A chunk is filtered whole with SSE2 integer arithmetic (no branch per node) by a
+//   distance two units wider than the ball (each integer is within half a unit of its
+//   point's exact scaled coordinate, so a difference of two within one, a distance within
+//   sqrt(3)); only a chunk with a node within it, rare unless the cloth comes back, goes to
+//   the caller's exact test on the node's own doubles. The answer is the same as an
+//   all-double test's.
 class OverlapGrid {
  public:
   // Cell edge over the test radius (>= 2: the ball meets at most two cells per axis). Larger
   // cells mean fewer cells visited, more nodes per cell: 8 against 6 takes 3 % fewer
   // instructions per test, fewer cache misses and 3 % less peak heap (callgrind, wave and
-  // octant at 300^2).
+  // octant at 300^2); with one-line chunks, 12 and 16 take 6 % and 20 % more instructions
+  // and more cache misses than 8 (wave at 300^2).
   static constexpr int kCellRadii = 8;
   // A cell's edge in integer units: the radius is kCellUnits / kCellRadii = 2048 units. A
   // coordinate relative to its cell's centre is at most kCellUnits / 2 + 2051 = 10243
@@ -77,7 +83,7 @@ class OverlapGrid {
       n *= 2;
       ++bits_;
     }
-    slots_.assign(n, Slot{0, kNone});
+    slots_.assign(n, Slot{0, nullptr});
     count_ = 0;
     pages_.clear();
     chunks_ = 0;
@@ -88,42 +94,52 @@ class OverlapGrid {
   // none, records `node` at p.
   template <class Exact>
   bool test_insert(const Vec3& p, std::uint32_t node, Exact&& exact) {
-    // Per axis, p's own cell [0] and the neighbour its ball meets [1], if any (bit a of
-    // `both`): the packed key part and p in units relative to the cell's centre.
-    std::uint64_t kp[3][2];
-    std::int32_t q[3][2];
+    // Per axis a: p in units relative to its cell's centre, the neighbour its ball meets
+    // (side -1, 0 or +1; bit a of `both` if any), the key step and the shift of p's
+    // coordinate to that neighbour.
+    std::uint64_t own_key = 0, step[3];
+    std::int32_t q[3], shift[3];
     unsigned both = 0;
     for (int a = 0; a < 3; ++a) {
       const std::int64_t u = round_int(p[a] * scale_);
-      const std::int64_t c = u >> kCellBits, at = u & (kCellUnits - 1);  // cell, place in it
-      const std::int64_t side = static_cast<std::int64_t>(at >= kCellUnits - reach_) -
-                                static_cast<std::int64_t>(at < reach_);
-      both |= static_cast<unsigned>(side != 0) << a;
-      const int shift = (2 - a) * kKeyBits;
-      kp[a][0] = (static_cast<std::uint64_t>(c) & kKeyMask) << shift;
-      kp[a][1] = (static_cast<std::uint64_t>(c + side) & kKeyMask) << shift;
-      q[a][0] = static_cast<std::int32_t>(at - kCellUnits / 2);
-      q[a][1] = static_cast<std::int32_t>(at - kCellUnits / 2 - side * kCellUnits);
+      const std::int64_t at = u & (kCellUnits - 1);  // place in the cell
+      // +1 if at >= kCellUnits - reach_, -1 if at < reach_ (reach_ < kCellUnits / 2).
+      const std::int64_t side = ((at + reach_) >> kCellBits) + ((at - reach_) >> 63);
+      both |= static_cast<unsigned>(side & 1) << a;
+      own_key += static_cast<std::uint64_t>(u >> kCellBits) * kKeyStep[a];
+      step[a] = static_cast<std::uint64_t>(side) * kKeyStep[a];
+      q[a] = static_cast<std::int32_t>(at - kCellUnits / 2);
+      shift[a] = static_cast<std::int32_t>(side * kCellUnits);
     }
-    const std::uint64_t own_key = kp[0][0] | kp[1][0] | kp[2][0];
+    const Filter f = filter_base();
+    // p's own cell, then the others the ball meets: every non-empty subset m of `both` (bit
+    // a: the neighbour along axis a).
     std::size_t own = find(own_key);
-    if (near_in(slots_[own].head, q[0][0], q[1][0], q[2][0], exact)) return true;
-    // The other cells the ball meets: every non-empty subset of `both`.
+    if (const Chunk* h = slots_[own].head;
+        h != nullptr && near_in(h, at_point(f, q[0], q[1], q[2]), exact))
+      return true;
     for (unsigned m = both; m != 0; m = (m - 1) & both) {
-      const unsigned i = m & 1, j = (m >> 1) & 1, k = m >> 2;
-      const std::uint32_t h = slots_[find(kp[0][i] | kp[1][j] | kp[2][k])].head;
-      if (near_in(h, q[0][i], q[1][j], q[2][k], exact)) return true;
+      const std::uint32_t ax = m & 1, ay = (m >> 1) & 1, az = m >> 2;
+      const Chunk* h =
+          slots_[find(own_key + (step[0] & (0 - std::uint64_t{ax})) +
+                      (step[1] & (0 - std::uint64_t{ay})) + (step[2] & (0 - std::uint64_t{az})))]
+              .head;
+      if (h != nullptr && near_in(h,
+                                  at_point(f, q[0] - (shift[0] & -static_cast<std::int32_t>(ax)),
+                                           q[1] - (shift[1] & -static_cast<std::int32_t>(ay)),
+                                           q[2] - (shift[2] & -static_cast<std::int32_t>(az))),
+                                  exact))
+        return true;
     }
-    if (slots_[own].head == kNone && 2 * (count_ + 1) > slots_.size()) {
+    if (slots_[own].head == nullptr && 2 * (count_ + 1) > slots_.size()) {
       grow();
       own = find(own_key);
     }
-    insert(own, own_key, q[0][0], q[1][0], q[2][0], node);
+    insert(slots_[own], own_key, q[0], q[1], q[2], node);
     return false;
   }
 
  private:
-  static constexpr std::uint32_t kNone = 0xffffffffu;
   static constexpr int kLanes = 8;
   // The largest coordinate relative to a cell's centre (see kCellBits).
   static constexpr double kMaxCoord =
@@ -135,61 +151,91 @@ class OverlapGrid {
   static constexpr std::int16_t kFar = 32767;
   // Chunks are allocated in pages of kPage, never moved (no copy, no reserve beyond need).
   static constexpr std::uint32_t kPageBits = 12, kPage = 1u << kPageBits;
-  static constexpr int kKeyBits = 21;
-  static constexpr std::uint64_t kKeyMask = (std::uint64_t{1} << kKeyBits) - 1;
+  // A cell's key: its coordinates times these, summed (wrapping).
+  static constexpr std::uint64_t kKeyStep[3] = {std::uint64_t{1} << 42, std::uint64_t{1} << 21, 1};
+  struct Chunk;
   struct Slot {
-    std::uint64_t key;   // the cell's packed coordinates
-    std::uint32_t head;  // the cell's newest chunk, kNone for an empty slot
+    std::uint64_t key;  // the cell's key
+    Chunk* head;        // the cell's newest chunk, null for an empty slot
   };
-  struct Chunk {
-    alignas(16) std::int16_t x[kLanes];  // points relative to the cell's centre, in units
-    std::int16_t y[kLanes], z[kLanes];
-    std::uint32_t node[kLanes];
-    std::uint32_t next;  // the cell's previous (full) chunk
-    std::int32_t count;
+  // One cache line: what the filter reads.
+  struct alignas(64) Chunk {
+    // Points relative to the cell's centre, in units: lane t's x and y in xy[2 t] and
+    // xy[2 t + 1] (one multiply-add gives four lanes' x^2 + y^2), its z in z[t].
+    std::int16_t xy[2 * kLanes];
+    std::int16_t z[kLanes];
+    Chunk* next;          // the cell's previous (full) chunk
+    std::uint32_t count;  // lanes used
+    std::uint32_t id;     // this chunk's number: its node indices' place
   };
-  // True if exact() accepts a node of the chunks from h on within the filter's distance of
-  // (x, y, z) (units relative to their cell's centre).
-  template <class Exact>
-  bool near_in(std::uint32_t h, std::int32_t x, std::int32_t y, std::int32_t z,
-               Exact& exact) const {
-    for (; h != kNone;) {
-      const Chunk& ch = chunk(h);
-      for (unsigned near = near_lanes(ch, x, y, z); near != 0; near &= near - 1)
-        if (exact(ch.node[__builtin_ctz(near)])) return true;
-      h = ch.next;
-    }
-    return false;
-  }
-  // Bit t set if lane t of ch lies within the filter's distance of q.
-  unsigned near_lanes(const Chunk& ch, std::int32_t qx, std::int32_t qy, std::int32_t qz) const {
+  static_assert(sizeof(Chunk) == 64, "a chunk is one cache line");
+  struct Page {
+    Chunk chunk[kPage];
+    std::uint32_t node[kPage][kLanes];  // the nodes of chunk[c], lane by lane
+  };
 #if defined(__SSE2__)
-    const __m128i dx = _mm_subs_epi16(_mm_load_si128(reinterpret_cast<const __m128i*>(ch.x)),
-                                      _mm_set1_epi16(static_cast<std::int16_t>(qx)));
-    const __m128i dy = _mm_sub_epi16(_mm_load_si128(reinterpret_cast<const __m128i*>(ch.y)),
-                                     _mm_set1_epi16(static_cast<std::int16_t>(qy)));
-    const __m128i dz = _mm_sub_epi16(_mm_load_si128(reinterpret_cast<const __m128i*>(ch.z)),
-                                     _mm_set1_epi16(static_cast<std::int16_t>(qz)));
+  // p's coordinates (units relative to a cell's centre) in every lane, and the filter's
+  // squared distance.
+  struct Filter {
+    __m128i xy, z, thr;  // (x, y) pairs, z
+  };
+  Filter filter_base() const {
+    return Filter{{}, {}, _mm_set1_epi32(thr2_)};
+  }
+  static Filter at_point(Filter f, std::int32_t x, std::int32_t y, std::int32_t z) {
+    f.xy = _mm_set1_epi32(static_cast<std::int32_t>((static_cast<std::uint32_t>(x) & 0xffffu) |
+                                                    (static_cast<std::uint32_t>(y) << 16)));
+    f.z = _mm_set1_epi16(static_cast<std::int16_t>(z));
+    return f;
+  }
+  // Bit t set if lane t of ch lies within the filter's distance of its point.
+  static unsigned near_lanes(const Chunk& ch, const Filter& f) {
+    const __m128i* xy = reinterpret_cast<const __m128i*>(ch.xy);
+    const __m128i a = _mm_subs_epi16(_mm_load_si128(xy), f.xy);  // lanes 0 to 3
+    const __m128i b = _mm_subs_epi16(_mm_load_si128(xy + 1), f.xy);
+    const __m128i dz = _mm_sub_epi16(_mm_load_si128(reinterpret_cast<const __m128i*>(ch.z)), f.z);
     const __m128i zero = _mm_setzero_si128();
-    // (dx, dy) pairs and (dz, 0) pairs: one multiply-add gives dx^2 + dy^2, one dz^2.
-    const __m128i lo =
-        _mm_add_epi32(_mm_madd_epi16(_mm_unpacklo_epi16(dx, dy), _mm_unpacklo_epi16(dx, dy)),
-                      _mm_madd_epi16(_mm_unpacklo_epi16(dz, zero), _mm_unpacklo_epi16(dz, zero)));
-    const __m128i hi =
-        _mm_add_epi32(_mm_madd_epi16(_mm_unpackhi_epi16(dx, dy), _mm_unpackhi_epi16(dx, dy)),
-                      _mm_madd_epi16(_mm_unpackhi_epi16(dz, zero), _mm_unpackhi_epi16(dz, zero)));
-    const __m128i thr = _mm_set1_epi32(thr2_);
-    const __m128i m = _mm_packs_epi32(_mm_cmplt_epi32(lo, thr), _mm_cmplt_epi32(hi, thr));
+    const __m128i za = _mm_unpacklo_epi16(dz, zero), zb = _mm_unpackhi_epi16(dz, zero);
+    const __m128i lo = _mm_add_epi32(_mm_madd_epi16(a, a), _mm_madd_epi16(za, za));
+    const __m128i hi = _mm_add_epi32(_mm_madd_epi16(b, b), _mm_madd_epi16(zb, zb));
+    const __m128i m = _mm_packs_epi32(_mm_cmplt_epi32(lo, f.thr), _mm_cmplt_epi32(hi, f.thr));
     return static_cast<unsigned>(_mm_movemask_epi8(_mm_packs_epi16(m, zero)));
+  }
 #else
+  struct Filter {
+    std::int32_t x, y, z, thr;
+  };
+  Filter filter_base() const {
+    return Filter{0, 0, 0, thr2_};
+  }
+  static Filter at_point(Filter f, std::int32_t x, std::int32_t y, std::int32_t z) {
+    f.x = x;
+    f.y = y;
+    f.z = z;
+    return f;
+  }
+  static unsigned near_lanes(const Chunk& ch, const Filter& f) {
     unsigned near = 0;
     for (int t = 0; t < kLanes; ++t) {
-      const std::int32_t dx = std::min<std::int32_t>(ch.x[t] - qx, 32767);
-      const std::int32_t dy = ch.y[t] - qy, dz = ch.z[t] - qz;
-      near |= (dx * dx + dy * dy + dz * dz < thr2_ ? 1u : 0u) << t;
+      const std::int32_t dx = std::min<std::int32_t>(ch.xy[2 * t] - f.x, 32767);
+      const std::int32_t dy = ch.xy[2 * t + 1] - f.y, dz = ch.z[t] - f.z;
+      near |= (dx * dx + dy * dy + dz * dz < f.thr ? 1u : 0u) << t;
     }
     return near;
+  }
 #endif
+  // True if exact() accepts a node of the chunks from h on that the filter passes.
+  template <class Exact>
+  bool near_in(const Chunk* h, const Filter& f, Exact& exact) const {
+    do {
+      for (unsigned near = near_lanes(*h, f); __builtin_expect(near != 0, 0); near &= near - 1)
+        if (exact(node_of(*h, __builtin_ctz(near)))) return true;
+      h = h->next;
+    } while (h != nullptr);
+    return false;
+  }
+  std::uint32_t node_of(const Chunk& ch, int lane) const {
+    return pages_[ch.id >> kPageBits]->node[ch.id & (kPage - 1)][lane];
   }
   // v rounded to the nearest integer (the default rounding mode); |v| < 2^62.
   static std::int64_t round_int(double v) {
@@ -199,51 +245,50 @@ class OverlapGrid {
     return std::llrint(v);
 #endif
   }
-  const Chunk& chunk(std::uint32_t c) const {
-    return pages_[c >> kPageBits][c & (kPage - 1)];
-  }
-  Chunk& chunk(std::uint32_t c) {
-    return pages_[c >> kPageBits][c & (kPage - 1)];
-  }
   // The slot of cell key k, or the empty slot where it would go.
   std::size_t find(std::uint64_t k) const {
     const std::size_t mask = slots_.size() - 1;
     for (std::size_t h = (k * 0x9E3779B97F4A7C15ULL) >> (64 - bits_);; h = (h + 1) & mask)
-      if (slots_[h].head == kNone || slots_[h].key == k) return h;
+      if (slots_[h].head == nullptr || slots_[h].key == k) return h;
   }
   // Records node at (x, y, z) (units, relative to the cell's centre) in the cell of key k,
-  // whose slot is `slot` (the table has room for it).
-  void insert(std::size_t slot, std::uint64_t k, std::int32_t x, std::int32_t y, std::int32_t z,
+  // whose slot is s (the table has room for it).
+  void insert(Slot& s, std::uint64_t k, std::int32_t x, std::int32_t y, std::int32_t z,
               std::uint32_t node) {
-    Slot& s = slots_[slot];
-    if (s.head == kNone) {
+    if (s.head == nullptr || s.head->count == kLanes) new_chunk(s, k);
+    Chunk& ch = *s.head;
+    const std::uint32_t t = ch.count++;
+    ch.xy[2 * t] = static_cast<std::int16_t>(x);
+    ch.xy[2 * t + 1] = static_cast<std::int16_t>(y);
+    ch.z[t] = static_cast<std::int16_t>(z);
+    pages_[ch.id >> kPageBits]->node[ch.id & (kPage - 1)][t] = node;
+  }
+  // A new empty chunk at the head of slot s (key k; s empty or its head full). Out of line:
+  // one insertion in several takes it, and the test's code stays small.
+  [[gnu::noinline]] void new_chunk(Slot& s, std::uint64_t k) {
+    if (s.head == nullptr) {
       s.key = k;
       ++count_;
     }
-    if (s.head == kNone || chunk(s.head).count == kLanes) s.head = new_chunk(s.head);
-    Chunk& ch = chunk(s.head);
-    const int t = ch.count++;
-    ch.x[t] = static_cast<std::int16_t>(x);
-    ch.y[t] = static_cast<std::int16_t>(y);
-    ch.z[t] = static_cast<std::int16_t>(z);
-    ch.node[t] = node;
-  }
-  std::uint32_t new_chunk(std::uint32_t next) {
-    if (chunks_ == pages_.size() * kPage) pages_.push_back(std::make_unique<Chunk[]>(kPage));
-    Chunk& ch = chunk(chunks_);
-    std::fill(std::begin(ch.x), std::end(ch.x), kFar);
-    std::fill(std::begin(ch.y), std::end(ch.y), std::int16_t{0});
+    if (chunks_ == pages_.size() * kPage)
+      pages_.push_back(std::unique_ptr<Page>(new Page));  // not zeroed: lanes are set below
+    Chunk& ch = pages_[chunks_ >> kPageBits]->chunk[chunks_ & (kPage - 1)];
+    for (int t = 0; t < kLanes; ++t) {
+      ch.xy[2 * t] = kFar;
+      ch.xy[2 * t + 1] = 0;
+    }
     std::fill(std::begin(ch.z), std::end(ch.z), std::int16_t{0});
-    ch.next = next;
+    ch.next = s.head;
     ch.count = 0;
-    return chunks_++;
+    ch.id = chunks_++;
+    s.head = &ch;
   }
-  void grow() {
+  [[gnu::noinline, gnu::cold]] void grow() {
     std::vector<Slot> old = std::move(slots_);
-    slots_.assign(2 * old.size(), Slot{0, kNone});
+    slots_.assign(2 * old.size(), Slot{0, nullptr});
     ++bits_;
     for (const Slot& o : old)
-      if (o.head != kNone) slots_[find(o.key)] = o;
+      if (o.head != nullptr) slots_[find(o.key)] = o;
   }
   double scale_ = 1.0;      // units per length
   std::int64_t reach_ = 0;  // the ball's radius in units, and kSlackUnits
@@ -251,7 +296,7 @@ class OverlapGrid {
   std::vector<Slot> slots_;
   int bits_ = 4;
   std::size_t count_ = 0;
-  std::vector<std::unique_ptr<Chunk[]>> pages_;
+  std::vector<std::unique_ptr<Page>> pages_;
   std::uint32_t chunks_ = 0;
 };
 

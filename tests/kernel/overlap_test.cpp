@@ -135,3 +135,38 @@ TEST_CASE("overlap grid: the filtered test answers as the all-double one, at the
     CHECK(hits < 3000);
   }
 }
+
+TEST_CASE("overlap grid: nodes near cell corners are found in every neighbouring cell") {
+  // A test reads p's own cell and the neighbours its ball meets along one, two or three axes
+  // (a cell's edge, its corner). Points clustered round cell corners, edges and faces, on
+  // both sides of the origin (negative cell coordinates), each far from all others on the
+  // ply: every answer is compared with a brute-force test over the recorded nodes.
+  const double r = 0.5, edge = plyfit::detail::OverlapGrid::kCellRadii * r;
+  std::vector<Vec3> pts;
+  std::vector<std::uint32_t> recorded;
+  plyfit::detail::OverlapGrid grid;
+  grid.init(r, 16);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::uniform_int_distribution<int> cell(-2, 2);
+  int hits = 0, misses = 0;
+  for (int n = 0; n < 4000; ++n) {
+    // A corner of the cell grid, moved off it along none, one or two axes (a face or an
+    // edge of the cells), and a point within 1.5 radii of that.
+    Vec3 c(cell(rng) * edge, cell(rng) * edge, cell(rng) * edge);
+    for (int a = 0; a < 3; ++a)
+      if ((n >> a) % 3 == 0) c[a] += 0.5 * edge;
+    const Vec3 p = c + 1.5 * r * Vec3(u(rng), u(rng), u(rng));
+    pts.push_back(p);
+    const auto k = static_cast<std::uint32_t>(pts.size() - 1);
+    bool brute = false;
+    for (std::uint32_t m : recorded) brute = brute || (pts[m] - p).squaredNorm() < r * r;
+    const bool got =
+        grid.test_insert(p, k, [&](std::uint32_t m) { return (pts[m] - p).squaredNorm() < r * r; });
+    CHECK(got == brute);
+    if (!got) recorded.push_back(k);
+    (got ? hits : misses) += 1;
+  }
+  CHECK(hits > 500);  // both answers are common
+  CHECK(misses > 500);
+}
