@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include "support/problems.hpp"
+#include "support/shells.hpp"
 #include "support/surfaces.hpp"
 
 #include "test_util.hpp"
@@ -840,9 +841,7 @@ TEST_CASE("drape: a cell sheared nearly flat across two faces of sphere-8 is map
   // not folded: the node is the solution of |p| = R, |p - a| = |p - b| = d (closed form)
   // that is not the cell's fourth corner.
   const double R = 20.0, d = 2.33766;
-  auto data = builtin_shell("sphere-8", {{"R", R}});
-  REQUIRE(data.ok());
-  auto sh = Shell::create(std::move(data).value());
+  auto sh = support::make_builtin_shell("sphere-8", {{"R", R}});
   REQUIRE(sh.ok());
   const Vec3 w3(0.170222, 0.576356, 0.799273);
   const DrapeResult r =

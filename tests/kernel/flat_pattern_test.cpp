@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include "support/problems.hpp"
+#include "support/shells.hpp"
 
 #include <cmath>
 
@@ -287,9 +288,7 @@ TEST_CASE(
   // at each tangent join) that are partly on the fillet: each is short of its arc by at most
   // 2 r asin(d / 2r) - d; the exact 311.416 is approached as d^2.
   constexpr double L = 40, r = 10, Hw = 40, W = 60;
-  auto data = builtin_shell("flange-fillet-wall", {});
-  REQUIRE(data.ok());
-  auto sh = Shell::create(std::move(data).value());
+  auto sh = support::make_builtin_shell("flange-fillet-wall");
   REQUIRE(sh.ok());
   double previous_gap = 0.0;
   for (const double d : {1.0, 0.5}) {

@@ -13,6 +13,7 @@
 
 #include "support/outline_checks.hpp"
 #include "support/problems.hpp"
+#include "support/shells.hpp"
 
 #include <cmath>
 #include <random>
@@ -313,9 +314,7 @@ TEST_CASE("outline cleanup: cut outlines are simple and spike-free on every buil
   Tally t;
   unsigned seed = 100;
   for (const BuiltinInfo& info : builtin_shells()) {
-    auto data = builtin_shell(info.name, {});
-    REQUIRE(data.ok());
-    auto sh = Shell::create(std::move(data).value());
+    auto sh = support::make_builtin_shell(info.name);
     REQUIRE(sh.ok());
     random_cuts(*sh, info.name, seed++, 12, t);
   }
@@ -356,9 +355,7 @@ TEST_CASE("outline cleanup: a chord is no shorter than w to rounding (full cylin
   // measured it (0.25181099999999995 for w = 0.251811), which with the edge before it turned
   // back by 174 degrees within w: the cut outline's own chord made a spike by the checks'
   // definition.
-  auto data = builtin_shell("cylinder-split", {{"angle", 360.0}, {"parts", 3.0}});
-  REQUIRE(data.ok());
-  auto sh = Shell::create(std::move(data).value());
+  auto sh = support::make_builtin_shell("cylinder-split", {{"angle", 360.0}, {"parts", 3.0}});
   REQUIRE(sh.ok());
   const double d = 0.503622;
   const auto r =

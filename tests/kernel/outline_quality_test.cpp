@@ -12,6 +12,7 @@
 
 #include "support/outline_checks.hpp"
 #include "support/problems.hpp"
+#include "support/shells.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -241,9 +242,7 @@ TEST_CASE("flat pattern: outlines are simple and spike-free on every built-in sh
   int checked = 0;
   unsigned seed = 100;
   for (const BuiltinInfo& info : builtin_shells()) {
-    auto data = builtin_shell(info.name, {});
-    REQUIRE(data.ok());
-    auto sh = Shell::create(std::move(data).value());
+    auto sh = support::make_builtin_shell(info.name);
     REQUIRE(sh.ok());
     checked += random_drapes(*sh, info.name, seed++, 12);
   }

@@ -12,6 +12,7 @@
 #include <catch2/catch.hpp>
 
 #include "support/problems.hpp"
+#include "support/shells.hpp"
 #include "support/solver_cases.hpp"
 #include "support/surfaces.hpp"
 
@@ -230,9 +231,7 @@ TEST_CASE("drape: nodes landing on or next to a pole are mapped") {
   SECTION("the hemisphere and the sphere as 8 faces, starts about the pole") {
     const double R = 20.0, d = 1.0;
     const Face hemi = builtin("hemisphere", {{"R", R}});
-    auto sd = builtin_shell("sphere-8", {{"R", R}});
-    REQUIRE(sd.ok());
-    auto sh = Shell::create(std::move(sd).value());
+    auto sh = support::make_builtin_shell("sphere-8", {{"R", R}});
     REQUIRE(sh.ok());
     const Shell& sphere = sh.value();
     // Starts off the pole by (a, b) d, base planes at several azimuths: some node lands within

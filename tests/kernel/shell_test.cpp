@@ -9,6 +9,7 @@
 
 #include "support/net_checks.hpp"
 #include "support/problems.hpp"
+#include "support/shells.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -22,9 +23,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 Shell make_shell(const std::string& name, const std::map<std::string, double>& params = {}) {
-  auto data = builtin_shell(name, params);
-  REQUIRE(data.ok());
-  auto sh = Shell::create(std::move(data).value());
+  auto sh = support::make_builtin_shell(name, params);
   INFO(name << ": " << (sh.ok() ? "" : sh.error().message));
   REQUIRE(sh.ok());
   return std::move(sh).value();

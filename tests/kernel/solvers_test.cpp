@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "support/shells.hpp"
 #include "support/solver_cases.hpp"
 #include "support/surfaces.hpp"
 #include "test_util.hpp"
@@ -468,9 +469,7 @@ TEST_CASE("solvers: a cell sheared nearly flat across two faces of sphere-8 is s
   // 0.14 below it (the sphere's sag), and the old side test (the full perpendicular to a-b)
   // took the unfolded one for the folded one: "only the folded branch was found".
   const double R = 20.0, d = 2.33766;
-  auto data = builtin_shell("sphere-8", {{"R", R}});
-  REQUIRE(data.ok());
-  auto made = Shell::create(std::move(data).value());
+  auto made = support::make_builtin_shell("sphere-8", {{"R", R}});
   REQUIRE(made.ok());
   const Shell& sh = *made;
   const Vec3 a = Vec3(-5.15837763509, -0.952660671787, -19.2998336215).normalized() * R;
