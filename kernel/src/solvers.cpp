@@ -585,7 +585,17 @@ std::optional<SolveResult> trace_section(const DrapeSurface& s, const Vec3& x0,
     };
     const SurfaceLocation guess = s.locate(at, at.uv + h * dir_uv);
     setup_margins(c, at, guess);
-    const bool converged = newton(c, guess, resid);
+    bool converged = newton(c, guess, resid);
+    if (!converged) {
+      // From the predicted point's nearest point of the face (no step cap: across a band of
+      // the parameters where the surface barely moves, a CAD patch's collapsed strip, which
+      // Newton's capped steps crawl into and stall at).
+      const Foot fq = foot_near(s, st, q, at, c.res.evaluations);
+      if (fq.ok && fq.at != at && (fq.p - q).norm() < h) {
+        setup_margins(c, at, fq.at);
+        converged = newton(c, fq.at, resid);
+      }
+    }
     Vec3 t_next = tn;
     bool sharp = false;
     if (converged) {

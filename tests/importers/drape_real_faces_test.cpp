@@ -254,6 +254,16 @@ TEST_CASE("drape: the solver places every node of the fuzz's failed drapes, or s
         Vec3(0.218272, 0.909228, 0.354489), Vec2(0.412575, 0.910924), Vec2(-0.910924, 0.412575),
         Vec3(0.125938, -0.989468, -0.071361), true},
        90.0},
+      // Seed 53 (15 minutes): PRO20359-L1's face is a CATIA V4 B-spline with a band
+      // 1 <= v <= 2 where the surface barely moves (|S_v| 0.018 against 45-50 beside it: a
+      // collapsed strip 0.01 mm wide). A base-path step across it, the base plane 3 degrees
+      // from the tangent plane, failed ("the residual stopped decreasing"): Newton's capped
+      // steps stall at v = 1, and the section trace crawled after them; it now steps from the
+      // predicted point's nearest point of the face, across the band (the path goes on).
+      {{"PRO20359-L1.igs", 0, 3.06786, Vec3(-674.159067, 546.316986, 451.852581),
+        Vec3(-0.532474, 0.407728, 0.741775), Vec2(0.075413, 0.997152), Vec2(-0.997152, 0.075413),
+        Vec3(-0.647064, 0.266020, 0.714522), false},
+       52.1},
       {{"trj8_c2-db-214.stp", 0, 0.357266, Vec3(0.060902, 7.733558, 13.744241),
         Vec3(0.052916, 0.843536, -0.534460), Vec2(0.159222, -0.987243), Vec2(-0.987243, -0.159222),
         Vec3(0.457404, 0.429004, 0.778934), true},
