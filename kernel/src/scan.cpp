@@ -110,7 +110,10 @@ void Scanner::resolve(std::uint32_t idx, const SolveResult& r) {
       n.status = NodeStatus::kShearLimit;
       break;
     case SolveStatus::kFailed:
-      if (r.section_ends) {
+      // The base path ends where its plane's section turns back; a thread continued from one
+      // neighbour (solver 3, a plane square to the surface) whose section turns back within
+      // the link has no point ahead: a failure, as before the trace.
+      if (r.section_ends && n.has(DrapeNode::kOnPath)) {
         n.status = NodeStatus::kPathEnd;
         break;
       }

@@ -863,8 +863,8 @@ SolveResult solve_plane_sphere(const DrapeSurface& s, const PlaneSphereStep& ste
     return bad;
   }
   t.normalize();
-  SolveResult r =
-      plane_sphere_core(s, step.center, step.center_at, e0, n, n.cross(t), t, step.radius, st);
+  SolveResult r = plane_sphere_core(s, step.center, step.center_at, e0, n, n.cross(t), t,
+                                    step.radius, st, true);
   ++r.evaluations;
   return r;
 }

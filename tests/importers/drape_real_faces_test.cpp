@@ -264,6 +264,14 @@ TEST_CASE("drape: the solver places every node of the fuzz's failed drapes, or s
         Vec3(-0.532474, 0.407728, 0.741775), Vec2(0.075413, 0.997152), Vec2(-0.997152, 0.075413),
         Vec3(-0.647064, 0.266020, 0.714522), false},
        52.1},
+      // Seed 59 (15 minutes): a warp thread continued from one node (solver 3) towards one of
+      // surf114 face 0's nearly degenerate corners (u-speed 1e-6..5e-5 against a v-speed of
+      // 0.03-0.2) stalled ("the residual stopped decreasing"); the section trace follows the
+      // thread's plane section off the face: outside.
+      {{"surf114.igs", 0, 1.28694, Vec3(-17.121733, 54.979892, 88.517733),
+        Vec3(0.762679, -0.640956, 0.086585), Vec2(-0.997270, -0.073841), Vec2(-0.073841, 0.997270),
+        Vec3(-0.951176, 0.125478, 0.281993), true},
+       90.0},
       {{"trj8_c2-db-214.stp", 0, 0.357266, Vec3(0.060902, 7.733558, 13.744241),
         Vec3(0.052916, 0.843536, -0.534460), Vec2(0.159222, -0.987243), Vec2(-0.987243, -0.159222),
         Vec3(0.457404, 0.429004, 0.778934), true},

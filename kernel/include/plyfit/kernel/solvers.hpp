@@ -114,6 +114,8 @@ Vec2 two_sphere_guess(const DrapeSurface& surface, const SurfaceLocation& a_at,
 
 /// Solver 3 (§6.1, eq. 13): the node at distance `radius` from `center` in the plane through
 /// `center` that contains the face normal there and `direction`; forward along `direction`.
+/// Like solver 1, where the direct solve and the march fail it traces the plane's section
+/// (section_ends where it turns back within the step).
 struct PlaneSphereStep {
   Vec3 center;
   SurfaceLocation center_at;
