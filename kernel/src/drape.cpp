@@ -126,11 +126,11 @@ void judge_drape(const DrapeSurface& s, const DrapeProblem& pb, const Tolerances
 // between the base plane and the tangent plane at the path's last point there.
 void warn_path_ends(const DrapeSurface& s, DrapeResult& res) {
   if (res.metrics.nodes.path_end == 0 || res.base_path.empty()) return;
+  const DrapeNode& a = res.nodes[res.base_path.front()];
+  const DrapeNode& b = res.nodes[res.base_path.back()];
   const DrapeNode* warned = nullptr;  // a path of one point ends both ways there: one warning
   for (const DrapeNode& n : res.nodes) {
     if (n.status != NodeStatus::kPathEnd) continue;
-    const DrapeNode& a = res.nodes[res.base_path.front()];
-    const DrapeNode& b = res.nodes[res.base_path.back()];
     const DrapeNode& last = (a.ply - n.ply).norm() <= (b.ply - n.ply).norm() ? a : b;
     if (&last == warned) continue;
     warned = &last;

@@ -728,6 +728,17 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
     ++c.res.evaluations;
     if (eg.ok && (eg.p - (x0 + rho * t)).norm() <= kTrustRatio * rho) return c.res;
   }
+  // With `trace` (the base path, solver 3), the section traced from x0 (trace_section), its
+  // counts added to those of the solve so far; nothing without it or where it has no verdict.
+  auto traced = [&](const SolveResult& so_far) {
+    std::optional<SolveResult> tr;
+    if (trace) tr = trace_section(s, x0, at0, pn, t, rho, st);
+    if (tr) {
+      tr->iterations += so_far.iterations;
+      tr->evaluations += so_far.evaluations;
+    }
+    return tr;
+  };
   // Otherwise march along the intersection curve: radius rho k / K, k = 1..K, each guess
   // extrapolated from the previous two solutions.
   const SolveResult first = c.res;
@@ -756,13 +767,7 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
     // Newton stalled on the surface extended past a domain edge, which need not go on.)
     // Otherwise try finer sub-steps.
     if (!s.contains(g) || (prev != uk.from_at && !s.contains(prev))) {
-      if (trace) {
-        if (auto tr = trace_section(s, x0, at0, pn, t, rho, st)) {
-          tr->iterations += c.res.iterations;
-          tr->evaluations += c.res.evaluations;
-          return *tr;
-        }
-      }
+      if (auto tr = traced(c.res)) return *tr;
       c.res.status = SolveStatus::kLeftFace;
       c.res.extended = false;
       c.res.reason = "outside";
@@ -775,13 +780,7 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
   // The base path: the plane's section traced forward tells a section that turns back or
   // closes within rho (the path ends) from one that leaves the face (outside), and finds the
   // point where the section turns too tightly for the march.
-  if (trace) {
-    if (auto tr = trace_section(s, x0, at0, pn, t, rho, st)) {
-      tr->iterations += out.iterations;
-      tr->evaluations += out.evaluations;
-      return *tr;
-    }
-  }
+  if (auto tr = traced(out)) return *tr;
   // No point of the face lies on the circle where the plane meets the sphere when each of
   // kSectionSamples points on it lies further from the face than the longest distance from a
   // point of the circle to the nearest sample (their nearest points of the face found from

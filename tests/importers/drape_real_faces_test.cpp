@@ -231,7 +231,8 @@ TEST_CASE("drape: the solver places every node of the fuzz's failed drapes, or s
        24.3},
       // Base-path steps from starts near that pinch whose plane section closes, or leaves the
       // face, within the link length of the start: no point of the face on the step's
-      // circle, outside (were "no convergence" and "no intersection").
+      // circle (were "no convergence" and "no intersection"); outside where the section leaves
+      // the face, the path's end (path_end) where it closes on it.
       {{"surf114.igs", 3, 1.7211, Vec3(-24.814532, 30.583266, 59.236682),
         Vec3(-0.149494, 0.944948, 0.291074), Vec2(-0.474019, 0.880515), Vec2(-0.880515, -0.474019),
         Vec3(-0.523831, 0.270033, 0.807888), false},

@@ -209,18 +209,11 @@ class DrapePositions {
   std::map<std::pair<std::int32_t, std::int32_t>, std::pair<std::optional<Pos>, int>> solved_;
 };
 
-/// Where node `id` lies, for draped_at() (see DrapePositions).
-inline std::optional<std::pair<SurfaceLocation, Vec3>> drape_position(const DrapeSurface& s,
-                                                                      const DrapeResult& r,
-                                                                      const NodeId& id) {
-  return DrapePositions(s, r)(id);
-}
-
 /// Whether ply point p is draped cloth on the face. The part of its cell that holds it
 /// (cell_parts: the cell, or one of the two the base path splits it into) decides: no cloth
 /// off the ply or in an unswept half-plane; no cloth in a part with a node where the drape
 /// stopped (shear limit, overlap, failure, off the ply: the cloth goes no further there);
-/// else, with a position for every node of the part (drape_position), p is carried to
+/// else, with a position for every node of the part (DrapePositions), p is carried to
 /// (u, v) by the part's fan triangles (0, k, k + 1) (the interpolation the outline is defined
 /// by) and the face's contains() answers (nodes on other faces carried into the first node's
 /// chart by DrapeSurface::delta, the point located from there). Unknown: on the base path, a
