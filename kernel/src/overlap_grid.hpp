@@ -30,17 +30,20 @@ inline std::uint64_t mix(std::uint64_t k) {  // splitmix64 finaliser
 // on every mapped node, so what it costs per node is what matters (issue 13: at most 10 % of
 // the drape): a few hundred instructions, few unpredictable branches, little memory, and
 // little code (the scan's loop fills the instruction cache: callgrind counts more misses
-// that the test causes in the scan's code than in its own).
+// that the test causes in the scan's code than in its own). Within the drape most of its
+// cost is memory: between two passes of the scan over a cell the solver's data has pushed
+// the cell's lines out of the level-2 cache, and about two lines per node come back from
+// further away (BENCHMARKS.md).
 // - Points are rounded to integer units, kCellUnits (a power of two) to a cell's edge of
 //   kCellRadii * radius: a point's cell and its place in it are a shift and a mask.
 // - A node is recorded in its own cell. A test reads the cells p's ball (radius and two
 //   units) meets: its own and, per axis, the neighbour it lies within that of (one axis in
-//   four on average), found from p's integer coordinates without a floor() or a
-//   data-dependent loop per axis: p's own cell, then one loop over the others.
+//   six on average), found from p's integer coordinates without a floor() or a
+//   data-dependent loop per axis; one loop visits them, p's own cell last.
 // - Open addressing on a cell key linear in the cell's coordinates (a neighbour's key is
 //   the cell's plus a step; cells 2^21 apart share a key: that only adds candidates),
 //   multiplicative hashing.
-// - A cell's nodes lie in chunks of kLanes, one cache line each: the nodes' points as 16-bit
+// - A cell's nodes lie in chunks of kLanes, two cache lines each: the nodes' points as 16-bit
 //   integers relative to the cell's centre (structure of arrays, unused lanes far away) and
 //   a pointer to the cell's previous chunk; the node indices lie apart, read only on a hit.
 //   A chunk is filtered whole with SSE2 integer arithmetic (no branch per node) by a
@@ -52,15 +55,18 @@ inline std::uint64_t mix(std::uint64_t k) {  // splitmix64 finaliser
 class OverlapGrid {
  public:
   // Cell edge over the test radius (>= 2: the ball meets at most two cells per axis). Larger
-  // cells mean fewer cells visited, more nodes per cell: 8 against 6 takes 3 % fewer
-  // instructions per test, fewer cache misses and 3 % less peak heap (callgrind, wave and
-  // octant at 300^2); with one-line chunks, 12 and 16 take 6 % and 20 % more instructions
-  // and more cache misses than 8 (wave at 300^2).
-  static constexpr int kCellRadii = 8;
-  // A cell's edge in integer units: the radius is kCellUnits / kCellRadii = 2048 units. A
-  // coordinate relative to its cell's centre is at most kCellUnits / 2 + 2051 = 10243
-  // units, a difference of two at most 20486 (16 bits), a squared distance 3 * 20486^2 <
-  // 2^31 (the sums are 32-bit).
+  // cells mean fewer cells visited, more nodes per cell. The test alone, timed over the
+  // nodes of the drapes of the overlap table in scan order (wave, octant, CAD, closed
+  // hemisphere at 300^2 and 1000^2, interleaved runs): 12 with two-line chunks of 16 lanes
+  // takes 6 to 10 % less time than 8 with one-line chunks of 8 at 300^2, 16 to 21 % less at
+  // 1000^2 (fewer cache lines per cell of the scan's front), and the drape 3 % less peak
+  // heap; 16 is no better than 12. Within the drape the difference is below the machine's
+  // noise.
+  static constexpr int kCellRadii = 12;
+  // A cell's edge in integer units: the radius is kCellUnits / kCellRadii = 1365.3 units. A
+  // coordinate relative to its cell's centre is at most kCellUnits / 2 + 1368 = 9560 units,
+  // a difference of two at most 19120 (16 bits), a squared distance 3 * 19120^2 < 2^31
+  // (the sums are 32-bit).
   static constexpr int kCellBits = 14;
   static constexpr std::int64_t kCellUnits = std::int64_t{1} << kCellBits;
   // Units added to the radius in the cell-membership and filter tests (a coordinate's
@@ -68,9 +74,9 @@ class OverlapGrid {
   static constexpr int kSlackUnits = 2;
   // Expected mapped nodes per occupied cell: sizes the slot table for `expected` nodes (it
   // doubles when more cells are met). The surface crosses a cell of edge kCellRadii *
-  // kOverlapRel * d = 4 d at about 10 to 28 nodes: 6 keeps the table's load low (few
-  // probes per look-up).
-  static constexpr std::size_t kNodesPerCell = 6;
+  // kOverlapRel * d = 6 d at 26 to 30 nodes on average (octant and wave at 1000^2): 12
+  // keeps the table's load low (few probes per look-up).
+  static constexpr std::size_t kNodesPerCell = 12;
 
   void init(double radius, std::size_t expected) {
     const double units = static_cast<double>(kCellUnits) / kCellRadii;  // per radius
@@ -106,30 +112,30 @@ class OverlapGrid {
       // +1 if at >= kCellUnits - reach_, -1 if at < reach_ (reach_ < kCellUnits / 2).
       const std::int64_t side = ((at + reach_) >> kCellBits) + ((at - reach_) >> 63);
       both |= static_cast<unsigned>(side & 1) << a;
-      own_key += static_cast<std::uint64_t>(u >> kCellBits) * kKeyStep[a];
-      step[a] = static_cast<std::uint64_t>(side) * kKeyStep[a];
+      own_key += static_cast<std::uint64_t>(u >> kCellBits) << kKeyShift[a];
+      step[a] = static_cast<std::uint64_t>(side) << kKeyShift[a];
       q[a] = static_cast<std::int32_t>(at - kCellUnits / 2);
       shift[a] = static_cast<std::int32_t>(side * kCellUnits);
     }
-    const Filter f = filter_base();
-    // p's own cell, then the others the ball meets: every non-empty subset m of `both` (bit
-    // a: the neighbour along axis a).
-    std::size_t own = find(own_key);
-    if (const Chunk* h = slots_[own].head;
-        h != nullptr && near_in(h, at_point(f, q[0], q[1], q[2]), exact))
-      return true;
-    for (unsigned m = both; m != 0; m = (m - 1) & both) {
-      const std::uint32_t ax = m & 1, ay = (m >> 1) & 1, az = m >> 2;
-      const Chunk* h =
-          slots_[find(own_key + (step[0] & (0 - std::uint64_t{ax})) +
-                      (step[1] & (0 - std::uint64_t{ay})) + (step[2] & (0 - std::uint64_t{az})))]
-              .head;
-      if (h != nullptr && near_in(h,
-                                  at_point(f, q[0] - (shift[0] & -static_cast<std::int32_t>(ax)),
-                                           q[1] - (shift[1] & -static_cast<std::int32_t>(ay)),
-                                           q[2] - (shift[2] & -static_cast<std::int32_t>(az))),
-                                  exact))
+    // The cells the ball meets: for every subset m of `both` (bit a: the neighbour along
+    // axis a), down to the empty one, p's own cell. One loop: the test's code stays small.
+    std::size_t own;
+    for (unsigned m = both;; m = (m - 1) & both) {
+      std::uint64_t key = own_key;
+      std::int32_t c[3];
+      for (int a = 0; a < 3; ++a) {
+        const std::int32_t in = -static_cast<std::int32_t>((m >> a) & 1);
+        key += step[a] & static_cast<std::uint64_t>(static_cast<std::int64_t>(in));
+        c[a] = q[a] - (shift[a] & in);
+      }
+      const std::size_t s = find(key);
+      if (const Chunk* h = slots_[s].head;
+          h != nullptr && near_in(h, at_point(filter_base(), c[0], c[1], c[2]), exact))
         return true;
+      if (m == 0) {
+        own = s;
+        break;
+      }
     }
     if (slots_[own].head == nullptr && 2 * (count_ + 1) > slots_.size()) {
       grow();
@@ -140,7 +146,7 @@ class OverlapGrid {
   }
 
  private:
-  static constexpr int kLanes = 8;
+  static constexpr int kLanes = 16;
   // The largest coordinate relative to a cell's centre (see kCellBits).
   static constexpr double kMaxCoord =
       kCellUnits / 2 + static_cast<double>(kCellUnits) / kCellRadii + 1 + kSlackUnits;
@@ -152,14 +158,15 @@ class OverlapGrid {
   // Chunks are allocated in pages of kPage, never moved (no copy, no reserve beyond need).
   static constexpr std::uint32_t kPageBits = 12, kPage = 1u << kPageBits;
   // A cell's key: its coordinates times these, summed (wrapping).
-  static constexpr std::uint64_t kKeyStep[3] = {std::uint64_t{1} << 42, std::uint64_t{1} << 21, 1};
+  static constexpr int kKeyShift[3] = {42, 21, 0};
   struct Chunk;
   struct Slot {
     std::uint64_t key;  // the cell's key
     Chunk* head;        // the cell's newest chunk, null for an empty slot
   };
-  // One cache line: what the filter reads.
-  struct alignas(64) Chunk {
+  // Two cache lines (a pair the adjacent-line prefetcher fetches together): what the
+  // filter reads.
+  struct alignas(128) Chunk {
     // Points relative to the cell's centre, in units: lane t's x and y in xy[2 t] and
     // xy[2 t + 1] (one multiply-add gives four lanes' x^2 + y^2), its z in z[t].
     std::int16_t xy[2 * kLanes];
@@ -168,7 +175,7 @@ class OverlapGrid {
     std::uint32_t count;  // lanes used
     std::uint32_t id;     // this chunk's number: its node indices' place
   };
-  static_assert(sizeof(Chunk) == 64, "a chunk is one cache line");
+  static_assert(sizeof(Chunk) == 128, "a chunk is two cache lines");
   struct Page {
     Chunk chunk[kPage];
     std::uint32_t node[kPage][kLanes];  // the nodes of chunk[c], lane by lane
@@ -191,15 +198,20 @@ class OverlapGrid {
   // Bit t set if lane t of ch lies within the filter's distance of its point.
   static unsigned near_lanes(const Chunk& ch, const Filter& f) {
     const __m128i* xy = reinterpret_cast<const __m128i*>(ch.xy);
-    const __m128i a = _mm_subs_epi16(_mm_load_si128(xy), f.xy);  // lanes 0 to 3
-    const __m128i b = _mm_subs_epi16(_mm_load_si128(xy + 1), f.xy);
-    const __m128i dz = _mm_sub_epi16(_mm_load_si128(reinterpret_cast<const __m128i*>(ch.z)), f.z);
+    const __m128i* zp = reinterpret_cast<const __m128i*>(ch.z);
     const __m128i zero = _mm_setzero_si128();
-    const __m128i za = _mm_unpacklo_epi16(dz, zero), zb = _mm_unpackhi_epi16(dz, zero);
-    const __m128i lo = _mm_add_epi32(_mm_madd_epi16(a, a), _mm_madd_epi16(za, za));
-    const __m128i hi = _mm_add_epi32(_mm_madd_epi16(b, b), _mm_madd_epi16(zb, zb));
-    const __m128i m = _mm_packs_epi32(_mm_cmplt_epi32(lo, f.thr), _mm_cmplt_epi32(hi, f.thr));
-    return static_cast<unsigned>(_mm_movemask_epi8(_mm_packs_epi16(m, zero)));
+    unsigned near = 0;
+    for (int g = 0; g < kLanes / 8; ++g) {                                 // lanes 8 g to 8 g + 7
+      const __m128i a = _mm_subs_epi16(_mm_load_si128(xy + 2 * g), f.xy);  // 4 lanes
+      const __m128i b = _mm_subs_epi16(_mm_load_si128(xy + 2 * g + 1), f.xy);
+      const __m128i dz = _mm_sub_epi16(_mm_load_si128(zp + g), f.z);
+      const __m128i za = _mm_unpacklo_epi16(dz, zero), zb = _mm_unpackhi_epi16(dz, zero);
+      const __m128i lo = _mm_add_epi32(_mm_madd_epi16(a, a), _mm_madd_epi16(za, za));
+      const __m128i hi = _mm_add_epi32(_mm_madd_epi16(b, b), _mm_madd_epi16(zb, zb));
+      const __m128i m = _mm_packs_epi32(_mm_cmplt_epi32(lo, f.thr), _mm_cmplt_epi32(hi, f.thr));
+      near |= static_cast<unsigned>(_mm_movemask_epi8(_mm_packs_epi16(m, zero))) << (8 * g);
+    }
+    return near;
   }
 #else
   struct Filter {
@@ -228,10 +240,19 @@ class OverlapGrid {
   template <class Exact>
   bool near_in(const Chunk* h, const Filter& f, Exact& exact) const {
     do {
-      for (unsigned near = near_lanes(*h, f); __builtin_expect(near != 0, 0); near &= near - 1)
-        if (exact(node_of(*h, __builtin_ctz(near)))) return true;
+      if (const unsigned near = near_lanes(*h, f);
+          __builtin_expect(near != 0, 0) && exact_in(*h, near, exact))
+        return true;
       h = h->next;
     } while (h != nullptr);
+    return false;
+  }
+  // True if exact() accepts a node of lanes `near` of ch. Out of line: rare unless the cloth
+  // comes back, and the test's code stays small.
+  template <class Exact>
+  [[gnu::noinline, gnu::cold]] bool exact_in(const Chunk& ch, unsigned near, Exact& exact) const {
+    for (; near != 0; near &= near - 1)
+      if (exact(node_of(ch, __builtin_ctz(near)))) return true;
     return false;
   }
   std::uint32_t node_of(const Chunk& ch, int lane) const {

@@ -16,7 +16,9 @@ Scanner::Scanner(const DrapeSurface& s, Ply& ply, const DrapeOptions& opt, Drape
   far_ = kFarFromPathCells * std::hypot(ply.spec().d_weft, ply.spec().d_warp);
   one_face_ = s.face_count() == 1;
   cell_ = kOverlapRel * ply.d();
-  grid_.init(cell_, res_.nodes.capacity());  // every mapped node is recorded
+  // With the test every mapped node is recorded; without it only the base path's nodes (the
+  // path's own test for a plane section that comes round): the table grows from its least.
+  grid_.init(cell_, opt.overlap_test ? res_.nodes.capacity() : 0);
 }
 
 void Scanner::run(const Vec3& t3) {
@@ -128,10 +130,13 @@ void Scanner::resolve(std::uint32_t idx, const SolveResult& r) {
 // records it.
 bool Scanner::overlaps(std::uint32_t k) {
   const DrapeNode& n = node(k);
-  const double r2 = cell_ * cell_, sep = kOverlapSeparation * ply_.d(), s2 = sep * sep;
-  return grid_.test_insert(n.point, k, [&](std::uint32_t m) {
+  // Called only for nodes the grid's filter passes (rare): everything it needs is worked
+  // out here, not before the test.
+  return grid_.test_insert(n.point, k, [this, &n](std::uint32_t m) {
     const DrapeNode& o = res_.nodes[m];
-    return (o.point - n.point).squaredNorm() < r2 && (o.ply - n.ply).squaredNorm() >= s2;
+    const double sep = kOverlapSeparation * ply_.d();
+    return (o.point - n.point).squaredNorm() < cell_ * cell_ &&
+           (o.ply - n.ply).squaredNorm() >= sep * sep;
   });
 }
 
