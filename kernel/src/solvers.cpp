@@ -573,7 +573,7 @@ std::optional<SolveResult> trace_section(const DrapeSurface& s, const Vec3& x0,
     const Vec3 n = face_normal(s, at, e);
     Vec3 tn = n.cross(pn);
     if (!(tn.norm() > kSectionEndSin))
-      return ends("the base plane touches the surface ahead: its section ends within one link");
+      return ends("the step's plane touches the surface ahead: its section ends within one link");
     tn.normalize();
     if (tn.dot(t) < 0.0) tn = -tn;
     Vec2 dir_uv;
@@ -645,7 +645,7 @@ std::optional<SolveResult> trace_section(const DrapeSurface& s, const Vec3& x0,
     }
     if (chord_next < chord)
       return ends(
-          "the base plane's section turns back within one link (the plane nearly "
+          "the section of the step's plane turns back within one link (the plane nearly "
           "touches the surface ahead)");
     at = at_next;
     p = p_next;
