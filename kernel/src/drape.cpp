@@ -249,6 +249,13 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
         "splice is needed there, or another start or base path");
   }
   warn_path_ends(s, res);
+  if (const auto& te = scanner.thread_ends(); te.nodes > 0)
+    res.warnings.push_back(
+        std::to_string(te.nodes) + " node(s), the first at ply (" + brief(te.first.x()) + ", " +
+        brief(te.first.y()) +
+        "), marked outside: a thread continued from one neighbour cannot follow the surface "
+        "for one link there (the section of its plane, square to the surface, turns back: the "
+        "surface curls tighter than the thread spacing); a finer spacing follows it further");
   if (const auto slit = scanner.path_slits(); slit.links > 0) {
     res.partial = true;
     res.warnings.push_back(

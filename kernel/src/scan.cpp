@@ -112,11 +112,18 @@ void Scanner::resolve(std::uint32_t idx, const SolveResult& r) {
       n.status = NodeStatus::kShearLimit;
       break;
     case SolveStatus::kFailed:
-      // The base path ends where its plane's section turns back; a thread continued from one
-      // neighbour (solver 3, a plane square to the surface) whose section turns back within
-      // the link has no point ahead: a failure, as before the trace.
+      // The base path ends where its plane's section turns back (path_end).
       if (r.section_ends && n.has(DrapeNode::kOnPath)) {
         n.status = NodeStatus::kPathEnd;
+        break;
+      }
+      // A thread continued from one node whose plane's section turns back within the link:
+      // the surface curls back tighter than the thread spacing (surf114 face 2, towards its
+      // degenerate edge: at most 0.97 d from the node). No point of the face lies a link
+      // ahead on the thread: the cloth leaves the surface there, outside (warned).
+      if (r.section_ends) {
+        n.status = NodeStatus::kOutside;
+        if (thread_ends_.nodes++ == 0) thread_ends_.first = n.ply;
         break;
       }
       n.status = r.fronts_disagree ? NodeStatus::kConflict : NodeStatus::kFailed;

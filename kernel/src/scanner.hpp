@@ -78,6 +78,14 @@ class Scanner {
   };
   /// Finds the slit after the scan (never on a path that crossed its gaps).
   PathSlit path_slits() const;
+  /// Nodes off the base path whose thread, continued from one neighbour, cannot follow the
+  /// surface for one link (the section of its plane, square to the surface, turns back or
+  /// ends within the link): marked outside. The first one's ply point, for the warning.
+  struct ThreadEnds {
+    std::uint64_t nodes = 0;
+    Vec2 first = Vec2::Zero();
+  };
+  const ThreadEnds& thread_ends() const { return thread_ends_; }
 
  private:
   DrapeNode& node(std::uint32_t k) { return res_.nodes[k]; }
@@ -131,6 +139,7 @@ class Scanner {
   bool one_face_ = true;  // every location is in one chart: guesses need no chart checks
   double cell_ = 1.0;     // overlap radius
   OverlapGrid grid_;
+  ThreadEnds thread_ends_;
 };
 
 }  // namespace plyfit::detail

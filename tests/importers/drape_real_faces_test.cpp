@@ -273,6 +273,14 @@ TEST_CASE("drape: the solver places every node of the fuzz's failed drapes, or s
         Vec3(0.762679, -0.640956, 0.086585), Vec2(-0.997270, -0.073841), Vec2(-0.073841, 0.997270),
         Vec3(-0.951176, 0.125478, 0.281993), true},
        90.0},
+      // Seed 71 (15 minutes): a weft thread continued from one node (solver 3) towards
+      // surf114 face 2's degenerate edge v = 0, through a band 1 < v < 1.9 where the surface
+      // barely moves: its plane's section on the face gets 0.97 d from the node and turns
+      // back ("the section ... turns back within one link" was a failure): outside, warned.
+      {{"surf114.igs", 2, 0.445613, Vec3(-56.516130, 57.821589, 47.728840),
+        Vec3(-0.315013, -0.887580, 0.336108), Vec2(0.365771, -0.930705), Vec2(0.930705, 0.365771),
+        Vec3(0.193192, 0.322959, -0.926485), false},
+       42.7},
       {{"trj8_c2-db-214.stp", 0, 0.357266, Vec3(0.060902, 7.733558, 13.744241),
         Vec3(0.052916, 0.843536, -0.534460), Vec2(0.159222, -0.987243), Vec2(-0.987243, -0.159222),
         Vec3(0.457404, 0.429004, 0.778934), true},
