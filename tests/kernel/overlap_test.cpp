@@ -170,3 +170,49 @@ TEST_CASE("overlap grid: nodes near cell corners are found in every neighbouring
   CHECK(hits > 500);  // both answers are common
   CHECK(misses > 500);
 }
+
+TEST_CASE("overlap grid: a grid of many pages hands the exact test the right nodes") {
+  // Chunks come from pages, each with its chunks' node indices. Nodes on a lattice 6 radii
+  // apart (eight in a cell, one chunk each), 40 000 chunks in some 40 pages; then points just
+  // within and just beyond the radius of lattice nodes (the exact test accepts lattice nodes only).
+  // It must be offered the node it accepts and no node beyond the filter's distance (a
+  // lane's index from another chunk or page would be a node far away).
+  const double r = 0.5, s = 6 * r;
+  std::vector<Vec3> pts;
+  plyfit::detail::OverlapGrid grid;
+  grid.init(r, 16);
+  const int nx = 40, ny = 40, nz = 200;  // 40 000 cells
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        pts.push_back(Vec3(i * s - 7.0, j * s + 3.0, k * s - 100.0));
+        const auto n = static_cast<std::uint32_t>(pts.size() - 1);
+        REQUIRE_FALSE(grid.test_insert(pts.back(), n, [](std::uint32_t) { return true; }));
+      }
+  const std::size_t lattice = pts.size();
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<std::size_t> pick(0, lattice - 1);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int offered_far = 0, wrong = 0;
+  for (int n = 0; n < 20000; ++n) {
+    const std::size_t m = pick(rng);
+    Vec3 dir(u(rng), u(rng), u(rng));
+    dir.normalize();
+    const bool inside = n % 2 == 0;
+    const Vec3 p = pts[m] + dir * r * (inside ? 1 - 1e-9 : 1 + 1e-9);
+    bool offered_m = false;
+    const auto k = static_cast<std::uint32_t>(pts.size());
+    pts.push_back(p);  // recorded if the exact test accepts no node
+    const bool got = grid.test_insert(p, k, [&](std::uint32_t o) {
+      if (o >= k || (pts[o] - p).norm() > 1.01 * r) ++offered_far;
+      offered_m = offered_m || o == m;
+      return o < lattice && (pts[o] - p).squaredNorm() < r * r;
+    });
+    if (got != inside || (inside && !offered_m)) ++wrong;
+  }
+  CHECK(wrong == 0);
+  CHECK(offered_far == 0);
+  // init() empties the grid for the next drape.
+  grid.init(r, 16);
+  CHECK_FALSE(grid.test_insert(pts[0], 0, [](std::uint32_t) { return true; }));
+}
