@@ -87,8 +87,8 @@ class OverlapGrid {
     scale_ = units / radius;
     reach_ = static_cast<std::int64_t>(std::ceil(units)) + kSlackUnits;
     thr2_ = static_cast<std::int32_t>(reach_ * reach_);
-    std::size_t n = 128;  // at least two blocks of slots
-    bits_ = 7;
+    std::size_t n = std::size_t{2} << kBlockBits;  // two blocks of slots at least (home())
+    bits_ = kBlockBits + 1;
     while (n < 2 * (expected / kNodesPerCell)) {
       n *= 2;
       ++bits_;
@@ -286,11 +286,11 @@ class OverlapGrid {
   // block's place hashed. The slots of a row of the scan then lie on few memory pages.
   std::size_t home(std::uint64_t k) const {
     const std::uint64_t block = k & ~kInBlock;
-    const std::size_t in = static_cast<std::size_t>(((k >> (kKeyShift[0] - 4)) & 0x30) |
-                                                    ((k >> (kKeyShift[1] - 2)) & 0xc) | (k & 3));
-    return static_cast<std::size_t>((block * 0x9E3779B97F4A7C15ULL) >> (64 - bits_ + kBlockBits)
-                                                                           << kBlockBits) |
-           in;
+    const std::size_t in = static_cast<std::size_t>(((k >> kKeyShift[0]) & 3) << 4 |
+                                                    ((k >> kKeyShift[1]) & 3) << 2 | (k & 3));
+    // bits_ > kBlockBits (init): the shift stays below 64.
+    const std::uint64_t at = (block * 0x9E3779B97F4A7C15ULL) >> (64 - bits_ + kBlockBits);
+    return static_cast<std::size_t>(at << kBlockBits) | in;
   }
   // Records node at (x, y, z) (units, relative to the cell's centre) in the cell of key k,
   // whose slot is s (the table has room for it).
@@ -335,7 +335,7 @@ class OverlapGrid {
   std::int64_t reach_ = 0;  // the ball's radius in units, and kSlackUnits
   std::int32_t thr2_ = 0;   // its square: the filter's
   std::vector<Slot> slots_;
-  int bits_ = 7;
+  int bits_ = kBlockBits + 1;
   std::size_t count_ = 0;
   std::vector<std::unique_ptr<Page>> pages_;
   std::uint32_t chunks_ = 0;
