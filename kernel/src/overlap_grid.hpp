@@ -30,10 +30,11 @@ inline std::uint64_t mix(std::uint64_t k) {  // splitmix64 finaliser
 // on every mapped node, so what it costs per node is what matters (issue 13: at most 10 % of
 // the drape): a few hundred instructions, few unpredictable branches, little memory, and
 // little code (the scan's loop fills the instruction cache: callgrind counts more misses
-// that the test causes in the scan's code than in its own). Within the drape most of its
-// cost is memory: between two passes of the scan over a cell the solver's data has pushed
-// the cell's lines out of the level-2 cache, and about two lines per node come back from
-// further away (BENCHMARKS.md).
+// that the test causes in the scan's code than in its own). Within the drape, at 1000^2
+// nodes, the test costs about 10 %: 5 points in the test itself, the rest in page faults of
+// its fresh memory and spread over the scan. Neither half the lines (byte coordinates), nor
+// fewer instructions (a box per chunk), nor independent loads (no chunk chain, no probing)
+// moved it beyond the machine's noise (BENCHMARKS.md, session 9).
 // - Points are rounded to integer units, kCellUnits (a power of two) to a cell's edge of
 //   kCellRadii * radius: a point's cell and its place in it are a shift and a mask.
 // - A node is recorded in its own cell. A test reads the cells p's ball (radius and two
@@ -78,8 +79,9 @@ class OverlapGrid {
   static constexpr int kSlackUnits = 2;
   // Expected mapped nodes per occupied cell: sizes the slot table for `expected` nodes (it
   // doubles when more cells are met). The surface crosses a cell of edge kCellRadii *
-  // kOverlapRel * d = 6 d at 26 to 30 nodes on average (octant and wave at 1000^2): 12
-  // keeps the table's load low (few probes per look-up).
+  // kOverlapRel * d = 6 d at 26 to 30 nodes on average (octant and wave at 1000^2): at 12,
+  // 1.07 (wave) to 1.71 (octant, closed hemisphere) probes per look-up at 1000^2 (blocks of
+  // 64 slots hashed whole leave gaps); 48 (a quarter of the table) made the drape slower.
   static constexpr std::size_t kNodesPerCell = 12;
 
   void init(double radius, std::size_t expected) {
