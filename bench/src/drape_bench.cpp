@@ -763,7 +763,7 @@ int run_overlap_ab(const std::vector<std::string>& args) {
       o.overlap_test = m == 1;
       timespec c0{}, c1{};
       clock_gettime(CLOCK_THREAD_CPUTIME_ID, &c0);
-      auto r = run_drape(*rf->face, *pb, o);
+      auto r = run_drape(*rf->face, *pb, o, k == 0);  // the peak heap printed: a first drape's
       clock_gettime(CLOCK_THREAD_CPUTIME_ID, &c1);
       if (!r) {
         print_error(rf->name, r.error());

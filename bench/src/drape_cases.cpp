@@ -78,8 +78,10 @@ double spacing_for_nodes(const Face& f, double nodes) {
   return std::sqrt(f.area() / nodes);
 }
 
-Result<DrapeRun> run_drape(const Face& f, const DrapeProblem& pb, const DrapeOptions& opt) {
+Result<DrapeRun> run_drape(const Face& f, const DrapeProblem& pb, const DrapeOptions& opt,
+                           bool cold) {
   DrapeRun run;
+  if (cold) release_drape_scratch();
   const bool rss = memory::reset_rss_peak();
   const long rss0 = memory::rss_kb();
   memory::reset_peak();
@@ -100,7 +102,7 @@ Result<double> median_drape_time(const Face& f, const DrapeProblem& pb, const Dr
                                  int runs, DrapeRun* first) {
   std::vector<double> t;
   for (int k = 0; k < std::max(runs, kMinRuns); ++k) {
-    auto r = run_drape(f, pb, opt);
+    auto r = run_drape(f, pb, opt, k == 0);
     if (!r) return r.error();
     t.push_back(r->seconds);
     if (k == 0 && first) *first = std::move(r).value();

@@ -46,10 +46,13 @@ struct DrapeRun {
   std::size_t peak_heap = 0;     ///< peak heap bytes held during drape() above the start
   double peak_rss_bytes = -1.0;  ///< peak RSS growth during drape(), -1 if unavailable
 };
-/// Runs drape() once, timed, with the heap counter's and RSS's peaks.
-Result<DrapeRun> run_drape(const Face& f, const DrapeProblem& pb, const DrapeOptions& opt);
-/// Median wall time of `runs` (>= kMinRuns) drapes, seconds; the first run's result and
-/// memory figures in `first`.
+/// Runs drape() once, timed, with the heap counter's and RSS's peaks. `cold`: first frees
+/// the scratch a previous drape left the thread (release_drape_scratch()), so that the peaks
+/// are a first drape's, scratch included; else the drape reuses it, as in batch.
+Result<DrapeRun> run_drape(const Face& f, const DrapeProblem& pb, const DrapeOptions& opt,
+                           bool cold = false);
+/// Median wall time of `runs` (>= kMinRuns) drapes, seconds; the first run (cold) gives its
+/// result and memory figures in `first`.
 Result<double> median_drape_time(const Face& f, const DrapeProblem& pb, const DrapeOptions& opt,
                                  int runs, DrapeRun* first);
 

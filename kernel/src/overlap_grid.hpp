@@ -31,10 +31,11 @@ inline std::uint64_t mix(std::uint64_t k) {  // splitmix64 finaliser
 // the drape): a few hundred instructions, few unpredictable branches, little memory, and
 // little code (the scan's loop fills the instruction cache: callgrind counts more misses
 // that the test causes in the scan's code than in its own). Within the drape, at 1000^2
-// nodes, the test costs about 10 %: 5 points in the test itself, the rest in page faults of
-// its fresh memory and spread over the scan. Neither half the lines (byte coordinates), nor
-// fewer instructions (a box per chunk), nor independent loads (no chunk chain, no probing)
-// moved it beyond the machine's noise (BENCHMARKS.md, session 9).
+// nodes, the test cost about 10 %: 5 points in the test itself, 1 in page faults of its
+// fresh memory (a thread's next grid now reuses it: Spare), the rest spread over the scan. Neither
+// half the lines (byte coordinates), nor fewer instructions (a box per chunk), nor independent
+// loads (no chunk chain, no probing) moved it beyond the machine's noise (BENCHMARKS.md, session
+// 9).
 // - Points are rounded to integer units, kCellUnits (a power of two) to a cell's edge of
 //   kCellRadii * radius: a point's cell and its place in it are a shift and a mask.
 // - A node is recorded in its own cell. A test reads the cells p's ball (radius and two
@@ -95,10 +96,41 @@ class OverlapGrid {
       n *= 2;
       ++bits_;
     }
+    // This thread's previous drape's slots and pages, if it left them (Spare): the same
+    // memory again, not fresh pages the system must fault in and zero.
+    Spare& spare = thread_spare();
+    if (slots_.empty() && pages_.empty()) {
+      slots_.swap(spare.slots);
+      pages_.swap(spare.pages);
+    }
     slots_.assign(n, Slot{0, nullptr});
     count_ = 0;
-    pages_.clear();
-    chunks_ = 0;
+    chunks_ = 0;  // the pages are reused: new_chunk() sets every field it reads
+  }
+  OverlapGrid() = default;
+  OverlapGrid(const OverlapGrid&) = delete;
+  OverlapGrid& operator=(const OverlapGrid&) = delete;
+  // Leaves the slots and up to kRetainBytes of pages to the thread's next drape.
+  ~OverlapGrid() {
+    Spare& spare = thread_spare();
+    if (!spare.slots.empty() || !spare.pages.empty()) return;  // a nested drape's grid is there
+    const std::size_t keep = kRetainBytes / sizeof(Page);
+    if (pages_.size() > keep) pages_.resize(keep);
+    if (slots_.capacity() * sizeof(Slot) <= kRetainBytes) spare.slots.swap(slots_);
+    spare.pages.swap(pages_);
+  }
+  // Frees the slots and pages this thread's last drape left (tests and benchmarks that
+  // measure a first drape's memory).
+  static void release_thread_spare() {
+    Spare& spare = thread_spare();
+    std::vector<Slot>().swap(spare.slots);
+    spare.pages.clear();
+    spare.pages.shrink_to_fit();
+  }
+  // Bytes this thread's spare holds.
+  static std::size_t thread_spare_bytes() {
+    const Spare& spare = thread_spare();
+    return spare.slots.capacity() * sizeof(Slot) + spare.pages.size() * sizeof(Page);
   }
   // True if `exact(node)` holds for some recorded node within `radius` of p (3D); exact
   // receives the index given to a previous call and does the full test in doubles (it must
@@ -191,6 +223,19 @@ class OverlapGrid {
     Chunk chunk[kPage];
     std::uint32_t node[kPage][kLanes];  // the nodes of chunk[c], lane by lane
   };
+  // What a grid leaves to the next one on its thread. In batch and optimize a thread drapes
+  // again and again: fresh pages cost the drape about 1 % (octant, 1000^2: the grid's 19 MB
+  // faulted in and zeroed by the system on every drape, perf). Retained up to kRetainBytes of
+  // pages (a drape of about 3.5 M nodes; more are freed) and a slot table of as much.
+  struct Spare {
+    std::vector<Slot> slots;
+    std::vector<std::unique_ptr<Page>> pages;
+  };
+  static constexpr std::size_t kRetainBytes = std::size_t{64} << 20;
+  static Spare& thread_spare() {
+    thread_local Spare spare;
+    return spare;
+  }
 #if defined(__SSE2__)
   // p's coordinates (units relative to a cell's centre) in every lane, and the filter's
   // squared distance.

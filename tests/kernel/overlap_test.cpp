@@ -1,6 +1,7 @@
 // The overlap test is complete (issue 13 item 4): every mapped node that lands on cloth
 // already laid is flagged, on open faces too, not only on faces that close on themselves.
 #include <plyfit/kernel/analytic_surfaces.hpp>
+#include <plyfit/kernel/builtin_molds.hpp>
 #include <plyfit/kernel/drape.hpp>
 #include <plyfit/kernel/face.hpp>
 
@@ -215,4 +216,99 @@ TEST_CASE("overlap grid: a grid of many pages hands the exact test the right nod
   // init() empties the grid for the next drape.
   grid.init(r, 16);
   CHECK_FALSE(grid.test_insert(pts[0], 0, [](std::uint32_t) { return true; }));
+}
+
+TEST_CASE("overlap grid: a grid reuses the memory its thread's last grid left, not its nodes") {
+  // A drape leaves its grid's slots and pages to the next drape on the thread. The next grid
+  // must find none of the old nodes (stale lanes or slots would make cloth on an empty face),
+  // and find its own, with their own indices; a grid made while another is alive (a drape
+  // within a drape) has memory of its own.
+  using plyfit::detail::OverlapGrid;
+  const double r = 0.5, s = 6 * r;
+  std::vector<Vec3> pts;
+  for (int k = 0; k < 60; ++k)
+    for (int j = 0; j < 30; ++j)
+      for (int i = 0; i < 30; ++i) pts.push_back(Vec3(i * s, j * s, k * s));  // ~50 pages
+  auto accept_all = [](std::uint32_t) { return true; };
+  OverlapGrid::release_thread_spare();
+  CHECK(OverlapGrid::thread_spare_bytes() == 0);
+  {
+    OverlapGrid a;
+    a.init(r, pts.size());  // as b: the same table size
+    for (std::size_t n = 0; n < pts.size(); ++n)
+      REQUIRE_FALSE(a.test_insert(pts[n], static_cast<std::uint32_t>(n), accept_all));
+  }
+  const std::size_t left = OverlapGrid::thread_spare_bytes();
+  CHECK(left > pts.size() * 8);  // pages of a's nodes, and its slots
+  OverlapGrid b;
+  b.init(r, pts.size());
+  CHECK(OverlapGrid::thread_spare_bytes() == 0);  // b took them
+  // a's nodes are gone: b records every point again, a little off, under new indices.
+  const auto base = static_cast<std::uint32_t>(pts.size());
+  int stale = 0;
+  for (std::size_t n = 0; n < pts.size(); ++n)
+    if (b.test_insert(pts[n] + Vec3(0.1, 0, 0), base + static_cast<std::uint32_t>(n), accept_all))
+      ++stale;
+  CHECK(stale == 0);
+  // b's own nodes are found, each by its own index.
+  int wrong = 0;
+  for (std::size_t n = 0; n < pts.size(); n += 7) {
+    std::uint32_t got = 0;
+    const bool hit = b.test_insert(pts[n], 0, [&](std::uint32_t o) {
+      got = o;
+      return true;
+    });
+    if (!hit || got != base + n) ++wrong;
+  }
+  CHECK(wrong == 0);
+  {
+    OverlapGrid c;  // while b is alive: fresh memory, empty
+    c.init(r, 16);
+    CHECK_FALSE(c.test_insert(pts[0], 0, accept_all));
+    CHECK(c.test_insert(pts[0], 1, accept_all));
+  }
+  CHECK(OverlapGrid::thread_spare_bytes() > 0);  // c's memory, left for the next grid
+  OverlapGrid::release_thread_spare();
+  CHECK(OverlapGrid::thread_spare_bytes() == 0);
+}
+
+TEST_CASE("drape: a drape after others on the same thread is the same drape") {
+  // The second drape of the 450 degree cylinder (cloth laid twice over a quarter turn)
+  // reuses the overlap grid an octant's drape left (more nodes, another spacing): it must lay
+  // the same cloth, node for node, as a first drape.
+  FaceData fd;
+  fd.surface = cylinder_patch(10.0, 0.0, 2.5 * kPi, 0.0, 20.0);
+  auto cyl = Face::create(std::move(fd));
+  auto oct = Face::create(builtin_mold("sphere-octant", {{"R", 20.0}}).value());
+  REQUIRE(cyl.ok());
+  REQUIRE(oct.ok());
+  const double a = 1.25 * kPi;
+  const Vec3 s3(10 * std::cos(a), 10 * std::sin(a), 10.0), t(-std::sin(a), std::cos(a), 0.0);
+  const DrapeProblem pc =
+      problem(0.7, Vec2(0, 0), Vec2(0, 1), {Vec2(1, 0), Vec2(-1, 0)}, s3, t, {t, Vec3(-t)});
+  const DrapeProblem po = problem(0.1, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)}, Vec3(10, 0, 10),
+                                  Vec3(0, 1, 0), {Vec3(0, 1, 0)});
+  release_drape_scratch();
+  auto first = drape(cyl.value(), pc);
+  REQUIRE(first.ok());
+  const DrapeResult& r1 = first.value();
+  CHECK(r1.metrics.nodes.overlap > 0);  // the grid answers
+  auto same = [&r1](const DrapeResult& r2) {
+    REQUIRE(r1.nodes.size() == r2.nodes.size());
+    int differ = 0;
+    for (std::size_t k = 0; k < r1.nodes.size(); ++k)
+      if (r1.nodes[k].status != r2.nodes[k].status || r1.nodes[k].point != r2.nodes[k].point)
+        ++differ;
+    CHECK(differ == 0);
+  };
+  auto twice = drape(cyl.value(), pc);  // the first's grid: the same table size
+  REQUIRE(twice.ok());
+  same(twice.value());
+  auto other = drape(oct.value(), po);
+  REQUIRE(other.ok());
+  CHECK(other.value().metrics.nodes.mapped > r1.metrics.nodes.mapped);
+  auto again = drape(cyl.value(), pc);  // the octant's grid
+  REQUIRE(again.ok());
+  same(again.value());
+  release_drape_scratch();
 }
