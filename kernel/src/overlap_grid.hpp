@@ -32,10 +32,10 @@ inline std::uint64_t mix(std::uint64_t k) {  // splitmix64 finaliser
 // little code (the scan's loop fills the instruction cache: callgrind counts more misses
 // that the test causes in the scan's code than in its own). Within the drape, at 1000^2
 // nodes, the test cost about 10 %: 5 points in the test itself, 1 in page faults of its
-// fresh memory (a thread's next grid now reuses it: Spare), the rest spread over the scan. Neither
-// half the lines (byte coordinates), nor fewer instructions (a box per chunk), nor independent
-// loads (no chunk chain, no probing) moved it beyond the machine's noise (BENCHMARKS.md, session
-// 9).
+// fresh memory (a thread's next grid now reuses it: Spare), the rest spread over the scan.
+// Neither half the lines (byte coordinates), nor fewer instructions (a box per chunk), nor
+// independent loads (no chunk chain, no probing) moved it beyond the machine's noise
+// (BENCHMARKS.md, sessions 9 and 10).
 // - Points are rounded to integer units, kCellUnits (a power of two) to a cell's edge of
 //   kCellRadii * radius: a point's cell and its place in it are a shift and a mask.
 // - A node is recorded in its own cell. A test reads the cells p's ball (radius and two
@@ -223,10 +223,12 @@ class OverlapGrid {
     Chunk chunk[kPage];
     std::uint32_t node[kPage][kLanes];  // the nodes of chunk[c], lane by lane
   };
-  // What a grid leaves to the next one on its thread. In batch and optimize a thread drapes
-  // again and again: fresh pages cost the drape about 1 % (octant, 1000^2: the grid's 19 MB
-  // faulted in and zeroed by the system on every drape, perf). Retained up to kRetainBytes of
-  // pages (a drape of about 3.5 M nodes; more are freed) and a slot table of as much.
+  // What a grid leaves to the next one on its thread. optimize's workers and library loops
+  // drape again and again on a thread (batch runs a process per scene: each drape there is a
+  // first): fresh pages cost a drape about 1 % (octant, 1000^2: the grid's 15-19 MB faulted
+  // in and zeroed by the system on every drape, 3 600 faults, perf stat). Retained up to
+  // kRetainBytes of pages (a drape of about 3.5 M nodes; more are freed) and a slot table of as
+  // much.
   struct Spare {
     std::vector<Slot> slots;
     std::vector<std::unique_ptr<Page>> pages;

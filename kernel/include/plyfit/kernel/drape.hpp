@@ -316,7 +316,7 @@ Result<DrapeResult> drape(const DrapeSurface& surface, const DrapeProblem& probl
 
 /// A drape leaves the overlap test's grid (up to 64 MiB of pages and its slot table) to the
 /// next drape on the same thread, which reuses the memory instead of having the system map
-/// and zero it again (batch and optimize drape again and again on each worker). This frees
+/// and zero it again (optimize drapes again and again on each worker thread). This frees
 /// what the calling thread holds, e.g. before measuring a first drape's memory.
 void release_drape_scratch();
 
