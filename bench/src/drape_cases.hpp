@@ -48,7 +48,7 @@ struct DrapeRun {
 };
 /// Runs drape() once, timed, with the heap counter's and RSS's peaks. `cold`: first frees
 /// the scratch a previous drape left the thread (release_drape_scratch()), so that the peaks
-/// are a first drape's, scratch included; else the drape reuses it, as in batch.
+/// are a first drape's, scratch included; else the drape reuses it, as in optimize.
 Result<DrapeRun> run_drape(const Face& f, const DrapeProblem& pb, const DrapeOptions& opt,
                            bool cold = false);
 /// Median wall time of `runs` (>= kMinRuns) drapes, seconds; the first run (cold) gives its

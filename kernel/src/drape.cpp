@@ -274,4 +274,8 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
   return res;
 }
 
+void release_drape_scratch() {
+  detail::OverlapGrid::release_thread_spare();
+}
+
 }  // namespace plyfit

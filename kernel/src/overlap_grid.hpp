@@ -121,12 +121,7 @@ class OverlapGrid {
   }
   // Frees the slots and pages this thread's last drape left (tests and benchmarks that
   // measure a first drape's memory).
-  static void release_thread_spare() {
-    Spare& spare = thread_spare();
-    std::vector<Slot>().swap(spare.slots);
-    spare.pages.clear();
-    spare.pages.shrink_to_fit();
-  }
+  static void release_thread_spare() { thread_spare() = Spare{}; }
   // Bytes this thread's spare holds.
   static std::size_t thread_spare_bytes() {
     const Spare& spare = thread_spare();

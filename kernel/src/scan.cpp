@@ -21,18 +21,6 @@ Scanner::Scanner(const DrapeSurface& s, Ply& ply, const DrapeOptions& opt, Drape
   grid_.init(cell_, opt.overlap_test ? res_.nodes.capacity() : 0);
 }
 
-}  // namespace plyfit::detail
-
-namespace plyfit {
-
-void release_drape_scratch() {
-  detail::OverlapGrid::release_thread_spare();
-}
-
-}  // namespace plyfit
-
-namespace plyfit::detail {
-
 void Scanner::run(const Vec3& t3) {
   map_path(t3);
   scan();

@@ -8,6 +8,7 @@
 #include <catch2/catch.hpp>
 
 #include "overlap_grid.hpp"
+#include "support/net_checks.hpp"
 #include "support/problems.hpp"
 
 #include <cmath>
@@ -293,14 +294,8 @@ TEST_CASE("drape: a drape after others on the same thread is the same drape") {
   REQUIRE(first.ok());
   const DrapeResult& r1 = first.value();
   CHECK(r1.metrics.nodes.overlap > 0);  // the grid answers
-  auto same = [&r1](const DrapeResult& r2) {
-    REQUIRE(r1.nodes.size() == r2.nodes.size());
-    int differ = 0;
-    for (std::size_t k = 0; k < r1.nodes.size(); ++k)
-      if (r1.nodes[k].status != r2.nodes[k].status || r1.nodes[k].point != r2.nodes[k].point)
-        ++differ;
-    CHECK(differ == 0);
-  };
+  // Node for node: the same statuses, mapped nodes at the same points to the bit (tol 0).
+  auto same = [&r1](const DrapeResult& r2) { support::same_net(r1, r2, 0.0); };
   auto twice = drape(cyl.value(), pc);  // the first's grid: the same table size
   REQUIRE(twice.ok());
   same(twice.value());
