@@ -121,9 +121,46 @@ void NodeIndex::insert(const NodeId& id, std::uint32_t index) {
       static_cast<std::int32_t>(index);
 }
 
+bool NodeIndex::erase(const NodeId& id) {
+  if (id.is_path_only()) {
+    if (!remove(path_, path_count_, id.key())) return false;
+    --size_;
+    return true;
+  }
+  const std::int64_t b = probe(blocks_, block_key(id.i, id.j, kBlockBits));
+  if (b < 0) return false;
+  std::int32_t& v =
+      cells_[static_cast<std::size_t>(b) * kBlock * kBlock + block_offset(id.i, id.j, kBlockBits)];
+  if (v < 0) return false;
+  v = -1;
+  --size_;
+  return true;
+}
+
 std::size_t NodeIndex::memory_bytes() const {
   return blocks_.capacity() * sizeof(Slot) + cells_.capacity() * sizeof(std::int32_t) +
          path_.capacity() * sizeof(Slot);
+}
+
+// Removes key: the slots after it in its run move back where their probe starts at or
+// before the hole (linear probing without tombstones).
+bool NodeIndex::remove(std::vector<Slot>& slots, std::size_t& count, std::uint64_t key) {
+  if (slots.empty()) return false;
+  const std::size_t mask = slots.size() - 1;
+  std::size_t h = mix(key) & mask;
+  for (; slots[h].key != key; h = (h + 1) & mask)
+    if (slots[h].key == kEmpty) return false;
+  slots[h].key = kEmpty;
+  --count;
+  for (std::size_t j = (h + 1) & mask; slots[j].key != kEmpty; j = (j + 1) & mask) {
+    const std::size_t home = mix(slots[j].key) & mask;
+    if (((j - home) & mask) >= ((j - h) & mask)) {  // the hole lies on j's probe path
+      slots[h] = slots[j];
+      slots[j].key = kEmpty;
+      h = j;
+    }
+  }
+  return true;
 }
 
 // ---------------------------------------------------------------------------------------

@@ -114,6 +114,8 @@ class NodeIndex {
   std::int64_t find(const NodeId& id) const;
   /// Inserts id -> index (id must be absent).
   void insert(const NodeId& id, std::uint32_t index);
+  /// Removes `id`; false if it is absent. (A regular node's block stays.)
+  bool erase(const NodeId& id);
   std::size_t size() const { return size_; }
   std::size_t memory_bytes() const;
 
@@ -130,6 +132,7 @@ class NodeIndex {
   static std::int64_t probe(const std::vector<Slot>& slots, std::uint64_t key);
   static void put(std::vector<Slot>& slots, std::size_t& count, std::uint64_t key,
                   std::uint32_t value);
+  static bool remove(std::vector<Slot>& slots, std::size_t& count, std::uint64_t key);
   std::vector<Slot> blocks_;  // block key -> block number
   std::size_t block_count_ = 0;
   std::vector<std::int32_t> cells_;  // kBlock^2 entries per block, -1 = absent
