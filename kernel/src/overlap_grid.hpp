@@ -32,7 +32,8 @@ inline std::uint64_t mix(std::uint64_t k) {  // splitmix64 finaliser
 // little code (the scan's loop fills the instruction cache: callgrind counts more misses
 // that the test causes in the scan's code than in its own). Within the drape, at 1000^2
 // nodes, the test cost about 10 %: 5 points in the test itself, 1 in page faults of its
-// fresh memory (a thread's next grid now reuses it: Spare), the rest spread over the scan.
+// fresh memory (a thread's next grid now reuses it: Spare), the rest spread over the scan;
+// tested in batches (Scanner::scan, DrapeOptions::overlap_batch), 6-8 %.
 // Neither half the lines (byte coordinates), nor fewer instructions (a box per chunk), nor
 // independent loads (no chunk chain, no probing) moved it beyond the machine's noise
 // (BENCHMARKS.md, sessions 9 and 10).

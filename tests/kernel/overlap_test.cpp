@@ -11,6 +11,8 @@
 #include "support/net_checks.hpp"
 #include "support/problems.hpp"
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <random>
 #include <string>
@@ -49,6 +51,25 @@ int cloth_on_cloth(const DrapeResult& r, double d) {
   return pairs;
 }
 
+// An open cylinder face (R 10, height 20) running 450 degrees round its axis: its first
+// quarter turn lies under its last.
+Face cylinder_450() {
+  FaceData fd;
+  fd.surface = cylinder_patch(10.0, 0.0, 2.5 * kPi, 0.0, 20.0);
+  auto f = Face::create(std::move(fd));
+  REQUIRE(f.ok());
+  return std::move(f).value();
+}
+
+// Its drape at spacing d: base path along the axis half-way round, swept both ways round, so
+// that the fronts lay cloth over the same quarter turn from both ends.
+DrapeProblem cylinder_450_problem(double d) {
+  const double a = 1.25 * kPi;  // half-way round
+  const Vec3 s3(10 * std::cos(a), 10 * std::sin(a), 10.0);
+  const Vec3 t(-std::sin(a), std::cos(a), 0.0);  // round the axis, increasing angle
+  return problem(d, Vec2(0, 0), Vec2(0, 1), {Vec2(1, 0), Vec2(-1, 0)}, s3, t, {t, Vec3(-t)});
+}
+
 }  // namespace
 
 TEST_CASE("drape: cloth landing on cloth already laid is flagged on an open face") {
@@ -57,16 +78,9 @@ TEST_CASE("drape: cloth landing on cloth already laid is flagged on an open face
   // fronts lay cloth over the same quarter turn from both ends. The net is not sheared.
   for (double d : {1.0, 0.7}) {
     INFO("d = " << d);
-    FaceData fd;
-    fd.surface = cylinder_patch(10.0, 0.0, 2.5 * kPi, 0.0, 20.0);
-    auto f = Face::create(std::move(fd));
-    REQUIRE(f.ok());
-    REQUIRE_FALSE(f.value().closes_on_itself());
-    const double a = 1.25 * kPi;  // half-way round
-    const Vec3 s3(10 * std::cos(a), 10 * std::sin(a), 10.0);
-    const Vec3 t(-std::sin(a), std::cos(a), 0.0);  // round the axis, increasing angle
-    auto rr = drape(f.value(), problem(d, Vec2(0, 0), Vec2(0, 1), {Vec2(1, 0), Vec2(-1, 0)}, s3, t,
-                                       {t, Vec3(-t)}));
+    const Face f = cylinder_450();
+    REQUIRE_FALSE(f.closes_on_itself());
+    auto rr = drape(f, cylinder_450_problem(d));
     REQUIRE(rr.ok());
     const DrapeResult& r = rr.value();
     CHECK(r.metrics.nodes.overlap > 0);
@@ -277,33 +291,96 @@ TEST_CASE("drape: a drape after others on the same thread is the same drape") {
   // The second drape of the 450 degree cylinder (cloth laid twice over a quarter turn)
   // reuses the overlap grid an octant's drape left (more nodes, another spacing): it must lay
   // the same cloth, node for node, as a first drape.
-  FaceData fd;
-  fd.surface = cylinder_patch(10.0, 0.0, 2.5 * kPi, 0.0, 20.0);
-  auto cyl = Face::create(std::move(fd));
+  const Face cyl = cylinder_450();
   auto oct = Face::create(builtin_mold("sphere-octant", {{"R", 20.0}}).value());
-  REQUIRE(cyl.ok());
   REQUIRE(oct.ok());
-  const double a = 1.25 * kPi;
-  const Vec3 s3(10 * std::cos(a), 10 * std::sin(a), 10.0), t(-std::sin(a), std::cos(a), 0.0);
-  const DrapeProblem pc =
-      problem(0.7, Vec2(0, 0), Vec2(0, 1), {Vec2(1, 0), Vec2(-1, 0)}, s3, t, {t, Vec3(-t)});
+  const DrapeProblem pc = cylinder_450_problem(0.7);
   const DrapeProblem po = problem(0.1, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)}, Vec3(10, 0, 10),
                                   Vec3(0, 1, 0), {Vec3(0, 1, 0)});
   release_drape_scratch();
-  auto first = drape(cyl.value(), pc);
+  auto first = drape(cyl, pc);
   REQUIRE(first.ok());
   const DrapeResult& r1 = first.value();
   CHECK(r1.metrics.nodes.overlap > 0);  // the grid answers
   // Node for node: the same statuses, mapped nodes at the same points to the bit (tol 0).
   auto same = [&r1](const DrapeResult& r2) { support::same_net(r1, r2, 0.0); };
-  auto twice = drape(cyl.value(), pc);  // the first's grid: the same table size
+  auto twice = drape(cyl, pc);  // the first's grid: the same table size
   REQUIRE(twice.ok());
   same(twice.value());
   auto other = drape(oct.value(), po);
   REQUIRE(other.ok());
   CHECK(other.value().metrics.nodes.mapped > r1.metrics.nodes.mapped);
-  auto again = drape(cyl.value(), pc);  // the octant's grid
+  auto again = drape(cyl, pc);  // the octant's grid
   REQUIRE(again.ok());
   same(again.value());
   release_drape_scratch();
+}
+
+TEST_CASE("drape: the overlap test in batches lays the cloth the test node by node lays") {
+  // The scan maps up to DrapeOptions::overlap_batch nodes ahead of the test, then tests them
+  // in order; where one lies on laid cloth it goes back to the batch's start and on node by
+  // node. Whatever the batch, the drape must be the one a batch of 1 gives, to the bit: the
+  // same nodes, statuses, points, counters and warnings. Batches of 2 and 3 find the first
+  // overlap at every place in a batch; 1 << 24 holds the whole drape.
+  const Face cyl = cylinder_450();
+  auto hemi = Face::create(builtin_mold("hemisphere", {{"R", 20.0}}).value());
+  REQUIRE(hemi.ok());
+  const double c = std::sqrt(0.5);
+  struct Case {
+    const char* name;
+    const Face* face;
+    DrapeProblem pb;
+    std::uint64_t max_nodes;
+    bool cancel;
+    bool overlaps;  // the drape stops cloth on cloth
+  };
+  const DrapeProblem pc = cylinder_450_problem(0.35);
+  const DrapeProblem ph =
+      problem(1.0, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)}, Vec3(20 * c, 0, 20 * c),
+              Vec3(0, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)});
+  const Case cases[] = {
+      {"450 degree cylinder", &cyl, pc, 50'000'000, false, true},
+      {"closed hemisphere", &hemi.value(), ph, 50'000'000, false, true},
+      // Stopped at max_nodes after the cloth came round (the cylinder has about 12 800).
+      {"450 degree cylinder, 12 000 nodes", &cyl, pc, 12'000, false, true},
+      // Cancelled before it starts: the scan stops after kCancelEvery nodes, no overlap yet.
+      {"450 degree cylinder, cancelled", &cyl, pc, 50'000'000, true, false},
+  };
+  const std::atomic<bool> stop{true};
+  for (const Case& k : cases) {
+    INFO(k.name);
+    auto run = [&k, &stop](std::uint32_t batch) {
+      DrapeOptions o;
+      o.overlap_batch = batch;
+      o.max_nodes = k.max_nodes;
+      if (k.cancel) o.cancel = &stop;
+      auto r = drape(*k.face, k.pb, o);
+      REQUIRE(r.ok());
+      return std::move(r).value();
+    };
+    const DrapeResult ref = run(1);
+    CHECK((ref.metrics.nodes.overlap > 0) == k.overlaps);
+    if (k.cancel) CHECK(ref.partial);
+    for (std::uint32_t batch : {2u, 3u, 100u, DrapeOptions{}.overlap_batch, 1u << 24}) {
+      INFO("batch " << batch);
+      const DrapeResult r = run(batch);
+      support::same_net(ref, r, 0.0);
+      for (std::size_t n = 0; n < std::min(ref.nodes.size(), r.nodes.size()); ++n) {
+        const DrapeNode &x = ref.nodes[n], &y = r.nodes[n];  // in the same order, whole
+        if (x.id != y.id || x.order != y.order || x.flags != y.flags || x.uv != y.uv ||
+            !std::equal(std::begin(x.nb), std::end(x.nb), std::begin(y.nb)))
+          FAIL("node " << n << " differs");
+      }
+      CHECK(r.partial == ref.partial);
+      CHECK(r.warnings == ref.warnings);
+      CHECK(r.failures == ref.failures);
+      CHECK(r.metrics.solves == ref.metrics.solves);
+      CHECK(r.metrics.iterations == ref.metrics.iterations);
+      CHECK(r.metrics.evaluations == ref.metrics.evaluations);
+      CHECK(r.metrics.solve_residual_max_rel == ref.metrics.solve_residual_max_rel);
+      CHECK(r.metrics.nodes.overlap == ref.metrics.nodes.overlap);
+      CHECK(r.metrics.surface_area == ref.metrics.surface_area);
+      CHECK(r.index.size() == ref.index.size());
+    }
+  }
 }
