@@ -137,6 +137,31 @@ bool NodeIndex::erase(const NodeId& id) {
   return true;
 }
 
+void NodeIndex::truncate(const Mark& m) {
+  if (block_count_ > m.blocks) {
+    std::vector<std::uint64_t> drop;
+    for (const Slot& s : blocks_)
+      if (s.key != kEmpty && s.value >= m.blocks) drop.push_back(s.key);
+    for (const std::uint64_t k : drop) remove(blocks_, block_count_, k);  // block_count_ falls
+    cells_.resize(m.blocks * kBlock * kBlock);
+  }
+  if (blocks_.size() > m.block_slots) {  // the table doubled since: back to its size then
+    std::vector<Slot> old = std::move(blocks_);
+    blocks_.assign(m.block_slots, Slot{kEmpty, 0});
+    std::size_t count = 0;
+    for (const Slot& s : old)
+      if (s.key != kEmpty) put(blocks_, count, s.key, s.value);
+  }
+  if (cells_.capacity() > m.cells_capacity) {
+    std::vector<std::int32_t> cells;
+    cells.reserve(m.cells_capacity);
+    cells.assign(cells_.begin(), cells_.end());
+    cells_.swap(cells);
+  }
+  last_key_ = kEmpty;  // the cached block may be gone
+  last_block_ = -1;
+}
+
 std::size_t NodeIndex::memory_bytes() const {
   return blocks_.capacity() * sizeof(Slot) + cells_.capacity() * sizeof(std::int32_t) +
          path_.capacity() * sizeof(Slot);

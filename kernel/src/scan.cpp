@@ -374,6 +374,8 @@ void Scanner::step(std::uint32_t qi) {
 void Scanner::checkpoint() {
   cp_.heap = heap_;
   cp_.nodes = res_.nodes.size();
+  cp_.capacity = res_.nodes.capacity();
+  cp_.index = res_.index.mark();
   cp_.failures = res_.failures.size();
   cp_.order = order_;
   cp_.popped = popped_;
@@ -429,6 +431,15 @@ void Scanner::roll_back(std::size_t tested) {
   for (const auto& u : undo_) unlink(u.first);
   for (std::size_t k = cp_.nodes; k < res_.nodes.size(); ++k) res_.index.erase(res_.nodes[k].id);
   res_.nodes.erase(res_.nodes.begin() + static_cast<std::ptrdiff_t>(cp_.nodes), res_.nodes.end());
+  // No more memory than the scan node by node allocates: the batch may have gone on beyond
+  // the node vector's estimate and into new blocks of the index.
+  res_.index.truncate(cp_.index);
+  if (res_.nodes.capacity() > cp_.capacity) {
+    std::vector<DrapeNode> nodes;
+    nodes.reserve(cp_.capacity);
+    nodes.assign(res_.nodes.begin(), res_.nodes.end());
+    res_.nodes.swap(nodes);
+  }
   res_.failures.resize(cp_.failures);
   heap_ = std::move(cp_.heap);
   order_ = cp_.order;

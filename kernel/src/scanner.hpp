@@ -157,7 +157,8 @@ class Scanner {
   // a roll-back the nodes the batch had already tested (recorded in the grid: not again).
   struct Checkpoint {
     std::priority_queue<FrontierEntry, std::vector<FrontierEntry>, FrontierLater> heap;
-    std::size_t nodes = 0, failures = 0;
+    std::size_t nodes = 0, capacity = 0, failures = 0;
+    NodeIndex::Mark index;
     std::uint32_t order = 0, popped = 0;
     ThreadEnds thread_ends;
     bool truncated = false;

@@ -55,3 +55,33 @@ TEST_CASE("node index: erase removes an id and leaves every other one found") {
   index.insert(NodeId{ids[0].first, ids[0].second}, 12345);
   CHECK(index.find(NodeId{ids[0].first, ids[0].second}) == 12345);
 }
+
+TEST_CASE("node index: truncate drops the blocks added since a mark and their memory") {
+  NodeIndex index;
+  std::uint32_t next = 0;
+  for (std::int32_t i = 0; i < 40; ++i)
+    for (std::int32_t j = 0; j < 40; ++j) index.insert(NodeId::regular(i, j), next++);
+  const std::size_t before = index.memory_bytes(), size = index.size();
+  const NodeIndex::Mark m = index.mark();
+  // Nodes in the marked blocks and in many new ones (the block table and the cells grow).
+  std::vector<NodeId> added;
+  for (std::int32_t i = 30; i < 600; i += 5)
+    for (std::int32_t j = 30; j < 300; j += 9)
+      if (index.find(NodeId::regular(i, j)) < 0) {
+        added.push_back(NodeId::regular(i, j));
+        index.insert(added.back(), next++);
+      }
+  REQUIRE(index.memory_bytes() > before);
+  for (const NodeId& id : added) CHECK(index.erase(id));
+  index.truncate(m);
+  CHECK(index.memory_bytes() == before);
+  CHECK(index.size() == size);
+  std::uint32_t k = 0;
+  for (std::int32_t i = 0; i < 40; ++i)
+    for (std::int32_t j = 0; j < 40; ++j) CHECK(index.find(NodeId::regular(i, j)) == k++);
+  for (const NodeId& id : added) CHECK(index.find(id) == -1);
+  // The dropped blocks can be added again.
+  index.insert(NodeId::regular(500, 250), 7);
+  CHECK(index.find(NodeId::regular(500, 250)) == 7);
+  CHECK(index.find(NodeId::regular(39, 39)) == 40 * 40 - 1);
+}
