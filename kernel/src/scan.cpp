@@ -362,8 +362,8 @@ void Scanner::step(std::uint32_t qi) {
   } else if (replayed_ < replay_.size() && replay_[replayed_] == qi) {
     ++replayed_;  // tested before the roll-back: recorded, on no laid cloth
   } else {
-    // Not the order of the batch rolled back: never (the scan is deterministic); a node
-    // recorded twice would only add candidates the exact test rejects.
+    // Past the replay, or off its order (never: the scan is deterministic), which ends it: a
+    // node recorded twice would only add candidates the exact test rejects.
     replay_.clear();
     over = opt_.overlap_test && overlaps(qi);
   }
