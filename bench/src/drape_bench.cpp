@@ -5,8 +5,8 @@
 //   convergence  discretisation error against spacing on cases with exact answers
 //   hard         hard cases, one full drape each
 
-#include <plyfit/kernel/analytic_surfaces.hpp>
-#include <plyfit/kernel/flat_pattern.hpp>
+#include "geometry/analytic_surfaces.hpp"
+#include "pattern/flat_pattern.hpp"
 
 #include "bench.hpp"
 #include "drape_cases.hpp"

@@ -2,8 +2,8 @@
 // mean iterations and surface evaluations, ns per solve (median of runs), and the
 // distribution of final residuals (|F1| + |F2|) / d.
 
-#include <plyfit/kernel/analytic_surfaces.hpp>
-#include <plyfit/kernel/solvers.hpp>
+#include "drape/solvers/solvers.hpp"
+#include "geometry/analytic_surfaces.hpp"
 
 #include "bench.hpp"
 #include "support/solver_cases.hpp"

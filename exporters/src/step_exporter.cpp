@@ -17,7 +17,7 @@
 #include <plyfit/exporters/exporters.hpp>
 #include <plyfit/exporters/step_curves.hpp>
 #include <plyfit/kernel/flat_pattern.hpp>
-#include <plyfit/kernel/nurbs_curve.hpp>
+#include <plyfit/kernel/nurbs.hpp>
 
 #include "plugins.hpp"
 

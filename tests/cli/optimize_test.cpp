@@ -4,9 +4,9 @@
 // any -j; its bounds hold; bad input fails cleanly; the README documents every option.
 
 #include <plyfit/kernel/builtin_molds.hpp>
-#include <plyfit/kernel/drape.hpp>
-#include <plyfit/kernel/face.hpp>
-#include <plyfit/kernel/flat_pattern.hpp>
+#include "drape/drape.hpp"
+#include "pattern/flat_pattern.hpp"
+#include "surface/face.hpp"
 
 #include <nlohmann/json.hpp>
 

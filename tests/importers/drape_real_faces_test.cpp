@@ -16,6 +16,10 @@
 #include <cmath>
 #include <string>
 #include <vector>
+#include "drape/drape.hpp"
+#include "pattern/flat_pattern.hpp"
+#include "support/face_of.hpp"
+#include "surface/face.hpp"
 
 using namespace plyfit;
 
@@ -34,7 +38,7 @@ struct Case {
 Face load(const Case& c) {
   auto f = importers::load_face(test::shared_cad(c.file), c.face);
   REQUIRE(f.ok());
-  return std::move(f).value();
+  return test::face_of(*f);
 }
 
 DrapeProblem problem(const Case& c) {

@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include "surface/face.hpp"
 
 using namespace plyfit;
 using namespace plyfit::test;

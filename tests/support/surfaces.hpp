@@ -1,7 +1,7 @@
 #pragma once
 // Surfaces with hard parametrisations, shared by the tests and plyfit-bench.
 
-#include <plyfit/kernel/nurbs_surface.hpp>
+#include <plyfit/kernel/nurbs.hpp>
 
 #include <cmath>
 

@@ -3,7 +3,6 @@
 /// (json, dxf, step, svg, vtk). Each writes its files into an output folder, atomically.
 
 #include <plyfit/kernel/drape.hpp>
-#include <plyfit/kernel/face.hpp>
 #include <plyfit/kernel/mold.hpp>
 #include <plyfit/kernel/result.hpp>
 
@@ -57,8 +56,8 @@ struct ExportOptions {
 struct ExportContext {
   const DrapeProblem& problem;
   const DrapeResult& result;
-  const DrapeSurface& surface;  ///< one face or a shell
-  const FlatPattern* flat;      ///< may be null
+  const MoldSurface& surface;  ///< one face or a shell
+  const FlatPattern* flat;     ///< may be null
   const RunInfo& run;
   const ExportOptions& options;
 };

@@ -3,7 +3,7 @@
 /// in ply coordinates.
 
 #include <plyfit/kernel/drape.hpp>
-#include <plyfit/kernel/face.hpp>
+#include <plyfit/kernel/mold.hpp>
 
 #include <optional>
 #include <vector>
@@ -53,7 +53,7 @@ struct FlatPatternOptions {
 };
 
 /// Computes the flat pattern of a drape on `surface`.
-FlatPattern flat_pattern(const DrapeSurface& surface, const DrapeResult& result,
+FlatPattern flat_pattern(const MoldSurface& surface, const DrapeResult& result,
                          const FlatPatternOptions& options = {});
 
 }  // namespace plyfit
