@@ -16,6 +16,7 @@
 
 #include <plyfit/exporters/atomic_file.hpp>
 #include <plyfit/exporters/exporters.hpp>
+#include <plyfit/exporters/messages.hpp>
 
 #include <boost/program_options.hpp>
 #include <nlohmann/json.hpp>
@@ -285,7 +286,7 @@ void finish(SceneRun& r, int wstatus, bool interrupted, const fs::path& outroot)
       const fs::path final_dir = outroot / r.name;
       if (auto st = publish(r, final_dir); !st) {
         r.status = "error";
-        r.error = st.error().message;
+        r.error = exporters::describe(st.error());
       } else {
         r.status = outcome->status;
         r.mapped = outcome->mapped;
@@ -504,7 +505,7 @@ int run_batch(const std::vector<std::string>& args) {
                   summary_json(runs, outroot.string(), shard, jobs, interrupted, elapsed())},
         std::pair{outroot / (stem + ".csv"), summary_csv(runs)}}) {
     if (auto st = exporters::write_file_atomic(file.string(), text); !st) {
-      print_error(st.error().message);
+      print_error(exporters::describe(st.error()));
       written = false;
     }
   }

@@ -3,6 +3,7 @@
 // Tables 2 and 4 (our figures and the paper's own thread angles), marking the best scene for
 // each criterion among those that cover the face.
 
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/kernel/optimize.hpp>
 #include "commands/commands.hpp"
 #include "job/drape_job.hpp"
@@ -297,12 +298,12 @@ int run_compare(const std::vector<std::string>& args) {
   for (std::size_t i = 0; i < paths.size(); ++i) {
     auto raw = raw_from_scene(paths[i]);
     if (!raw) {
-      print_error("compare: " + raw.error().message);
+      print_error("compare: " + exporters::describe(raw.error()));
       return kExitFailure;
     }
     auto job = make_job(*raw, false);
     if (!job) {
-      print_error("compare: " + job.error().message);
+      print_error("compare: " + exporters::describe(job.error()));
       return kExitFailure;
     }
     job->outdir.clear();
@@ -328,7 +329,7 @@ int run_compare(const std::vector<std::string>& args) {
     r.path = paths[i];
     auto out = run_job(jobs[i], nullptr, true);
     if (!out) {
-      r.error = out.error().message;
+      r.error = exporters::describe(out.error());
       all_ok = false;
     } else {
       const auto& m = out->metrics;

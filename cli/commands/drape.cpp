@@ -5,6 +5,7 @@
 #include "job/outcome.hpp"
 
 #include <plyfit/exporters/atomic_file.hpp>
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
 
 #include <algorithm>
@@ -115,7 +116,7 @@ int run_drape(const std::vector<std::string>& args_in) {
   auto finish = [&](int code, const JobOutcome& out) {
     if (!outcome_path.empty()) {
       if (auto st = exporters::write_file_atomic(outcome_path, outcome_to_json(out, code)); !st) {
-        print_error(st.error().message);
+        print_error(exporters::describe(st.error()));
         return code == kExitOk ? kExitFailure : code;
       }
     }
@@ -132,18 +133,22 @@ int run_drape(const std::vector<std::string>& args_in) {
   if (!args.empty() && args.front().rfind("-", 0) != 0) {
     scene = args.front();
     auto loaded = raw_from_scene(scene);
-    if (!loaded) return fail(input_error(loaded.error().message, scene), loaded.error().message);
+    if (!loaded)
+      return fail(input_error(exporters::describe(loaded.error()), scene),
+                  exporters::describe(loaded.error()));
     raw = std::move(loaded).value();
     args.erase(args.begin());
   }
   auto flags = raw_from_args(args);
   if (!flags) {
-    print_error(flags.error().message);
-    return fail(kExitUsage, flags.error().message);
+    print_error(exporters::describe(flags.error()));
+    return fail(kExitUsage, exporters::describe(flags.error()));
   }
   raw = raw.origin.empty() ? std::move(flags).value() : merge(raw, *flags);
   auto job = make_job(raw, !dump);
-  if (!job) return fail(input_error(job.error().message, scene), job.error().message);
+  if (!job)
+    return fail(input_error(exporters::describe(job.error()), scene),
+                exporters::describe(job.error()));
   if (dump) {
     std::cout << dump_scene(*job);
     return kExitOk;
@@ -156,8 +161,8 @@ int run_drape(const std::vector<std::string>& args_in) {
     return fail(kExitInterrupted, "interrupted");
   }
   if (!out) {
-    print_error(out.error().message);
-    return fail(kExitFailure, out.error().message);
+    print_error(exporters::describe(out.error()));
+    return fail(kExitFailure, exporters::describe(out.error()));
   }
   const auto& m = out->metrics;
   std::cout << "plyfit: " << out->status << ": " << m.nodes.mapped << " nodes mapped ("

@@ -4,6 +4,7 @@
 
 #include "commands/commands.hpp"
 
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/importers/importers.hpp>
 #include <plyfit/kernel/optimize.hpp>
 
@@ -147,22 +148,23 @@ std::string start_flags(const FaceStart& s, int index) {
 int run_face(importers::MoldFile& file, const std::string& path, int index, bool json) {
   auto info = file.describe(index);
   if (!info) {
-    print_error(info.error().message);
+    print_error(exporters::describe(info.error()));
     return kExitFailure;
   }
   auto data = file.convert_face(index);
   if (!data) {
-    print_error(data.error().message);
+    print_error(exporters::describe(data.error()));
     return kExitFailure;
   }
   auto face = MoldSurface::from_face(std::move(data).value());
   if (!face) {
-    print_error(path + ": face " + std::to_string(index) + ": " + face.error().message);
+    print_error(path + ": face " + std::to_string(index) + ": " +
+                exporters::describe(face.error()));
     return kExitFailure;
   }
   auto s = face_start(*face);
   if (!s) {
-    print_error(path + ": face " + std::to_string(index) + ": " + s.error().message);
+    print_error(path + ": face " + std::to_string(index) + ": " + exporters::describe(s.error()));
     return kExitFailure;
   }
   auto vec = [](const Vec3& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); };
@@ -227,7 +229,7 @@ int run_info(const std::vector<std::string>& args) {
   if (vm.count("format")) options.format = vm["format"].as<std::string>();
   auto file = importers::open_mold(vm["file"].as<std::string>(), options);
   if (!file) {
-    print_error(file.error().message);
+    print_error(exporters::describe(file.error()));
     return kExitFailure;
   }
   if (vm.count("face")) {

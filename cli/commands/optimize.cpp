@@ -9,6 +9,7 @@
 #include "report/optimize_report.hpp"
 
 #include <plyfit/exporters/atomic_file.hpp>
+#include <plyfit/exporters/messages.hpp>
 
 #include <boost/program_options.hpp>
 
@@ -144,7 +145,7 @@ int run_optimize(const std::vector<std::string>& args) {
     if (o.objectives.empty()) return usage("--objective: give energy, max-shear or area");
   }
   if (auto n = number(vm, "evaluations"); !n) {
-    return usage(n.error().message);
+    return usage(exporters::describe(n.error()));
   } else if (*n != std::floor(*n) || *n < 1 || *n > kMaxEvaluations) {
     return usage("--evaluations: '" + vm["evaluations"].as<std::string>() +
                  "' must be an integer from 1 to " + std::to_string(kMaxEvaluations));
@@ -176,7 +177,7 @@ int run_optimize(const std::vector<std::string>& args) {
     if (!vm.count(b.key)) continue;
     const std::string flag = std::string("--") + b.key;
     auto x = number(vm, b.key);
-    if (!x) return usage(x.error().message);
+    if (!x) return usage(exporters::describe(x.error()));
     if (!(*x > b.lo && *x <= b.hi))
       return usage(flag + ": '" + vm[b.key].as<std::string>() + "' must be " + b.range);
     if (!b.needed) return usage(flag + ": " + b.needs);
@@ -185,7 +186,7 @@ int run_optimize(const std::vector<std::string>& args) {
   o.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   if (vm.count("jobs")) {
     auto x = number(vm, "jobs");
-    if (!x) return usage(x.error().message);
+    if (!x) return usage(exporters::describe(x.error()));
     if (*x != std::floor(*x) || *x < 1 || *x > 1024)
       return usage("-j: '" + vm["jobs"].as<std::string>() + "' must be an integer from 1 to 1024");
     o.jobs = static_cast<int>(*x);
@@ -195,18 +196,18 @@ int run_optimize(const std::vector<std::string>& args) {
   const std::string path = scenes.front();
   auto raw = raw_from_scene(path);
   if (!raw) {
-    print_error("optimize: " + raw.error().message);
+    print_error("optimize: " + exporters::describe(raw.error()));
     return kExitFailure;
   }
   auto job = make_job(*raw, false);
   if (!job) {
-    print_error("optimize: " + job.error().message);
+    print_error("optimize: " + exporters::describe(job.error()));
     return kExitFailure;
   }
   job->outdir.clear();
   auto surface = load_surface(*job);
   if (!surface) {
-    print_error("optimize: " + surface.error().message);
+    print_error("optimize: " + exporters::describe(surface.error()));
     return kExitFailure;
   }
   // The search moves the seed over one face's (u, v); a shell's seed would also choose a face.
@@ -242,7 +243,7 @@ int run_optimize(const std::vector<std::string>& args) {
   }
   if (!result) {
     print_error("optimize: " + (job->scene.empty() ? "" : job->scene + ": ") +
-                result.error().message);
+                exporters::describe(result.error()));
     return kExitFailure;
   }
   const OptimizeResult& r = *result;
@@ -251,7 +252,7 @@ int run_optimize(const std::vector<std::string>& args) {
   for (int b : r.best) any = any || b >= 0;
   if (!any) {
     print_error("optimize: " + path +
-                ": no drape is feasible (the scene's: " + r.evaluations.front().note + ")");
+                ": no drape is feasible (the scene's: " + note_of(r.evaluations.front()) + ")");
     return kExitFailure;
   }
   if (vm.count("output")) {
@@ -282,7 +283,7 @@ int run_optimize(const std::vector<std::string>& args) {
     }
     for (const auto& [name, text] : files) {
       if (auto st = exporters::write_file_atomic((dir / name).string(), text); !st) {
-        print_error("optimize: " + st.error().message);
+        print_error("optimize: " + exporters::describe(st.error()));
         return kExitFailure;
       }
     }

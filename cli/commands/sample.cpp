@@ -4,6 +4,7 @@
 
 #include "commands/commands.hpp"
 
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/exporters/mold_writer.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
 
@@ -57,7 +58,7 @@ int run_sample(const std::vector<std::string>& args) {
   if (spec_text.rfind("builtin:", 0) == 0) spec_text = spec_text.substr(8);
   auto spec = parse_builtin_spec(spec_text);
   if (!spec) {
-    print_error("sample: " + spec.error().message);
+    print_error("sample: " + exporters::describe(spec.error()));
     return kExitUsage;
   }
   Result<ShellData> shell = ShellData{};
@@ -67,7 +68,7 @@ int run_sample(const std::vector<std::string>& args) {
   else
     face = builtin_face(spec->first, spec->second);
   if (!shell || !face) {
-    print_error("sample: " + (shell ? face.error() : shell.error()).message);
+    print_error("sample: " + exporters::describe(shell ? face.error() : shell.error()));
     return kExitUsage;
   }
   exporters::MoldWriteOptions wo;
@@ -95,7 +96,7 @@ int run_sample(const std::vector<std::string>& args) {
   const Status st = is_builtin_shell(spec->first) ? exporters::write_shell(*shell, path, wo)
                                                   : exporters::write_mold(*face, path, wo);
   if (!st) {
-    print_error(st.error().message);
+    print_error(exporters::describe(st.error()));
     return kExitFailure;
   }
   return kExitOk;

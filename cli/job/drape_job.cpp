@@ -1,5 +1,6 @@
 #include "job/drape_job.hpp"
 
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/kernel/optimize.hpp>
 #include "job/materials.hpp"
 
@@ -389,8 +390,11 @@ Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
                  std::to_string(job.problem.sweeps.size()) + " 3D)"};
   // As Ply::create checks them (drape() would refuse them later, without the option's name).
   for (std::size_t k = 0; k < ply.sweeps.size(); ++k)
-    if (auto st = check_sweep_direction(ply.base_dir, ply.sweeps[k], k, job.drape.tol); !st)
-      return Error{name("sweep2d") + ": " + st.error().message};
+    if (auto st = check_sweep_direction(ply.base_dir, ply.sweeps[k], k, job.drape.tol); !st) {
+      Error e = st.error();
+      e.input = name("sweep2d");
+      return e;
+    }
   for (const char* k : {"start3d", "base-normal", "sweep3d", "sweep2d", "lock-angle"})
     job.input_names[k] = name(k);
 
@@ -401,10 +405,10 @@ Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
       job.materials_file.empty() ? builtin_materials() : load_materials(job.materials_file);
   if (!table)
     return Error{(job.materials_file.empty() ? "" : name("materials") + ": ") +
-                 table.error().message};
+                 exporters::describe(table.error())};
   job.material = *one("material");
   auto material = find_material(*table, job.material);
-  if (!material) return Error{name("material") + ": " + material.error().message};
+  if (!material) return Error{name("material")}.because(material.error());
   job.material_label = material->label;
   job.lock_angle_deg = material->limit_deg;
   if (auto l = one("lock-angle")) {
@@ -621,7 +625,7 @@ Result<MoldSurface> load_surface(const DrapeJob& job, exporters::RunInfo* run_ou
     const std::size_t n = data.faces.size();
     const std::vector<int> sources = data.source_faces;
     auto sh = MoldSurface::from_shell(std::move(data), job.drape.tol);
-    if (!sh) return Error{job.mold + ": " + sh.error().message};
+    if (!sh) return Error{job.mold}.because(sh.error());
     for (std::size_t k = 0; k < n; ++k)
       run.faces.push_back(run.faces_info.size() > k ? run.faces_info[k].index
                           : sources.empty()         ? static_cast<int>(k)
@@ -656,8 +660,7 @@ Result<MoldSurface> load_surface(const DrapeJob& job, exporters::RunInfo* run_ou
     }
     if (job.flip_normal) data.reversed = !data.reversed;
     auto face = MoldSurface::from_face(std::move(data), job.drape.tol);
-    if (!face)
-      return Error{job.mold + ": face " + std::to_string(job.face) + ": " + face.error().message};
+    if (!face) return Error{job.mold + ": face " + std::to_string(job.face)}.because(face.error());
     run.faces.push_back(job.face);
     surface = std::move(face).value();
   }
@@ -665,26 +668,13 @@ Result<MoldSurface> load_surface(const DrapeJob& job, exporters::RunInfo* run_ou
 }
 
 namespace {
-// drape()'s input errors name the input in words, by these openings; the message gets the
-// option's name where the job's value came from ("--sweep3d", or "FILE: key 'sweep3d'").
-std::string with_input_name(const DrapeJob& job, const std::string& message) {
-  static const std::pair<const char*, const char*> kOpenings[] = {
-      {"3D sweep direction", "sweep3d"},
-      {"the two 3D sweep directions", "sweep3d"},
-      {"the base plane", "base-normal"},
-      {"the base-plane normal", "base-normal"},
-      {"the 3D start point", "start3d"},
-      {"cannot project the start point", "start3d"},
-      {"no surface normal at the start", "start3d"},
-      {"sweep direction", "sweep2d"},
-      {"both sweep directions", "sweep2d"},
-      {"the lock angle", "lock-angle"}};
-  for (const auto& [opening, key] : kOpenings) {
-    if (message.rfind(opening, 0) != 0) continue;
-    const auto n = job.input_names.find(key);
-    return (n != job.input_names.end() ? n->second : "--" + std::string(key)) + ": " + message;
-  }
-  return message;
+// drape()'s input errors name the input by its scene key: as the option or the scene file's key
+// its value came from ("--sweep3d", or "FILE: key 'sweep3d'").
+Error with_input_name(const DrapeJob& job, Error e) {
+  if (e.input.empty()) return e;
+  const auto n = job.input_names.find(e.input);
+  e.input = n != job.input_names.end() ? n->second : "--" + e.input;
+  return e;
 }
 }  // namespace
 
@@ -719,7 +709,7 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   }
   auto res = drape(surface, job.problem, opt);
   if (tty) std::cerr << "\r\033[K" << std::flush;
-  if (!res) return Error{with_input_name(job, res.error().message)};
+  if (!res) return with_input_name(job, res.error());
   if (cancel && cancel->load()) return Error{"cancelled"};
   run.drape_ms = res->drape_ms;
   FlatPatternOptions fo;

@@ -2,6 +2,8 @@
 
 #include "report/optimize_report.hpp"
 
+#include <plyfit/exporters/messages.hpp>
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -10,6 +12,10 @@
 #include <sstream>
 
 namespace plyfit::cli {
+
+std::string note_of(const Evaluation& e) {
+  return e.error ? exporters::describe(*e.error) : e.note;
+}
 
 namespace {
 
@@ -135,7 +141,7 @@ std::string optimize_table(const DrapeJob& scene, const OptimizeResult& r, const
       "from the scene's directions. "
       "coverage: the cut ply's share of the face; cells: the mapped cells' (report.json's "
       "coverage).\n";
-  if (!s.feasible && !s.note.empty()) out += "scene: " + s.note + "\n";
+  if (!s.feasible && !note_of(s).empty()) out += "scene: " + note_of(s) + "\n";
   out += fmt("\nPareto front over energy, max shear and flat area (%d drapes, by energy):\n",
              static_cast<int>(r.front.size()));
   rows.clear();
@@ -159,7 +165,7 @@ std::string optimize_json(const DrapeJob& scene, const OptimizeResult& r, const 
     j["path_deg"] = e.candidate.path * kRadToDeg;
     j["status"] = e.status;
     j["feasible"] = e.feasible;
-    j["note"] = e.note;
+    j["note"] = note_of(e);
     j["energy"] = f.energy;
     j["max_shear_deg"] = f.max_shear_deg;
     j["flat_area"] = f.flat_area;

@@ -9,6 +9,9 @@
 
 namespace plyfit::cli {
 
+/// Why a drape of the search is not feasible, or its error, as text.
+std::string note_of(const Evaluation& e);
+
 /// The stdout table: the scene, the best per objective, the Pareto front.
 std::string optimize_table(const DrapeJob& scene, const OptimizeResult& r, const OptimizeOptions& o,
                            double seconds, int jobs);

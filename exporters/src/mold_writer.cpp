@@ -13,7 +13,7 @@ namespace {
 // The module's mold writer, loading the module on first use; errors name `path`.
 Result<const OcctMoldWriterApi*> occt_mold_writer(const std::string& path) {
   auto entry = plyfit::occt::occt_module_symbol(kMoldWriterEntry);
-  if (!entry) return Error{path + ": " + entry.error().message};
+  if (!entry) return Error{path}.because(entry.error());
   const OcctMoldWriterApi* api = reinterpret_cast<OcctMoldWriterEntry>(*entry)();
   if (!api || api->abi != plyfit::occt::kOcctModuleAbi)
     return Error{path + ": plyfit's OpenCASCADE module " + plyfit::occt::kOcctModuleFile +

@@ -29,7 +29,7 @@ Importer occt_importer(std::string key, std::vector<std::string> extensions,
   imp.open = [key](const std::string& path,
                    const ImportOptions& options) -> Result<std::unique_ptr<MoldFile>> {
     auto api = occt_importers();
-    if (!api) return Error{path + ": " + api.error().message};
+    if (!api) return Error{path}.because(api.error());
     return (*api)->open(key, path, options);
   };
   return imp;

@@ -492,7 +492,7 @@ Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const To
   // A face of a shell always has its loops: their segments carry the edges' tags.
   if (info.trimmed || tag) {
     auto surf = NurbsSurface::create(d, tol);
-    if (!surf) return Error{"invalid NURBS surface: " + surf.error().message};
+    if (!surf) return Error{"invalid NURBS surface"}.because(surf.error());
     const Vec2 speeds(surf->speed_u(), surf->speed_v());
     auto loops = trim_loops(work, bs, tol3d, speeds, tol.param_rel * (dom.u1 - dom.u0),
                             tol.param_rel * (dom.v1 - dom.v0), tag);
@@ -563,7 +563,7 @@ class OcctMoldFile final : public MoldFile {
       return convert(TopoDS::Face(faces_(index + 1)), mold_.faces[static_cast<size_t>(index)],
                      options_.tolerances, nullptr);
     });
-    if (!r && r.error().message.rfind(what, 0) != 0) return Error{what + ": " + r.error().message};
+    if (!r && legacy_text(r.error()).rfind(what, 0) != 0) return Error{what}.because(r.error());
     return r;
   }
 
@@ -602,7 +602,7 @@ class OcctMoldFile final : public MoldFile {
         mold_.faces[k] = std::move(info).value();
         state_[k] = precise ? State::kPrecise : State::kListed;
       } else {
-        failure_[k] = info.error().message;
+        failure_[k] = legacy_text(info.error());
         state_[k] = State::kFailed;
       }
     } else if (state_[k] == State::kListed && precise) {
@@ -610,7 +610,7 @@ class OcctMoldFile final : public MoldFile {
         return measure_face(f, kAreaRelPrecise, false);
       });
       if (!m) {
-        failure_[k] = m.error().message;
+        failure_[k] = legacy_text(m.error());
         state_[k] = State::kFailed;
         return false;
       }
@@ -833,7 +833,7 @@ Result<std::unique_ptr<MoldFile>> open_with(const std::string& path, const std::
   Handle(Deadline) deadline = new Deadline(options.time_limit_s);
   auto out = guarded(path, [&]() -> Result<ReadOutput> {
     auto r = read(path, *deadline);
-    if (!r) return Error{path + ": " + r.error().message};
+    if (!r) return Error{path}.because(r.error());
     return r;
   });
   if (!out) return out.error();

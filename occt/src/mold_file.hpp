@@ -173,4 +173,15 @@ auto guarded(const std::string& what, F&& f) -> decltype(f()) {
   }
 }
 
+/// The sentence of an error not yet given a code (ErrorCode::kText), its causes' after it;
+/// empty for a coded one. Transitional, while the module's errors are given codes.
+inline std::string legacy_text(const Error& e) {
+  const auto* s = e.code == ErrorCode::kText && !e.values.empty()
+                      ? std::get_if<std::string>(&e.values[0])
+                      : nullptr;
+  std::string out = s ? *s : std::string();
+  if (e.cause) out += ": " + legacy_text(*e.cause);
+  return out;
+}
+
 }  // namespace plyfit::importers::occt

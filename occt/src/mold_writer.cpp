@@ -352,7 +352,7 @@ Result<ParamDomain> checked(BuiltinFace& b, const std::string& what) {
     for (auto& c : loop) all_fit = fits(c.poles, c.weights, c.knots) && all_fit;
   if (!all_fit) return Error{what + ": a pole, weight or knot is 1e99 or larger: not written"};
   auto surface = NurbsSurface::create(data);
-  if (!surface) return Error{what + ": invalid surface: " + surface.error().message};
+  if (!surface) return Error{what + ": invalid surface"}.because(surface.error());
   const ParamDomain dom = surface->domain();
   if (b.exact_loops.size() != b.face.loops.size())
     return Error{what + ": " + std::to_string(b.exact_loops.size()) + " exact trim loops for " +
@@ -365,8 +365,8 @@ Result<ParamDomain> checked(BuiltinFace& b, const std::string& what) {
       return Error{what + ": trim loop " + std::to_string(k) + " has fewer than three points"};
     for (const auto& c : b.exact_loops[k])
       if (auto cv = NurbsCurve2::create(c); !cv)
-        return Error{what + ": invalid trim curve in loop " + std::to_string(k) + ": " +
-                     cv.error().message};
+        return Error{what + ": invalid trim curve in loop " + std::to_string(k)}.because(
+            cv.error());
     for (const Vec2& p : b.face.loops[k].points)
       if (!(p.x() >= dom.u0 - mu && p.x() <= dom.u1 + mu && p.y() >= dom.v0 - mv &&
             p.y() <= dom.v1 + mv))
@@ -454,7 +454,7 @@ Status write_builtin(const BuiltinFace& face, const std::string& path,
   std::call_once(quiet, [] { Message::DefaultMessenger()->ChangePrinters().Clear(); });
   try {
     auto f = make_face(b, *dom);
-    if (!f) return Error{path + ": " + f.error().message};
+    if (!f) return Error{path}.because(f.error());
     AtomicFile file(path, true);
     if (!file.ok())
       return Error{path + ": cannot create the file (folder missing or not writable?)"};
@@ -493,7 +493,7 @@ Status write_faces(const ShellData& shell, const std::string& path,
     auto dom = checked(b, path + ": face " + std::to_string(i));
     if (!dom) return dom.error();
     auto f = MoldSurface::from_face(b.face);
-    if (!f) return Error{path + ": face " + std::to_string(i) + ": " + f.error().message};
+    if (!f) return Error{path + ": face " + std::to_string(i)}.because(f.error());
     largest = std::max(largest, f->size());
     faces.push_back(std::move(b));
     domains.push_back(*dom);
@@ -508,7 +508,7 @@ Status write_faces(const ShellData& shell, const std::string& path,
     std::vector<NamedFace> named;
     for (size_t i = 0; i < faces.size(); ++i) {
       auto f = make_face(faces[i], domains[i]);
-      if (!f) return Error{path + ": face " + std::to_string(i) + ": " + f.error().message};
+      if (!f) return Error{path + ": face " + std::to_string(i)}.because(f.error());
       named.push_back({*f, faces[i].face.name});
     }
     TopoDS_Shape shape = named.front().face;

@@ -337,8 +337,8 @@ Result<ShellData> sew_faces(const ShellInput& in, const std::vector<int>& given,
       return convert_face(sewn[k], infos[k], in.options.tolerances, &tag);
     });
     if (!fd) {
-      if (fd.error().message.rfind(face_what, 0) == 0) return fd.error();
-      return Error{face_what + ": " + fd.error().message};
+      if (legacy_text(fd.error()).rfind(face_what, 0) == 0) return fd.error();
+      return Error{face_what}.because(fd.error());
     }
     shell.faces.push_back(std::move(fd).value());
   }

@@ -3,6 +3,7 @@
 // STEP and IGES in a temporary folder, imported, and compared with OCCT's reading of the same
 // files. Also the unit conversion (files written in inches).
 
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/importers/importers.hpp>
 
 #include <BRepAlgoAPI_Cut.hxx>
@@ -176,7 +177,7 @@ bool spans_closed(const TopoDS_Face& f, bool along_u) {
 std::set<std::string> check_written_file(const std::string& path, bool iges) {
   INFO(path);
   auto file = importers::open_mold(path);
-  INFO((file.ok() ? std::string() : file.error().message));
+  INFO((file.ok() ? std::string() : exporters::describe(file.error())));
   REQUIRE(file.ok());
   const Mold& m = (*file)->mold();
   const Reference ref = read_reference(path, iges);
@@ -191,7 +192,7 @@ std::set<std::string> check_written_file(const std::string& path, bool iges) {
     CHECK(info.kind == kind_of(BRep_Tool::Surface(of)));
     kinds.insert(info.kind);
     auto data = (*file)->convert_face(i);
-    INFO((data.ok() ? std::string() : data.error().message));
+    INFO((data.ok() ? std::string() : exporters::describe(data.error())));
     REQUIRE(data.ok());
     CHECK(data->reversed == (of.Orientation() == TopAbs_REVERSED));
     CHECK(data->loops.empty() == !info.trimmed);

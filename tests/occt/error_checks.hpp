@@ -4,6 +4,7 @@
 // come back as a one-line Error naming the file, never a crash or a hang; corrupted copies are
 // also run through the plyfit binary under a time limit.
 
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/importers/importers.hpp>
 
 #include <catch2/catch.hpp>
@@ -19,9 +20,10 @@ namespace plyfit::test {
 
 /// The error is one line and names the file.
 inline void check_error(const Error& e, const std::string& path) {
-  INFO(e.message);
-  CHECK(e.message.find('\n') == std::string::npos);
-  CHECK(e.message.find(path) != std::string::npos);
+  const std::string text = exporters::describe(e);
+  INFO(text);
+  CHECK(text.find('\n') == std::string::npos);
+  CHECK(text.find(path) != std::string::npos);
 }
 
 /// Opening a corrupted file gives an error naming it, or (when the damage is harmless) a mold
@@ -97,12 +99,12 @@ inline void check_renamed(const std::string& step, const std::string& iges, cons
   auto r = importers::open_mold(dir.file("really_iges.step"));
   REQUIRE_FALSE(r.ok());
   check_error(r.error(), dir.file("really_iges.step"));
-  CHECK(r.error().message.find("not a STEP file") != std::string::npos);
-  CHECK(r.error().message.find("looks like IGES") != std::string::npos);
+  CHECK(exporters::describe(r.error()).find("not a STEP file") != std::string::npos);
+  CHECK(exporters::describe(r.error()).find("looks like IGES") != std::string::npos);
   write_bytes(dir.file("really_step.igs"), read_bytes(step));
   r = importers::open_mold(dir.file("really_step.igs"));
   REQUIRE_FALSE(r.ok());
-  CHECK(r.error().message.find("not a IGES file") != std::string::npos);
+  CHECK(exporters::describe(r.error()).find("not a IGES file") != std::string::npos);
   binary_rejects(dir.file("really_iges.step"), dir);
 }
 
@@ -123,7 +125,7 @@ inline void check_corrupted(const std::string& step, const std::string& iges, co
   for (const auto* set : {&s, &i}) {
     auto t = importers::open_mold((*set)[2]);
     REQUIRE_FALSE(t.ok());
-    CHECK(t.error().message.find("truncated") != std::string::npos);
+    CHECK(exporters::describe(t.error()).find("truncated") != std::string::npos);
   }
 }
 
@@ -137,7 +139,7 @@ inline void check_bad_index_and_time_limit(const std::string& path, int faces) {
     auto d = (*file)->convert_face(bad);
     REQUIRE_FALSE(d.ok());
     check_error(d.error(), path);
-    CHECK(d.error().message.find("out of range") != std::string::npos);
+    CHECK(exporters::describe(d.error()).find("out of range") != std::string::npos);
   }
   auto lf = importers::load_face(path, faces + 5);
   REQUIRE_FALSE(lf.ok());
@@ -148,7 +150,7 @@ inline void check_bad_index_and_time_limit(const std::string& path, int faces) {
   auto slow = importers::open_mold(path, o);
   REQUIRE_FALSE(slow.ok());
   check_error(slow.error(), path);
-  CHECK(slow.error().message.find("time limit") != std::string::npos);
+  CHECK(exporters::describe(slow.error()).find("time limit") != std::string::npos);
 }
 
 }  // namespace plyfit::test

@@ -3,6 +3,7 @@
 // the time limit, and the registry's extension handling. The same checks run on the CAD
 // corpus in errors_corpus_test.cpp.
 
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/importers/importers.hpp>
 
 #include <BRepBuilderAPI_MakeEdge.hxx>
@@ -24,18 +25,18 @@ TEST_CASE("importers: missing, empty and unreadable files are errors naming the 
   auto r = importers::open_mold(missing);
   REQUIRE_FALSE(r.ok());
   check_error(r.error(), missing);
-  CHECK(r.error().message.find("no such file") != std::string::npos);
+  CHECK(exporters::describe(r.error()).find("no such file") != std::string::npos);
 
   std::filesystem::create_directories(dir.file("folder.igs"));
   r = importers::open_mold(dir.file("folder.igs"));
   REQUIRE_FALSE(r.ok());
-  CHECK(r.error().message.find("not a regular file") != std::string::npos);
+  CHECK(exporters::describe(r.error()).find("not a regular file") != std::string::npos);
 
   write_bytes(dir.file("empty.stp"), "");
   r = importers::open_mold(dir.file("empty.stp"));
   REQUIRE_FALSE(r.ok());
   check_error(r.error(), dir.file("empty.stp"));
-  CHECK(r.error().message.find("empty") != std::string::npos);
+  CHECK(exporters::describe(r.error()).find("empty") != std::string::npos);
 }
 
 TEST_CASE("importers: the registry picks importers by extension or --format") {
@@ -52,18 +53,18 @@ TEST_CASE("importers: the registry picks importers by extension or --format") {
   auto r = importers::open_mold(dir.file("model.dat"));
   REQUIRE_FALSE(r.ok());
   check_error(r.error(), dir.file("model.dat"));
-  CHECK(r.error().message.find("step, stp, iges, igs") != std::string::npos);
+  CHECK(exporters::describe(r.error()).find("step, stp, iges, igs") != std::string::npos);
   importers::ImportOptions o;
   o.format = "stp";
   CHECK(importers::open_mold(dir.file("model.dat"), o).ok());
   o.format = "iges";  // a STEP file read as IGES
   r = importers::open_mold(dir.file("model.dat"), o);
   REQUIRE_FALSE(r.ok());
-  CHECK(r.error().message.find("looks like STEP") != std::string::npos);
+  CHECK(exporters::describe(r.error()).find("looks like STEP") != std::string::npos);
   o.format = "obj";
   r = importers::open_mold(dir.file("model.dat"), o);
   REQUIRE_FALSE(r.ok());
-  CHECK(r.error().message.find("unknown format 'obj'") != std::string::npos);
+  CHECK(exporters::describe(r.error()).find("unknown format 'obj'") != std::string::npos);
 }
 
 TEST_CASE("importers: an IGES file renamed .step (and STEP renamed .igs) is rejected clearly") {
@@ -105,7 +106,7 @@ TEST_CASE("importers: a file without faces, a bad face index and a time limit ar
     auto r = importers::open_mold(dir.file(name));
     REQUIRE_FALSE(r.ok());
     check_error(r.error(), dir.file(name));
-    CHECK(r.error().message.find("no faces") != std::string::npos);
+    CHECK(exporters::describe(r.error()).find("no faces") != std::string::npos);
   }
 
   for (const std::string name : {"plate-hole.step", "dish.igs"})

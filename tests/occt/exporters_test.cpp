@@ -6,6 +6,7 @@
 // (tests/exporters/*.py), and LibreCAD renders the DXF.
 
 #include <plyfit/exporters/exporters.hpp>
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/exporters/step_curves.hpp>
 #include <plyfit/importers/importers.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
@@ -91,7 +92,7 @@ std::unique_ptr<Case> make_case(const std::string& mold,
                                 std::shared_ptr<const DrapeSurface> surface,
                                 std::vector<NurbsSurfaceData> molds, DrapeProblem pb) {
   auto r = drape(*surface, pb);  // the kernel's own drape() of a Face or Shell
-  INFO(mold << ": " << (r.ok() ? std::string() : r.error().message));
+  INFO(mold << ": " << (r.ok() ? std::string() : exporters::describe(r.error())));
   REQUIRE(r.ok());
   FlatPattern flat = flat_pattern(*surface, *r);
   auto c = std::unique_ptr<Case>(new Case{mold,
@@ -109,7 +110,7 @@ std::unique_ptr<Case> make_case(const std::string& mold,
 }
 
 std::unique_ptr<Case> make_case(const std::string& mold, Result<Face> face, DrapeProblem pb) {
-  INFO(mold << ": " << (face.ok() ? std::string() : face.error().message));
+  INFO(mold << ": " << (face.ok() ? std::string() : exporters::describe(face.error())));
   REQUIRE(face.ok());
   std::vector<NurbsSurfaceData> molds = {face->surface().data()};
   return make_case(mold, std::make_shared<const Face>(std::move(face).value()), std::move(molds),
@@ -118,7 +119,7 @@ std::unique_ptr<Case> make_case(const std::string& mold, Result<Face> face, Drap
 
 std::unique_ptr<Case> make_case(const std::string& mold, Result<MoldSurface> surface,
                                 DrapeProblem pb) {
-  INFO(mold << ": " << (surface.ok() ? std::string() : surface.error().message));
+  INFO(mold << ": " << (surface.ok() ? std::string() : exporters::describe(surface.error())));
   REQUIRE(surface.ok());
   return make_case(mold, Face(test::face_of(*surface)), std::move(pb));
 }
@@ -130,7 +131,7 @@ std::unique_ptr<Case> make_shell_case(const std::string& name, DrapeProblem pb) 
   std::vector<NurbsSurfaceData> molds;
   for (const FaceData& f : data->faces) molds.push_back(f.surface);
   auto shell = Shell::create(std::move(data).value());
-  INFO(name << ": " << (shell.ok() ? std::string() : shell.error().message));
+  INFO(name << ": " << (shell.ok() ? std::string() : exporters::describe(shell.error())));
   REQUIRE(shell.ok());
   return make_case("builtin:" + name, std::make_shared<const Shell>(std::move(shell).value()),
                    std::move(molds), std::move(pb));
@@ -323,7 +324,7 @@ void check_step(const Case& c, int degree) {
   const auto* e = exporters::find_exporter("step");
   REQUIRE(e);
   const auto st = e->write(ctx, dir.string());
-  INFO((st.ok() ? std::string() : st.error().message));
+  INFO((st.ok() ? std::string() : exporters::describe(st.error())));
   REQUIRE(st.ok());
   const auto groups = read_step(dir / "net.step");
 
@@ -524,7 +525,7 @@ TEST_CASE(
   rational.curves[0].weights = {1.0, 2.0};
   const auto st = exporters::step_curves_text({rational}, info);
   REQUIRE_FALSE(st.ok());
-  CHECK(st.error().message.find("rational") != std::string::npos);
+  CHECK(exporters::describe(st.error()).find("rational") != std::string::npos);
 }
 
 TEST_CASE("exporters: net.step reads back in DRAW (occt-draw) with its names and curve counts") {
@@ -679,8 +680,8 @@ TEST_CASE("exporters: a failed write leaves neither the file nor a temporary fil
       fs::create_directory(dir / e.files[blocked]);
       const auto st = e.write(c.ctx(), dir.string());
       REQUIRE(!st.ok());
-      CHECK(st.error().message.find(e.files[blocked]) != std::string::npos);
-      CHECK(st.error().message.find('\n') == std::string::npos);
+      CHECK(exporters::describe(st.error()).find(e.files[blocked]) != std::string::npos);
+      CHECK(exporters::describe(st.error()).find('\n') == std::string::npos);
       // Files before the blocked one are whole; nothing else is there.
       std::set<std::string> present;
       for (const auto& entry : fs::directory_iterator(dir))

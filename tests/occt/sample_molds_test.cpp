@@ -4,6 +4,7 @@
 // reading (kind, rational, trims, holes, seams), converted surfaces agree with OpenCASCADE's
 // evaluation, contains() with its classifier, and the trim polylines with its edges.
 
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/importers/importers.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
 
@@ -82,7 +83,7 @@ TEST_CASE("importers: the sample molds list the trims, holes and seams OpenCASCA
       CHECK(info.name == s.file);
       CHECK(m.format == (is_iges(path) ? "iges" : "step"));
       auto data = (*file)->convert_face(0);
-      INFO((data.ok() ? std::string() : data.error().message));
+      INFO((data.ok() ? std::string() : exporters::describe(data.error())));
       REQUIRE(data.ok());
       CHECK(data->loops.empty() == !s.trimmed);
       // Seams as the built-in has them (the full tubes close around their axis); OpenCASCADE's

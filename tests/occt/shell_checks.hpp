@@ -4,6 +4,7 @@
 // lie on each other and run in opposite directions, the faces are convert_face's with loops on
 // the original edges, and contains() agrees with OpenCASCADE's classifier.
 
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/importers/importers.hpp>
 #include "surface/shell/shell.hpp"
 
@@ -267,7 +268,7 @@ constexpr int kUnchecked = -1000;
 /// kUnchecked).
 inline void check_kernel_shell(const ShellData& data, int euler, int free_loops) {
   auto shell = Shell::create(data);
-  INFO((shell.ok() ? std::string() : shell.error().message));
+  INFO((shell.ok() ? std::string() : exporters::describe(shell.error())));
   REQUIRE(shell.ok());
   CHECK(shell->face_count() == static_cast<std::int32_t>(data.faces.size()));
   CHECK(shell->edge_count() == data.edge_count);

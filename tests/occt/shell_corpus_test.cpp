@@ -3,6 +3,7 @@
 // panels of trj7_c2-td-203.stp (neither shares a border), and the cornetta's 110 faces; and
 // drapes over them.
 
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/importers/importers.hpp>
 #include "drape/drape.hpp"
 #include "surface/shell/shell.hpp"
@@ -179,7 +180,7 @@ Shell sewn_shell(const std::string& name) {
   auto data = importers::load_shell(shared_cad(name), {});
   REQUIRE(data.ok());
   auto sh = Shell::create(std::move(data).value());
-  INFO(name << ": " << (sh.ok() ? "" : sh.error().message));
+  INFO(name << ": " << (sh.ok() ? "" : exporters::describe(sh.error())));
   REQUIRE(sh.ok());
   return std::move(sh).value();
 }

@@ -6,6 +6,7 @@
 // sharing a meridian and the pole, and an octant cut from the equator to the pole (a trimmed
 // face with a collapsed edge).
 
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/exporters/mold_writer.hpp>
 #include <plyfit/importers/importers.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
@@ -152,7 +153,7 @@ void check_shell_file(const ShellData& shell, const std::string& name, const std
   exporters::MoldWriteOptions wo;
   wo.name = name;
   const Status st = exporters::write_shell(shell, path, wo);
-  INFO((st.ok() ? std::string() : st.error().message));
+  INFO((st.ok() ? std::string() : exporters::describe(st.error())));
   REQUIRE(st.ok());
   auto file = importers::open_mold(path);
   REQUIRE(file.ok());
@@ -228,19 +229,20 @@ TEST_CASE("samples: the shell writer refuses bad shells, naming the file and the
   ShellData empty;
   auto st = exporters::write_shell(empty, tmp.file("e.step"));
   REQUIRE_FALSE(st.ok());
-  CHECK(st.error().message == tmp.file("e.step") + ": the shell has no faces");
+  CHECK(exporters::describe(st.error()) == tmp.file("e.step") + ": the shell has no faces");
   ShellData bad = cases().front().shell;
   bad.faces[1].loops[0].edges.pop_back();
   st = exporters::write_shell(bad, tmp.file("b.igs"));
   REQUIRE_FALSE(st.ok());
-  CHECK(st.error().message.find("b.igs: face 1: a loop has 3 edge tags for 4 segments") !=
-        std::string::npos);
+  CHECK(exporters::describe(st.error())
+            .find("b.igs: face 1: a loop has 3 edge tags for 4 segments") != std::string::npos);
   bad = cases().front().shell;
   bad.faces[0].loops[0].points[2] = Vec2(70, 60);  // off the left plate's domain
   st = exporters::write_shell(bad, tmp.file("b.step"));
   REQUIRE_FALSE(st.ok());
-  CHECK(st.error().message.find("b.step: face 0: trim loop 0 leaves the surface's parameter "
-                                "domain") != std::string::npos);
+  CHECK(exporters::describe(st.error())
+            .find("b.step: face 0: trim loop 0 leaves the surface's parameter "
+                  "domain") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(tmp.file("b.step")));
   CHECK_FALSE(std::filesystem::exists(tmp.file("b.igs")));
 }

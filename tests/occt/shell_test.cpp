@@ -3,6 +3,7 @@
 // inwards), a cylinder and its seam, two plates with a known gap, three faces on one edge, and
 // bad face lists. The shared CAD files are in shell_corpus_test.cpp.
 
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/importers/importers.hpp>
 
 #include <BRepBuilderAPI_Copy.hxx>
@@ -126,7 +127,7 @@ TEST_CASE("importers: a box of six loose faces sews into a closed shell, oriente
       }
 
     auto shell = (*file)->convert_shell({});  // all faces
-    INFO((shell.ok() ? std::string() : shell.error().message));
+    INFO((shell.ok() ? std::string() : exporters::describe(shell.error())));
     REQUIRE(shell.ok());
     CHECK(shell->faces.size() == 6);
     CHECK(shell->source_faces == std::vector<int>({0, 1, 2, 3, 4, 5}));
@@ -292,20 +293,21 @@ TEST_CASE("importers: bad face lists for a shell are one-line errors naming the 
            {{1, 0, 1}, "face 1 is listed twice"}}) {
     auto s = (*file)->convert_shell(faces);
     REQUIRE_FALSE(s.ok());
-    INFO(s.error().message);
-    CHECK(s.error().message.rfind(path + ": ", 0) == 0);
-    CHECK(s.error().message.find(text) != std::string::npos);
-    CHECK(s.error().message.find('\n') == std::string::npos);
+    INFO(exporters::describe(s.error()));
+    CHECK(exporters::describe(s.error()).rfind(path + ": ", 0) == 0);
+    CHECK(exporters::describe(s.error()).find(text) != std::string::npos);
+    CHECK(exporters::describe(s.error()).find('\n') == std::string::npos);
   }
   importers::ImportOptions negative;
   negative.sewing_tolerance = -0.01;
   auto bad = importers::load_shell(path, {}, negative);
   REQUIRE_FALSE(bad.ok());
-  CHECK(bad.error().message.rfind(path + ": sewing faces 0, 1: invalid sewing tolerance", 0) == 0);
+  CHECK(exporters::describe(bad.error())
+            .rfind(path + ": sewing faces 0, 1: invalid sewing tolerance", 0) == 0);
   std::vector<std::string> warnings;
   auto missing = importers::load_shell(dir.file("none.step"), {}, {}, &warnings);
   REQUIRE_FALSE(missing.ok());
-  CHECK(missing.error().message.find(dir.file("none.step")) != std::string::npos);
+  CHECK(exporters::describe(missing.error()).find(dir.file("none.step")) != std::string::npos);
   auto ok = importers::load_shell(path, {1, 0}, {}, &warnings);
   REQUIRE(ok.ok());
   CHECK(ok->edge_count == 1);

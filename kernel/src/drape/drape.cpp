@@ -153,31 +153,29 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
   auto ply = Ply::create(pb.ply, opt.tol);
   if (!ply) return ply.error();
   if (pb.sweeps.size() != pb.ply.sweeps.size())
-    return Error{"give as many 3D sweep directions as 2D ones (" +
-                 std::to_string(pb.ply.sweeps.size()) + " 2D, " + std::to_string(pb.sweeps.size()) +
-                 " 3D)"};
-  if (!pb.start.allFinite()) return Error{"the 3D start point must be finite"};
+    return Error{ErrorCode::kSweepCountMismatch,
+                 "sweep3d",
+                 {static_cast<std::int64_t>(pb.ply.sweeps.size()),
+                  static_cast<std::int64_t>(pb.sweeps.size())}};
+  if (!pb.start.allFinite()) return Error{ErrorCode::kStartNotFinite, "start3d"};
   if (!pb.base_normal.allFinite() || !(pb.base_normal.norm() > 0.0))
-    return Error{"the base-plane normal must be a non-zero vector"};
+    return Error{ErrorCode::kBaseNormalZero, "base-normal"};
   if (!(opt.lock_angle > 0.0) || opt.lock_angle > kPi / 2)
-    return Error{"the lock angle must be in (0, 90] degrees"};
+    return Error{ErrorCode::kLockAngleRange, "lock-angle"};
 
   DrapeResult res;
   res.index = std::make_shared<NodeIndex>();
   res.base_normal = pb.base_normal.normalized();
   const Projection pr = s.project(pb.start);
-  if (!pr.ok) return Error{"cannot project the start point onto the face"};
+  if (!pr.ok) return Error{ErrorCode::kStartNotProjected, "start3d"};
   res.start_point = pr.point;
   res.start_at = pr.at;
   res.start_moved = pr.distance;
   const SurfaceNormal sn = s.normal(pr.at);
-  if (!sn.ok) return Error{"no surface normal at the start point"};
+  if (!sn.ok) return Error{ErrorCode::kStartNoNormal, "start3d"};
   const Vec3 n0 = sn.n;
   Vec3 t3 = n0.cross(res.base_normal);
-  if (t3.norm() < kMinPlaneCutSin)
-    return Error{
-        "the base plane does not cut the face near the start (it is tangent to the "
-        "surface there); choose a base-plane normal along the surface"};
+  if (t3.norm() < kMinPlaneCutSin) return Error{ErrorCode::kBaseNormalTangent, "base-normal"};
   t3.normalize();
   // Pairing of 2D and 3D: (base, sweep) has the same handedness about the normal in both.
   const Ply& P = *ply;
@@ -188,16 +186,14 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
   for (std::size_t k = 0; k < pb.sweeps.size(); ++k) {
     const Vec3& w = pb.sweeps[k];
     if (!w.allFinite() || !(w.norm() > 0.0))
-      return Error{"3D sweep direction " + std::to_string(k + 1) + " must be a non-zero vector"};
+      return Error{ErrorCode::kSweep3dZero, "sweep3d", {static_cast<std::int64_t>(k + 1)}};
     const double c = across.dot(w) / w.norm();
     if (!(std::abs(c) >= std::sin(opt.tol.sweep_min_angle)))
-      return Error{"3D sweep direction " + std::to_string(k + 1) +
-                   " is parallel to the base path or normal to the surface at the start: it "
-                   "lies " +
-                   brief(std::asin(std::min(std::abs(c), 1.0)) * kRadToDeg) +
-                   " deg from the plane of the two (at least " +
-                   brief(opt.tol.sweep_min_angle * kRadToDeg) +
-                   " deg needed); it must point to one side of the path"};
+      return Error{
+          ErrorCode::kSweep3dAlongPath,
+          "sweep3d",
+          {static_cast<std::int64_t>(k + 1), std::asin(std::min(std::abs(c), 1.0)) * kRadToDeg,
+           opt.tol.sweep_min_angle * kRadToDeg}};
     side3.push_back(c > 0 ? 1.0 : -1.0);
   }
   std::vector<double> side2;
@@ -207,9 +203,7 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
     for (double& x : side3) x = -x;
   }
   if (side3.size() == 2 && side3[1] != side2[1])
-    return Error{
-        "the two 3D sweep directions must lie on the two sides of the base path, "
-        "as the 2D ones do"};
+    return Error{ErrorCode::kSweeps3dSameSide, "sweep3d"};
   res.base_tangent = t3;
   auto mply = std::make_shared<Ply>(std::move(ply).value());  // the scan extends the path
   res.ply = mply;

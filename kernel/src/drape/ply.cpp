@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 namespace plyfit {
 
@@ -14,17 +13,15 @@ bool finite2(const Vec2& v) {
 
 Status check_sweep_direction(const Vec2& base_dir, const Vec2& sweep, std::size_t k,
                              const Tolerances& tol) {
-  const std::string which = "sweep direction " + std::to_string(k + 1);
-  if (!finite2(sweep) || !(sweep.norm() > 0.0)) return Error{which + " must be a non-zero vector"};
+  const auto which = static_cast<std::int64_t>(k + 1);
+  if (!finite2(sweep) || !(sweep.norm() > 0.0))
+    return Error{ErrorCode::kSweepZero, "sweep2d", {which}};
   const double sn = std::abs(cross2(base_dir.normalized(), sweep.normalized()));
   if (sn >= std::sin(tol.sweep_min_angle)) return ok_status();
   constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
-  std::ostringstream os;
-  os.precision(3);
-  os << which << " is parallel to the base path: it makes "
-     << std::asin(std::min(sn, 1.0)) * kRadToDeg << " deg with it (at least "
-     << tol.sweep_min_angle * kRadToDeg << " deg needed); it must point into one side of the path";
-  return Error{os.str()};
+  return Error{ErrorCode::kSweepAlongPath,
+               "sweep2d",
+               {which, std::asin(std::min(sn, 1.0)) * kRadToDeg, tol.sweep_min_angle * kRadToDeg}};
 }
 
 // Sets n.id / n.pos / n.link_from for a path point at n.pos: a regular node when it is on a
@@ -58,16 +55,18 @@ static void classify_path_point(const PlySpec& spec, double merge, std::int32_t 
 
 Result<Ply> Ply::create(PlySpec spec, const Tolerances& tol) {
   if (!(spec.d_weft > 0.0) || !std::isfinite(spec.d_weft))
-    return Error{"weft spacing must be a positive number, got " + std::to_string(spec.d_weft)};
+    return Error{
+        ErrorCode::kSpacingNotPositive, "spacing-weft", {std::string("weft"), spec.d_weft}};
   if (!(spec.d_warp > 0.0) || !std::isfinite(spec.d_warp))
-    return Error{"warp spacing must be a positive number, got " + std::to_string(spec.d_warp)};
+    return Error{
+        ErrorCode::kSpacingNotPositive, "spacing-warp", {std::string("warp"), spec.d_warp}};
   if (spec.rect && (!(spec.rect->x() > 0.0) || !(spec.rect->y() > 0.0) || !finite2(*spec.rect)))
-    return Error{"ply size must be two positive numbers W,H"};
-  if (!finite2(spec.start)) return Error{"start point must be finite"};
+    return Error{ErrorCode::kPlySizeNotPositive, "ply"};
+  if (!finite2(spec.start)) return Error{ErrorCode::kStart2dNotFinite, "start2d"};
   if (!finite2(spec.base_dir) || !(spec.base_dir.norm() > 0.0))
-    return Error{"base path direction must be a non-zero vector"};
-  if (spec.sweeps.empty()) return Error{"at least one sweep direction is needed"};
-  if (spec.sweeps.size() > 2) return Error{"at most two sweep directions (one per half-plane)"};
+    return Error{ErrorCode::kBaseDirZero, "base2d"};
+  if (spec.sweeps.empty()) return Error{ErrorCode::kNoSweep, "sweep2d"};
+  if (spec.sweeps.size() > 2) return Error{ErrorCode::kTooManySweeps, "sweep2d"};
   Ply p;
   p.d_ = std::min(spec.d_weft, spec.d_warp);
   p.merge_ = tol.ply_merge_rel * p.d_;
@@ -78,15 +77,14 @@ Result<Ply> Ply::create(PlySpec spec, const Tolerances& tol) {
     w.normalize();
     const double c = cross2(spec.base_dir, w);
     int& slot = c > 0 ? p.sweep_plus_ : p.sweep_minus_;
-    if (slot >= 0)
-      return Error{"both sweep directions point into the same half-plane of the base path"};
+    if (slot >= 0) return Error{ErrorCode::kSweepsSameSide, "sweep2d"};
     slot = static_cast<int>(k);
   }
   if (spec.rect) {
     const Vec2& r = *spec.rect;
     if (spec.start.x() < -p.merge_ || spec.start.y() < -p.merge_ ||
         spec.start.x() > r.x() + p.merge_ || spec.start.y() > r.y() + p.merge_)
-      return Error{"the 2D start point lies outside the ply rectangle"};
+      return Error{ErrorCode::kStart2dOffPly, "start2d"};
   }
   p.spec_ = std::move(spec);
   // Path node 0: the start, possibly on a crossing or a thread.

@@ -64,7 +64,7 @@ Result<TrimLoop> sample_loop(const NurbsSurface& surface,
   TrimLoop loop;
   for (const auto& data : curves) {
     auto curve = NurbsCurve2::create(data);
-    if (!curve) return Error{"invalid trim curve: " + curve.error().message};
+    if (!curve) return Error{"invalid trim curve"}.because(curve.error());
     const auto at = [&](double t) { return Vec2(curve->point(t)); };
     const auto on_surface = [&](const Vec2& uv) { return surface.point(uv.x(), uv.y()); };
     std::vector<double> ts;  // the distinct knots inside the domain, ends included
@@ -449,7 +449,7 @@ Result<BuiltinFace> builtin_face(const std::string& name,
     b.exact_loops.push_back(blade_outline(v["span"], v["chord"]));
   }
   if (auto st = sample_loops(b, tol); !st)
-    return Error{"built-in mold '" + name + "': " + st.error().message};
+    return Error{"built-in mold '" + name + "'"}.because(st.error());
   return b;
 }
 

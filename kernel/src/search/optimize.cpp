@@ -212,7 +212,7 @@ void drape_into(const Face& face, const DrapeProblem& pb, const DrapeOptions& op
     auto res = drape(face, pb, opt);
     if (!res) {
       ev.status = "error";
-      ev.note = res.error().message;
+      ev.error = res.error();
       return;
     }
     ev.status = res->partial ? "partial" : "ok";
@@ -318,7 +318,7 @@ class Search {
         drape_into(*sp_.face, *pb, drape_, *sp_.scene, ev);
       } else {
         ev.status = "error";
-        ev.note = pb.error().message;
+        ev.error = pb.error();
       }
       if (o_.progress) {
         std::lock_guard<std::mutex> lock(progress_mutex);

@@ -1,6 +1,7 @@
 // The built-in propeller blade (issue 13, "failed nodes on a real blade"): a long, thin,
 // twisted bicubic of 242 x 13 poles with knots clustered at the root and the tip, trimmed by
 // a blade outline inside its domain; drapes on it reach every node they can.
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
 #include "drape/drape.hpp"
 
@@ -18,7 +19,7 @@ namespace {
 
 Face blade(const std::map<std::string, double>& p = {}) {
   auto fd = builtin_mold("blade", p);
-  INFO((fd.ok() ? std::string() : fd.error().message));
+  INFO((fd.ok() ? std::string() : exporters::describe(fd.error())));
   REQUIRE(fd.ok());
   auto f = Face::create(std::move(fd).value());
   REQUIRE(f.ok());
@@ -80,7 +81,7 @@ TEST_CASE("blade: the outline is a trim inside the domain, not its border") {
            {{"nu", 7}}, {{"nv", 3.5}}, {{"chord", 0}}, {{"camber", -0.1}}, {{"twist", 120}}}) {
     auto fd = builtin_mold("blade", bad);
     REQUIRE_FALSE(fd.ok());
-    CHECK(fd.error().message.find("blade") != std::string::npos);
+    CHECK(exporters::describe(fd.error()).find("blade") != std::string::npos);
   }
 }
 

@@ -1,3 +1,4 @@
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/kernel/nurbs.hpp>
 #include "geometry/analytic_surfaces.hpp"
 
@@ -21,7 +22,7 @@ TEST_CASE("kernel: curve validation names the problem") {
   bad.knots = {0, 0, 1, 1, 1};
   auto r = NurbsCurve3::create(bad);
   REQUIRE_FALSE(r.ok());
-  CHECK_THAT(r.error().message, Catch::Contains("knot count"));
+  CHECK_THAT(exporters::describe(r.error()), Catch::Contains("knot count"));
   bad = d;
   bad.weights = {1, 0, 1};
   REQUIRE_FALSE(NurbsCurve3::create(bad).ok());

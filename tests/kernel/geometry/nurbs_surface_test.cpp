@@ -1,3 +1,4 @@
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/kernel/nurbs.hpp>
 #include "geometry/analytic_surfaces.hpp"
 
@@ -59,31 +60,31 @@ TEST_CASE("kernel: validation rejects malformed surfaces with a clear message") 
   bad.knots_u.pop_back();
   auto r = NurbsSurface::create(bad);
   REQUIRE_FALSE(r.ok());
-  CHECK_THAT(r.error().message, Catch::Contains("knot count in u"));
+  CHECK_THAT(exporters::describe(r.error()), Catch::Contains("knot count in u"));
 
   bad = good;
   bad.knots_v = {0, 1, 0.5, 1};
   r = NurbsSurface::create(bad);
   REQUIRE_FALSE(r.ok());
-  CHECK_THAT(r.error().message, Catch::Contains("decrease"));
+  CHECK_THAT(exporters::describe(r.error()), Catch::Contains("decrease"));
 
   bad = good;
   bad.knots_u = {0, 0, 0, 1};  // multiplicity 3 > degree + 1 = 2
   r = NurbsSurface::create(bad);
   REQUIRE_FALSE(r.ok());
-  CHECK_THAT(r.error().message, Catch::Contains("multiplicity"));
+  CHECK_THAT(exporters::describe(r.error()), Catch::Contains("multiplicity"));
 
   bad = good;
   bad.poles[2].y() = std::numeric_limits<double>::quiet_NaN();
   r = NurbsSurface::create(bad);
   REQUIRE_FALSE(r.ok());
-  CHECK_THAT(r.error().message, Catch::Contains("not finite"));
+  CHECK_THAT(exporters::describe(r.error()), Catch::Contains("not finite"));
 
   bad = good;
   bad.weights = {1, 1, -0.5, 1};
   r = NurbsSurface::create(bad);
   REQUIRE_FALSE(r.ok());
-  CHECK_THAT(r.error().message, Catch::Contains("positive"));
+  CHECK_THAT(exporters::describe(r.error()), Catch::Contains("positive"));
 
   bad = good;
   bad.weights = {1, 1, 1};

@@ -2,6 +2,7 @@
 // drape on the hemisphere, the sphere octant, a cone apex, bicubic domes with a collapsed u or
 // v edge at either end, and the sphere as a shell of 8 faces. Configurations are built
 // independently of the solvers (bisection along surface curves).
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
 #include "drape/drape.hpp"
 #include "drape/solvers/solvers.hpp"
@@ -191,7 +192,7 @@ namespace {
 
 DrapeResult run(const DrapeSurface& s, const DrapeProblem& pb) {
   auto r = drape(s, pb);
-  INFO((r.ok() ? std::string() : r.error().message));
+  INFO((r.ok() ? std::string() : exporters::describe(r.error())));
   REQUIRE(r.ok());
   return std::move(r).value();
 }

@@ -1,6 +1,7 @@
 // Shells of several faces: validation and topology, moving across shared edges, and drapes
 // across faces compared with the same surface as one face.
 #include "surface/shell/shell.hpp"
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
 #include "drape/drape.hpp"
 #include "geometry/analytic_surfaces.hpp"
@@ -23,7 +24,7 @@ constexpr double kPi = 3.14159265358979323846;
 
 Shell make_shell(const std::string& name, const std::map<std::string, double>& params = {}) {
   auto sh = support::make_builtin_shell(name, params);
-  INFO(name << ": " << (sh.ok() ? "" : sh.error().message));
+  INFO(name << ": " << (sh.ok() ? "" : exporters::describe(sh.error())));
   REQUIRE(sh.ok());
   return std::move(sh).value();
 }
@@ -117,19 +118,20 @@ TEST_CASE("shell: bad shells are refused with a message") {
     data->faces[2].loops[0].edges = {-1, -1, -1, -1};
     auto sh = Shell::create(*data);
     REQUIRE_FALSE(sh.ok());
-    CHECK(sh.error().message.find("shared edge 1 is used by 1 faces") != std::string::npos);
+    CHECK(exporters::describe(sh.error()).find("shared edge 1 is used by 1 faces") !=
+          std::string::npos);
   }
   SECTION("an edge index out of range") {
     data->faces[0].loops[0].edges[1] = 7;
     auto sh = Shell::create(*data);
     REQUIRE_FALSE(sh.ok());
-    CHECK(sh.error().message.find("out of range") != std::string::npos);
+    CHECK(exporters::describe(sh.error()).find("out of range") != std::string::npos);
   }
   SECTION("faces that are not sewn") {
     data->faces[2].surface = plane_patch(Vec3(30, 0, -10), Vec3(0, 0, -40), Vec3(0, 60, 0));
     auto sh = Shell::create(*data);
     REQUIRE_FALSE(sh.ok());
-    CHECK(sh.error().message.find("not sewn") != std::string::npos);
+    CHECK(exporters::describe(sh.error()).find("not sewn") != std::string::npos);
   }
 }
 

@@ -132,7 +132,7 @@ Result<Shell> Shell::create(ShellData data, const Tolerances& tol) {
       loops[k].push_back(std::move(loop));
     }
     auto f = Face::create(std::move(data.faces[k]), tol);
-    if (!f) return Error{name(k) + ": " + f.error().message};
+    if (!f) return Error{name(k)}.because(f.error());
     sh.faces_.push_back(std::make_unique<Face>(std::move(f).value()));
   }
 
