@@ -217,7 +217,7 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
       expected_nodes(s, *mply, res.start_point, res.base_normal, pb.sweeps, opt.max_nodes));
   detail::Scanner scanner(s, *mply, opt, res);
   scanner.run(t3);
-  detail::compute_metrics(s, res);
+  detail::compute_metrics(s, opt.tol, res);
   res.metrics.nodes.off_ply += scanner.path_off_ply();
   if (scanner.cancelled()) {
     res.partial = true;
