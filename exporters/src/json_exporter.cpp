@@ -104,7 +104,7 @@ std::string report_json(const ExportContext& ctx) {
   in["max_iterations"] = ctx.run.max_iterations;
   in["guess"] = ctx.run.guess;
   in["max_nodes"] = ctx.run.max_nodes;
-  in["warn_angle_deg"] = ctx.options.warn_shear * kRadToDeg;
+  in["warn_angle_deg"] = ctx.run.warn_angle_deg;  // as given: not through radians and back
   in["ply_name"] = ctx.run.ply_name;
   in["ply_angle_deg"] = ctx.options.ply_angle_deg;
   in["material"] = ctx.run.material;
