@@ -262,6 +262,7 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
   if (side3.size() == 2 && side3[1] != side2[1])
     return Error{ErrorCode::kSweeps3dSameSide, "sweep3d"};
   res.base_tangent = t3;
+  res.seed_curve = pb.seed_curve;
   auto mply = std::make_shared<Ply>(std::move(ply).value());  // the scan extends the path
   res.ply = mply;
 
