@@ -1,4 +1,4 @@
-// Issue 13: the cut outline (kernel/include/plyfit/kernel/outline_cleanup.hpp): features
+// The cut outline (kernel/src/pattern/outline_cleanup.hpp): features
 // narrower than the minimum width w are cut off or closed, nothing else moves. Analytic
 // polygons first, then drapes on the built-in molds.
 
