@@ -152,12 +152,16 @@ void OutlineBuilder::add_cell(std::int32_t i, std::int32_t j, std::vector<NodeId
 
 // The edges of whole cells towards cells that are not whole go to the union.
 void OutlineBuilder::add_whole_cell_edges() {
-  for (const Whole& w : whole_.cells)
+  for (std::size_t c = 0; c < whole_.cells.size(); ++c) {
+    const Whole& w = whole_.cells[c];
     for (int k = 0; k < 4; ++k) {
       const auto nb = r_.index->find(NodeId::regular(w.i + kCellSide[k][0], w.j + kCellSide[k][1]));
-      if (nb < 0 || !whole_.at[static_cast<std::size_t>(nb)])
+      if (nb < 0 || !whole_.at[static_cast<std::size_t>(nb)]) {
         edges_.push_back({w.v[k], w.v[(k + 1) % 4]});
+        edge_owner_.push_back(static_cast<int>(c));
+      }
     }
+  }
 }
 
 FlatPattern OutlineBuilder::outlines() {
@@ -176,17 +180,20 @@ FlatPattern OutlineBuilder::outlines() {
 
 namespace {
 
-// The cut outline: the exact outline without its features narrower than the minimum width
-// (outline_cleanup.hpp).
-void cut_outline(FlatPattern& fp, const PlySpec& spec, const FlatPatternOptions& options) {
+// The cut outline: the exact outline without the cloth laid twice (pieces.hpp) and without
+// its features narrower than the minimum width (outline_cleanup.hpp).
+void cut_outline(FlatPattern& fp, detail::OutlineBuilder::LaidOnce laid_once, const PlySpec& spec,
+                 const FlatPatternOptions& options) {
   fp.min_width = options.min_width.value_or(0.5 * std::max(spec.d_weft, spec.d_warp));
-  OutlineCleanupResult cut = outline_cleanup(fp.outline, {fp.min_width});
+  OutlineCleanupResult cut = outline_cleanup(laid_once.loops, {fp.min_width});
   fp.cut = std::move(cut.loops);
   for (const auto& l : fp.cut) {
     fp.cut_area += l.hole ? -l.area : l.area;
     fp.cut_perimeter += l.perimeter;
   }
   fp.cut_removed_area = cut.removed_area;
+  fp.laid_twice_area = laid_once.area;
+  fp.cells_laid_twice = laid_once.polygons;
   fp.cut_added_area = cut.added_area;
   fp.slivers = cut.slivers;
 }
@@ -200,7 +207,7 @@ FlatPattern flat_pattern(const DrapeSurface& surface, const DrapeResult& result,
   builder.solve_virtual_corners();
   builder.add_cells();
   FlatPattern fp = builder.outlines();
-  cut_outline(fp, result.ply->spec(), options);
+  cut_outline(fp, builder.laid_once(fp.outline), result.ply->spec(), options);
   return fp;
 }
 

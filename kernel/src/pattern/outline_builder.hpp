@@ -12,6 +12,7 @@
 
 #include "drape/solvers/solvers.hpp"
 #include "pattern/boundary_index.hpp"
+#include "pattern/pieces.hpp"
 #include "surface/drape_surface.hpp"
 
 #include <plyfit/kernel/flat_pattern.hpp>
@@ -49,6 +50,17 @@ class OutlineBuilder {
   void add_cells();
   /// The exact outline and the staircase: the union of the reached pieces, as loops.
   FlatPattern outlines();
+
+  /// The exact outline without the cloth laid twice (pieces.hpp), what the cut outline is
+  /// made from: `polygons` cells or cell parts left out, `area` their area.
+  struct LaidOnce {
+    std::vector<OutlineLoop> loops;
+    int polygons = 0;
+    double area = 0.0;
+  };
+  /// `outline` is the exact outline (outlines()); with one outer loop it is all laid once
+  /// and comes back as it is.
+  LaidOnce laid_once(const std::vector<OutlineLoop>& outline) const;
 
  private:
   // A vertex of the outline polygons: a node, an edge crossing or a boundary vertex.
@@ -139,6 +151,13 @@ class OutlineBuilder {
   void add_cell(std::int32_t i, std::int32_t j, std::vector<NodeId>& ring);
   void add_whole_cell_edges();
 
+  // ---- Pieces (pieces.cpp)
+  std::vector<int> whole_cell_at() const;
+  std::vector<int> piece_of_polygon() const;
+  std::vector<std::vector<int>> pieces_by_area() const;
+  std::vector<std::pair<int, int>> whole_cell_edges(const std::vector<bool>& twice) const;
+  void polygon_corners(int k, std::vector<ClothCorner>& out) const;
+
   // ---- Virtual corners (virtual_corners.cpp)
   std::vector<Nb> virtual_neighbours(const NodeId& id) const;
   bool accept_virtual(const NodeId& id, const SolveResult& res);
@@ -228,8 +247,9 @@ class OutlineBuilder {
   std::vector<Polygon> exact_, stair_;
   WholeCells whole_;
   // Edges of whole cells towards cells that are not whole: in both the outline and the
-  // staircase.
+  // staircase; and the whole cell each comes from.
   std::vector<std::pair<int, int>> edges_;
+  std::vector<int> edge_owner_;
 };
 
 }  // namespace plyfit::detail
