@@ -184,7 +184,7 @@ namespace {
 // its features narrower than the minimum width (outline_cleanup.hpp).
 void cut_outline(FlatPattern& fp, detail::OutlineBuilder::LaidOnce laid_once, const PlySpec& spec,
                  const FlatPatternOptions& options) {
-  fp.min_width = options.min_width.value_or(0.5 * std::max(spec.d_weft, spec.d_warp));
+  fp.min_width = options.width_for(spec);
   OutlineCleanupResult cut = outline_cleanup(laid_once.loops, {fp.min_width});
   fp.cut = std::move(cut.loops);
   for (const auto& l : fp.cut) {
