@@ -8,6 +8,7 @@
 
 #include "support/outline_checks.hpp"
 #include "support/problems.hpp"
+#include "support/surfaces.hpp"
 
 #include <cmath>
 
@@ -35,11 +36,7 @@ Shell barrel_tube() {
   for (int s = 0; s < 8; ++s) {
     const double a0 = s * kPi / 4.0, a1 = (s + 1) * kPi / 4.0;
     const double c0 = std::cos(a0), s0 = std::sin(a0), c1 = std::cos(a1), s1 = std::sin(a1);
-    NurbsSurfaceData b;
-    b.degree_u = b.degree_v = 3;
-    b.count_u = b.count_v = 4;
-    b.knots_u = b.knots_v = {0, 0, 0, 0, 1, 1, 1, 1};
-    b.poles.resize(16);
+    NurbsSurfaceData b = support::bezier_patch(3);
     for (int iv = 0; iv < 4; ++iv) {
       const double r = 100.0 * (iv == 1 || iv == 2 ? 1.08 : 1.0), z = 100.0 * iv;
       b.pole(0, iv) = Vec3(r * c0, r * s0, z);
