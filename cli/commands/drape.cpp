@@ -88,7 +88,8 @@ int drape_job(const DrapeJob& job, bool quiet, const OutcomeFile& outcome) {
   if (!out) return outcome.fail(kExitFailure, out.error(), job.name_input);
   std::cout << drape_summary(*out, job.outdir);
   if (!quiet)
-    for (const auto& w : out->warnings) std::cerr << "plyfit: warning: " << w << "\n";
+    for (const auto* list : {&out->mold_warnings, &out->warnings})
+      for (const auto& w : *list) std::cerr << "plyfit: warning: " << w << "\n";
   return outcome.write(kExitOk, *out);
 }
 

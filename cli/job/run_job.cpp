@@ -29,6 +29,7 @@ exporters::RunInfo run_info(const DrapeJob& job) {
   run.tolerance_rel = job.tolerance_rel;
   run.max_iterations = job.max_iterations;
   run.lock_angle_deg = job.lock_angle_deg;
+  run.warn_angle_deg = job.warn_angle_deg;
   run.guess = to_string(job.drape.guess);
   run.max_nodes = job.drape.max_nodes;
   run.ply_name = job.ply_name;
@@ -106,6 +107,7 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   if (!job.outdir.empty())
     if (auto s = exporters::write_outputs(ctx, job.outdir, job.outputs); !s) return s.error();
   JobOutcome out = outcome_of(job, surface, *res, flat);
+  out.mold_warnings = run.warnings;
   out.total_ms = ms_since(t0);
   return out;
 }

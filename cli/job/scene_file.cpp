@@ -2,6 +2,8 @@
 
 #include "job/ini.hpp"
 
+#include <plyfit/kernel/flat_pattern.hpp>
+
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -107,7 +109,8 @@ void material_and_output_values(const DrapeJob& job, SceneValues& v) {
   v["curve-degree"] = {std::to_string(job.curve_degree)};
   v["view"] = {fmt(job.view)};
   v["dxf-threads"] = {job.dxf_threads ? "true" : "false"};
-  if (job.min_width) v["min-width"] = {fmt(*job.min_width)};
+  // The effective value: the one given, or the default the flat pattern takes.
+  v["min-width"] = {fmt(FlatPatternOptions{job.min_width}.width_for(job.problem.ply))};
 }
 
 }  // namespace
