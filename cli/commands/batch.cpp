@@ -26,13 +26,13 @@ constexpr long kMaxJobs = 1024;
 
 const OptionTable& batch_options() {
   static const OptionTable table = {
-      {"help", "", "", "show this help", false, "", 'h'},
-      {"jobs", "N", "", "scenes run at a time (default: the number of cores)", false, "", 'j'},
-      {"output", "OUTROOT", "batch-out", "output root folder", false, "", 'o'},
+      help_option(),
+      jobs_option("scenes"),
+      output_option("OUTROOT", "output root folder", "batch-out"),
       {"shard", "K/N", "",
        "run only the scenes whose index (0-based, in the given order) mod N is K"},
-      {"quiet", "", "", "no progress line"},
-      {"scene", "SCENE", "", "scene files", true},
+      quiet_option(),
+      scenes_option(),
   };
   return table;
 }

@@ -158,6 +158,27 @@ exporters::InputNamer flag_namer(const OptionTable& table) {
   return input_namer(flags, table);
 }
 
+OptionSpec help_option() {
+  return {"help", "", "", "show this help", false, "", 'h'};
+}
+
+OptionSpec quiet_option() {
+  return {"quiet", "", "", "no progress line"};
+}
+
+OptionSpec jobs_option(const std::string& what) {
+  return {"jobs", "N", "", what + " run at a time (default: the number of cores)", false, "", 'j'};
+}
+
+OptionSpec output_option(const std::string& value, const std::string& help,
+                         const std::string& def) {
+  return {"output", value, def, help, false, "", 'o'};
+}
+
+OptionSpec scenes_option() {
+  return {"scene", "SCENE", "", "scene files", true};
+}
+
 void print_options(std::ostream& os, const OptionTable& table) {
   for (const auto& s : table) {
     std::string flag = "  --" + s.key + (s.short_name ? std::string(", -") + s.short_name : "") +

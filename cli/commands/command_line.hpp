@@ -42,6 +42,16 @@ struct OptionSpec {
 /// A command's options, in help order.
 using OptionTable = std::vector<OptionSpec>;
 
+/// The options several commands take, one definition each: --help/-h, --quiet (no progress
+/// line), --jobs/-j N (`what` run at a time, default the number of cores), --output/-o VALUE,
+/// and the scene files a command takes as operands (key "scene", repeatable).
+OptionSpec help_option();
+OptionSpec quiet_option();
+OptionSpec jobs_option(const std::string& what);
+OptionSpec output_option(const std::string& value, const std::string& help,
+                         const std::string& def = {});
+OptionSpec scenes_option();
+
 /// Where values given as flags come from (RawOptions::origin, ::origins).
 inline constexpr const char* kCommandLine = "command line";
 

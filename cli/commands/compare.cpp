@@ -23,13 +23,12 @@ constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
 const OptionTable& compare_options() {
   static const OptionTable table = {
-      {"help", "", "", "show this help", false, "", 'h'},
+      help_option(),
       {"csv", "", "", "print CSV (full precision)"},
       {"markdown", "", "", "print a Markdown table"},
-      {"output", "OUTROOT", "", "also write each scene's outputs into OUTROOT/<scene name>/", false,
-       "", 'o'},
+      output_option("OUTROOT", "also write each scene's outputs into OUTROOT/<scene name>/"),
       {"force", "", "", "compare scenes on different molds or faces anyway (with a warning)"},
-      {"scene", "SCENE", "", "scene files", true},
+      scenes_option(),
   };
   return table;
 }

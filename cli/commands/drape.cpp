@@ -27,10 +27,10 @@ const OptionTable& drape_command_options() {
   static const OptionTable table = [] {
     OptionTable t = drape_options();
     t.push_back({"dump-scene", "", "", "print the effective scene as INI and exit"});
-    t.push_back({"quiet", "", "", "no progress line"});
+    t.push_back(quiet_option());
     t.push_back({"outcome", "FILE", "", "also write the outcome as JSON (used by plyfit batch)"});
     t.push_back({"scene-keys", "", "", "print the scene keys as a Markdown table and exit"});
-    t.push_back({"help", "", "", "show this help", false, "", 'h'});
+    t.push_back(help_option());
     return t;
   }();
   return table;

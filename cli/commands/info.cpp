@@ -19,7 +19,7 @@ constexpr long kMaxFace = 1L << 30;
 
 const OptionTable& info_options() {
   static const OptionTable table = {
-      {"help", "", "", "show this help", false, "", 'h'},
+      help_option(),
       {"json", "", "", "print the listing as JSON"},
       {"format", "KEY", "", "importer to use (step, iges), overriding the extension"},
       {"face", "N", "",

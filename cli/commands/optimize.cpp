@@ -39,7 +39,7 @@ extern "C" void on_optimize_signal(int) {
 
 const OptionTable& optimize_options() {
   static const OptionTable table = {
-      {"help", "", "", "show this help", false, "", 'h'},
+      help_option(),
       {"vary", "LIST", "start,angle",
        "what varies, comma-separated: start (the seed point on the face), angle (the ply's "
        "threads turned about the normal at the seed), path (the base path turned)"},
@@ -57,10 +57,9 @@ const OptionTable& optimize_options() {
        "ply angles within +-DEG of the scene's (default: half the cloth's symmetry period, 45 "
        "for a square weave)"},
       {"path-range", "DEG", "", "base-path angles within +-DEG of the scene's (default: 90)"},
-      {"jobs", "N", "", "drapes run at a time (default: the number of cores)", false, "", 'j'},
-      {"output", "DIR", "", "write optimize.json, front.svg and best-OBJECTIVE.ini into DIR", false,
-       "", 'o'},
-      {"quiet", "", "", "no progress line"},
+      jobs_option("drapes"),
+      output_option("DIR", "write optimize.json, front.svg and best-OBJECTIVE.ini into DIR"),
+      quiet_option(),
   };
   return table;
 }

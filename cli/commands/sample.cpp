@@ -17,8 +17,8 @@ namespace {
 
 const OptionTable& sample_options() {
   static const OptionTable table = {
-      {"help", "", "", "show this help", false, "", 'h'},
-      {"output", "FILE", "", "mold file to write (.step/.stp or .iges/.igs)", false, "", 'o'},
+      help_option(),
+      output_option("FILE", "mold file to write (.step/.stp or .iges/.igs)"),
       {"format", "F", "", "step or iges, overriding the extension"},
       {"name", "TEXT", "", "face name written into the file (default: NAME)"},
       {"mold", "NAME", "", "built-in mold, as for --mold builtin:NAME"},
