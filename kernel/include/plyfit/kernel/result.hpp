@@ -55,7 +55,60 @@ namespace plyfit {
   /* kernel: geometry (NURBS), surface (faces, shells), molds, search */                    \
   /* importers and the OpenCASCADE module */                                                \
   /* exporters */                                                                           \
-  /* cli */
+  /* cli */                                                                                 \
+  X(UnknownCommand, unknown_command)                                                        \
+  X(UnknownOption, unknown_option)                                                          \
+  X(BadCommandLine, bad_command_line)                                                       \
+  X(OptionNeedsValue, option_needs_value)                                                   \
+  X(UnexpectedArgument, unexpected_argument)                                                \
+  X(MissingArgument, missing_argument)                                                      \
+  X(OptionRepeated, option_repeated)                                                        \
+  X(OptionsExclusive, options_exclusive)                                                    \
+  X(MissingOption, missing_option)                                                          \
+  X(EmptyValue, empty_value)                                                                \
+  X(NotANumber, not_a_number)                                                               \
+  X(NotFinite, not_finite)                                                                  \
+  X(VectorSize, vector_size)                                                                \
+  X(NotAnInteger, not_an_integer)                                                           \
+  X(NotABool, not_a_bool)                                                                   \
+  X(OutOfRange, out_of_range)                                                               \
+  X(ZeroVector, zero_vector)                                                                \
+  X(UnknownValue, unknown_value)                                                            \
+  X(EmptyList, empty_list)                                                                  \
+  X(ListedTwice, listed_twice)                                                              \
+  /* cli: scene files and the materials table (INI) */                                      \
+  X(SceneCannotOpen, scene_cannot_open)                                                     \
+  X(IniSyntax, ini_syntax)                                                                  \
+  X(UnknownKey, unknown_key)                                                                \
+  X(MaterialsCannotOpen, materials_cannot_open)                                             \
+  X(MaterialsCannotRead, materials_cannot_read)                                             \
+  X(NoMaterials, no_materials)                                                              \
+  X(KeyOutsideMaterial, key_outside_material)                                               \
+  X(MaterialNameInvalid, material_name_invalid)                                             \
+  X(MaterialRepeated, material_repeated)                                                    \
+  X(MaterialLabelEmpty, material_label_empty)                                               \
+  X(MaterialAngleNotANumber, material_angle_not_a_number)                                   \
+  X(MaterialAngleRange, material_angle_range)                                               \
+  X(MaterialAngleMissing, material_angle_missing)                                           \
+  X(WarningAboveLimit, warning_above_limit)                                                 \
+  X(LimitNotPositive, limit_not_positive)                                                   \
+  X(UnknownMaterial, unknown_material)                                                      \
+  /* cli: jobs and commands */                                                              \
+  X(BuiltinFaceGiven, builtin_face_given)                                                   \
+  X(Interrupted, interrupted)                                                               \
+  X(UnknownMoldFormat, unknown_mold_format)                                                 \
+  X(BadShard, bad_shard)                                                                    \
+  X(CannotCreateFolder, cannot_create_folder)                                               \
+  X(FolderHoldsOtherFiles, folder_holds_other_files)                                        \
+  X(CannotMoveOutputs, cannot_move_outputs)                                                 \
+  X(CannotStartDrape, cannot_start_drape)                                                   \
+  X(DrapeCrashed, drape_crashed)                                                            \
+  X(DrapeNoOutcome, drape_no_outcome)                                                       \
+  X(OutcomeUnreadable, outcome_unreadable)                                                  \
+  X(DifferentMolds, different_molds)                                                        \
+  X(OptimizeShell, optimize_shell)                                                          \
+  X(NoFeasibleDrape, no_feasible_drape)                                                     \
+  X(OptionNeedsVary, option_needs_vary)
 
 /// What went wrong (see PLYFIT_ERROR_CODES).
 enum class ErrorCode : std::uint16_t {
