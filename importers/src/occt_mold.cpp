@@ -1,6 +1,7 @@
 #include "occt_mold.hpp"
 
 #include "face_measure.hpp"
+#include "occt_file_checks.hpp"
 
 #include <BRepBuilderAPI_NurbsConvert.hxx>
 #include <BRepTools.hxx>
@@ -828,6 +829,9 @@ Result<std::unique_ptr<MoldFile>> open_with(const std::string& path, const std::
     return Error{path + ": truncated " + upper + " file (" +
                  (want == Sniffed::kStep ? "no END-ISO-10303-21 trailer" : "no terminate section") +
                  ")"};
+
+  if (auto checked = check_file_text(path, want == Sniffed::kStep); !checked)
+    return Error{path + ": " + checked.error().message};
 
   prepare_occt();
   Handle(Deadline) deadline = new Deadline(options.time_limit_s);
