@@ -79,7 +79,8 @@ constexpr double kNaturalBoundaryRel = 5e-8;
 // tolerance reachable in double precision for a continuous pcurve).
 constexpr int kMinEdgeSegments = 8;
 constexpr int kMaxRefineDepth = 20;
-// Budget of trim polyline points for one face; past it the conversion fails with an error.
+// Budget of trim polyline points for one face (all its edges); past it the conversion fails
+// with an error.
 constexpr size_t kMaxLoopPoints = 2'000'000;
 // Sample count along a seam to check that the two seam edges of the surface coincide.
 constexpr int kSeamSamples = 9;
@@ -95,6 +96,7 @@ Vec3 vec(const gp_Pnt& p) {
 
 // Empty when `m` reached the relative accuracy `rel`, else what it reached.
 std::string area_accuracy_note(const FaceMeasure& m, double rel) {
+  if (!m.measured) return "area not measured (" + m.failure + "): an invalid face";
   if (m.converged) return {};
   char buf[160];
   if (m.area > 0.0 && m.error > 0.0)
@@ -251,6 +253,7 @@ FaceInfo describe_face(const TopoDS_Face& f, int index, double area_rel, std::st
   describe_surface(s, info);
   const FaceMeasure m = measure_face(f, area_rel, true);
   info.area = m.area;
+  info.area_measured = m.measured;
   info.bbox = m.bbox;
   area_note = area_accuracy_note(m, area_rel);
   const int wires = count_wires(f);
@@ -295,8 +298,10 @@ class EdgeSampler {
     for (size_t k = 0; k + 1 < ts.size(); ++k) {
       if (!(ts[k + 1] > ts[k])) continue;
       refine(ts[k], pts.back(), ts[k + 1], uv(ts[k + 1]), 0, pts);
-      if (pts.size() > kMaxLoopPoints) return Error{"trim polyline exceeds the point budget"};
+      if (points_ + pts.size() > kMaxLoopPoints)
+        return Error{"trim polylines exceed the point budget"};
     }
+    points_ += pts.size();
     if (e.Orientation() == TopAbs_REVERSED) std::reverse(pts.begin(), pts.end());
     out.insert(out.end(), pts.begin(), pts.end());
     return ok_status();
@@ -324,7 +329,7 @@ class EdgeSampler {
       if (chords3d_) err = std::max(err, (on - (point(p0) + fr * (point(p1) - point(p0)))).norm());
       if (err > tol_) break;
     }
-    if (err <= tol_ || depth >= kMaxRefineDepth || out.size() > kMaxLoopPoints) {
+    if (err <= tol_ || depth >= kMaxRefineDepth || points_ + out.size() > kMaxLoopPoints) {
       out.push_back(p1);
       return;
     }
@@ -339,6 +344,7 @@ class EdgeSampler {
   double tol_;
   Vec2 speeds_;
   bool chords3d_;
+  size_t points_ = 0;  // of the face's edges sampled so far: the budget is the face's
 };
 
 // With `tag`, loop.edges[k] is the tag of the edge segment k was sampled from (a segment that
@@ -521,16 +527,22 @@ class OcctMoldFile final : public MoldFile {
 
   const Mold& mold() const override {
     if (!listed_) {
-      int failed = 0, short_areas = 0;
-      std::string first, first_short;
+      int failed = 0, short_areas = 0, invalid = 0;
+      std::string first, first_short, first_invalid;
       for (int i = 0; i < faces_.Extent(); ++i) {
         const size_t k = static_cast<size_t>(i);
         if (!describe_once(i, false)) {
           if (failed++ == 0) first = failure_[k];
+        } else if (!mold_.faces[k].area_measured) {
+          if (invalid++ == 0) first_invalid = "face " + std::to_string(i) + ": " + note_[k];
         } else if (!note_[k].empty() && state_[k] == State::kListed && short_areas++ == 0) {
           first_short = "face " + std::to_string(i) + ": " + note_[k];
         }
       }
+      if (invalid)
+        mold_.warnings.push_back(
+            "listing: " + std::to_string(invalid) +
+            " faces whose area could not be measured (first: " + first_invalid + ")");
       if (failed)
         mold_.warnings.push_back("listing: " + std::to_string(failed) +
                                  " faces could not be described (first: " + first + ")");
@@ -560,6 +572,8 @@ class OcctMoldFile final : public MoldFile {
     const std::string what = mold_.source + ": face " + std::to_string(index);
     if (!describe_once(index, true))
       return Error{what + ": " + failure_[static_cast<size_t>(index)]};
+    if (!mold_.faces[static_cast<size_t>(index)].area_measured)
+      return Error{what + ": " + note_[static_cast<size_t>(index)]};
     auto r = guarded(what, [&]() -> Result<FaceData> {
       return convert(TopoDS::Face(faces_(index + 1)), mold_.faces[static_cast<size_t>(index)],
                      options_.tolerances, nullptr);
@@ -616,6 +630,7 @@ class OcctMoldFile final : public MoldFile {
         return false;
       }
       mold_.faces[k].area = m->area;
+      mold_.faces[k].area_measured = m->measured;
       note_[k] = area_accuracy_note(*m, kAreaRelPrecise);
       state_[k] = State::kPrecise;
     } else {
