@@ -2,6 +2,7 @@
 
 #include "face_measure.hpp"
 #include "occt_file_checks.hpp"
+#include "occt_geometry_checks.hpp"
 
 #include <BRepBuilderAPI_NurbsConvert.hxx>
 #include <BRepTools.hxx>
@@ -509,6 +510,13 @@ Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const To
   return fd;
 }
 
+// "face 3 (#120)": face i and the entity of the file that made it, when known.
+std::string face_name(int i, const std::vector<std::string>& entities) {
+  const size_t k = static_cast<size_t>(i);
+  return "face " + std::to_string(i) +
+         (k < entities.size() && !entities[k].empty() ? " (" + entities[k] + ")" : "");
+}
+
 // An opened file. Reading and transferring happen at open; each face's entry (kind, degrees,
 // area, box, trim status) is computed when first needed: all of them, with areas to
 // kAreaRelListing, on the first call to mold(); face i alone, with its area to kAreaRelPrecise,
@@ -516,9 +524,11 @@ Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const To
 // of the others nor for a listing-accuracy area it does not use. Not thread-safe.
 class OcctMoldFile final : public MoldFile {
  public:
-  OcctMoldFile(Mold mold, TopTools_IndexedMapOfShape faces, ImportOptions options, double precision)
+  OcctMoldFile(Mold mold, TopTools_IndexedMapOfShape faces, std::vector<std::string> entities,
+               ImportOptions options, double precision)
       : mold_(std::move(mold)),
         faces_(std::move(faces)),
+        entities_(std::move(entities)),
         options_(std::move(options)),
         precision_(precision),
         state_(static_cast<size_t>(faces_.Extent()), State::kPending),
@@ -534,9 +544,9 @@ class OcctMoldFile final : public MoldFile {
         if (!describe_once(i, false)) {
           if (failed++ == 0) first = failure_[k];
         } else if (!mold_.faces[k].area_measured) {
-          if (invalid++ == 0) first_invalid = "face " + std::to_string(i) + ": " + note_[k];
+          if (invalid++ == 0) first_invalid = face_name(i, entities_) + ": " + note_[k];
         } else if (!note_[k].empty() && state_[k] == State::kListed && short_areas++ == 0) {
-          first_short = "face " + std::to_string(i) + ": " + note_[k];
+          first_short = face_name(i, entities_) + ": " + note_[k];
         }
       }
       if (invalid)
@@ -560,7 +570,7 @@ class OcctMoldFile final : public MoldFile {
   Result<FaceInfo> describe(int index) const override {
     if (auto st = check_index(index); !st) return st.error();
     if (!describe_once(index, true))
-      return Error{mold_.source + ": face " + std::to_string(index) + ": " +
+      return Error{mold_.source + ": " + face_name(index, entities_) + ": " +
                    failure_[static_cast<size_t>(index)]};
     return mold_.faces[static_cast<size_t>(index)];
   }
@@ -569,7 +579,7 @@ class OcctMoldFile final : public MoldFile {
 
   Result<FaceData> convert_face(int index) override {
     if (auto st = check_index(index); !st) return st.error();
-    const std::string what = mold_.source + ": face " + std::to_string(index);
+    const std::string what = mold_.source + ": " + face_name(index, entities_);
     if (!describe_once(index, true))
       return Error{what + ": " + failure_[static_cast<size_t>(index)]};
     if (!mold_.faces[static_cast<size_t>(index)].area_measured)
@@ -637,12 +647,13 @@ class OcctMoldFile final : public MoldFile {
       return state_[k] != State::kFailed;
     }
     if (state_[k] == State::kPrecise && !note_[k].empty())
-      mold_.warnings.push_back("face " + std::to_string(i) + ": " + note_[k]);
+      mold_.warnings.push_back(face_name(i, entities_) + ": " + note_[k]);
     return state_[k] != State::kFailed;
   }
 
   mutable Mold mold_;
   TopTools_IndexedMapOfShape faces_;
+  std::vector<std::string> entities_;  // the file's entity of each face ("#12", "DE 5", "")
   ImportOptions options_;
   double precision_;
   mutable std::vector<State> state_;
@@ -669,6 +680,20 @@ bool looks_complete(Sniffed format, const std::string& tail) {
     if (!line.empty()) last = line;
   }
   return last.size() >= 73 && last[72] == 'T';
+}
+
+// Every face's geometry as read (occt_geometry_checks.hpp); the first problem names the file,
+// the face and its entity.
+Status check_geometry(const std::string& path, const TopTools_IndexedMapOfShape& faces,
+                      const std::vector<std::string>& entities) {
+  for (int i = 0; i < faces.Extent(); ++i) {
+    const std::string what = path + ": " + face_name(i, entities);
+    auto st = guarded(what, [&] { return check_face_geometry(TopoDS::Face(faces(i + 1))); });
+    if (!st)
+      return Error{st.error().message.rfind(what, 0) == 0 ? st.error().message
+                                                          : what + ": " + st.error().message};
+  }
+  return ok_status();
 }
 
 }  // namespace
@@ -765,6 +790,11 @@ void transfer_roots(XSControl_Reader& reader, Deadline& deadline,
       out.warnings.push_back(w);
   out.shape = reader.OneShape();
   out.shape_names = shape_names(process, name_of);
+  TopTools_IndexedMapOfShape faces;
+  TopExp::MapShapes(out.shape, TopAbs_FACE, faces);
+  for (int i = 1; i <= faces.Extent(); ++i)
+    if (std::string label = entity_label(reader, faces(i)); !label.empty())
+      out.face_entities.emplace_back(faces(i), std::move(label));
   out.precision = file_precision(reader);
 }
 
@@ -884,8 +914,12 @@ Result<std::unique_ptr<MoldFile>> open_with(const std::string& path, const std::
     const int k = faces.FindIndex(shape);
     if (k > 0 && mold.faces[k - 1].name.empty()) mold.faces[k - 1].name = name;
   }
-  return std::unique_ptr<MoldFile>(
-      std::make_unique<OcctMoldFile>(std::move(mold), std::move(faces), options, ro.precision));
+  std::vector<std::string> entities(static_cast<size_t>(faces.Extent()));
+  for (const auto& [shape, label] : ro.face_entities)
+    if (const int k = faces.FindIndex(shape); k > 0) entities[static_cast<size_t>(k - 1)] = label;
+  if (auto checked = check_geometry(path, faces, entities); !checked) return checked.error();
+  return std::unique_ptr<MoldFile>(std::make_unique<OcctMoldFile>(
+      std::move(mold), std::move(faces), std::move(entities), options, ro.precision));
 }
 
 }  // namespace plyfit::importers::occt
