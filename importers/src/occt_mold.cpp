@@ -43,10 +43,12 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <sstream>
 
@@ -662,6 +664,23 @@ class OcctMoldFile final : public MoldFile {
   mutable bool listed_ = false;
 };
 
+// A recursion that overflows the stack, as a reader's recursion that does not end would.
+[[gnu::noinline]] int recurse(int depth) {
+  volatile char frame[1024];
+  frame[0] = static_cast<char>(depth);
+  if (depth > (1 << 30)) return 0;  // never: the stack ends first
+  return recurse(depth + 1) + frame[0];
+}
+
+// Tests: PLYFIT_DEBUG_READER_FAULT=segv or =stack makes the guarded read fault as a broken
+// reader would (a segmentation fault; a stack overflow).
+void debug_reader_fault() {
+  const char* fault = std::getenv("PLYFIT_DEBUG_READER_FAULT");
+  if (!fault) return;
+  if (std::string(fault) == "segv") std::raise(SIGSEGV);
+  if (std::string(fault) == "stack") recurse(0);
+}
+
 std::string read_head(std::ifstream& in, size_t n) {
   std::string s(n, '\0');
   in.read(s.data(), static_cast<std::streamsize>(n));
@@ -738,10 +757,16 @@ namespace {
 // The signals OSD::SetSignal installs handlers for on Linux.
 constexpr int kOsdSignals[] = {SIGHUP, SIGINT,  SIGQUIT, SIGILL, SIGTRAP,
                                SIGBUS, SIGSEGV, SIGSYS,  SIGFPE};
+// The stack the fault handlers run on: a reader that overflows its own stack (a recursion that
+// does not end) leaves none for them. OpenCASCADE's handler formats a message and allocates the
+// exception it jumps with.
+constexpr size_t kSignalStackBytes = 256 * 1024;
 }  // namespace
 
 struct SignalScope::Saved {
   struct sigaction actions[std::size(kOsdSignals)];
+  stack_t stack{};
+  std::unique_ptr<char[]> own_stack;
 };
 
 SignalScope::SignalScope() : saved_(new Saved) {
@@ -749,11 +774,24 @@ SignalScope::SignalScope() : saved_(new Saved) {
     sigaction(kOsdSignals[i], nullptr, &saved_->actions[i]);
   // Faults inside OCC_CATCH_SIGNALS become OSD_Signal exceptions; floating-point traps off.
   OSD::SetSignal(OSD_SignalMode_Set, Standard_False);
+  // Segmentation faults (a stack overflow among them) are handled on a stack of their own.
+  saved_->own_stack.reset(new char[kSignalStackBytes]);  // NOLINT: not zeroed
+  stack_t own{};
+  own.ss_sp = saved_->own_stack.get();
+  own.ss_size = kSignalStackBytes;
+  sigaltstack(&own, &saved_->stack);
+  for (const int sig : {SIGSEGV, SIGBUS}) {
+    struct sigaction a {};
+    sigaction(sig, nullptr, &a);
+    a.sa_flags |= SA_ONSTACK;
+    sigaction(sig, &a, nullptr);
+  }
 }
 
 SignalScope::~SignalScope() {
   for (size_t i = 0; i < std::size(kOsdSignals); ++i)
     sigaction(kOsdSignals[i], &saved_->actions[i], nullptr);
+  sigaltstack(&saved_->stack, nullptr);
   delete saved_;
 }
 
@@ -881,6 +919,7 @@ Result<std::unique_ptr<MoldFile>> open_with(const std::string& path, const std::
   prepare_occt();
   Handle(Deadline) deadline = new Deadline(options.time_limit_s);
   auto out = guarded(path, [&]() -> Result<ReadOutput> {
+    debug_reader_fault();
     auto r = read(path, *deadline);
     if (!r) return Error{path + ": " + r.error().message};
     return r;
