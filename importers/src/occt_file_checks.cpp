@@ -11,6 +11,7 @@
 #include <iterator>
 #include <optional>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 namespace plyfit::importers::occt {
@@ -86,6 +87,92 @@ bool step_geometry(std::string_view keyword) {
                      [&](std::string_view p) { return keyword.substr(0, p.size()) == p; });
 }
 
+// "#123".
+std::string hash_name(long id) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "#%ld", id);
+  return buf;
+}
+
+// The entities of a STEP file and the ones each refers to. OpenCASCADE's reader follows the
+// references recursively: a cycle (an entity referring to itself, directly or not) makes it
+// recurse without end, and so would a chain deeper than any real file's.
+class ReferenceGraph {
+ public:
+  void add(long id, std::string keyword, std::vector<long> refs) {
+    index_.emplace(id, static_cast<int>(nodes_.size()));
+    nodes_.push_back(Node{id, std::move(keyword), std::move(refs)});
+  }
+
+  // A depth-first walk without recursion: a reference to an entity on the walk's path is a
+  // cycle; an entity's depth is the longest chain of references below it.
+  Status check() const {
+    std::vector<int> state(nodes_.size(), 0), depth(nodes_.size(), 0);  // state 1: on the path
+    std::vector<std::pair<int, size_t>> path;
+    for (int start = 0; start < static_cast<int>(nodes_.size()); ++start) {
+      if (state[static_cast<size_t>(start)]) continue;
+      path.emplace_back(start, 0);
+      state[static_cast<size_t>(start)] = 1;
+      while (!path.empty()) {
+        auto& [v, next] = path.back();
+        const Node& n = nodes_[static_cast<size_t>(v)];
+        if (next < n.refs.size()) {
+          const auto it = index_.find(n.refs[next++]);
+          if (it == index_.end()) continue;  // dangling: the reader reports it
+          const int w = it->second;
+          if (state[static_cast<size_t>(w)] == 1) return cycle(path, w);
+          if (state[static_cast<size_t>(w)] == 0) {
+            state[static_cast<size_t>(w)] = 1;
+            path.emplace_back(w, 0);
+          } else {
+            depth[static_cast<size_t>(v)] =
+                std::max(depth[static_cast<size_t>(v)], depth[static_cast<size_t>(w)] + 1);
+          }
+          continue;
+        }
+        const int done = v;
+        state[static_cast<size_t>(done)] = 2;
+        path.pop_back();
+        if (depth[static_cast<size_t>(done)] > kMaxStepReferenceDepth)
+          return Error{name(done) + "references chained more than " +
+                       std::to_string(kMaxStepReferenceDepth) + " deep below it"};
+        if (!path.empty()) {
+          const size_t up = static_cast<size_t>(path.back().first);
+          depth[up] = std::max(depth[up], depth[static_cast<size_t>(done)] + 1);
+        }
+      }
+    }
+    return ok_status();
+  }
+
+ private:
+  struct Node {
+    long id;
+    std::string keyword;
+    std::vector<long> refs;
+  };
+
+  std::string name(int k) const {
+    const Node& n = nodes_[static_cast<size_t>(k)];
+    return hash_name(n.id) + (n.keyword.empty() ? "" : " (" + n.keyword + ")") + ": ";
+  }
+
+  // The cycle from `w` along the path back to `w`.
+  Status cycle(const std::vector<std::pair<int, size_t>>& path, int w) const {
+    size_t first = path.size() - 1;
+    while (path[first].first != w) --first;
+    std::string chain;
+    for (size_t k = first; k < path.size() && k < first + 6; ++k)
+      chain += hash_name(nodes_[static_cast<size_t>(path[k].first)].id) + " -> ";
+    if (path.size() - first > 6) chain += "... -> ";
+    return Error{name(w) + "refers to itself through a cycle of references (" + chain +
+                 hash_name(nodes_[static_cast<size_t>(w)].id) + ")"};
+  }
+
+  std::vector<Node> nodes_;
+  std::unordered_map<long, int> index_;
+};
+
 bool keyword_char(char c) {
   return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
 }
@@ -134,7 +221,7 @@ class StepScanner {
         ++i_;
       }
     }
-    return ok_status();
+    return graph_.check();
   }
 
  private:
@@ -162,7 +249,10 @@ class StepScanner {
   void reference() {
     size_t j = i_ + 1;
     while (j < t_.size() && std::isdigit(static_cast<unsigned char>(t_[j]))) ++j;
-    if (depth_ == 0 && !after_equals_) id_ = t_.substr(i_, j - i_);
+    if (depth_ == 0 && !after_equals_)
+      id_ = t_.substr(i_, j - i_);
+    else if (after_equals_ && j > i_ + 1)
+      refs_.push_back(std::strtol(t_.c_str() + i_ + 1, nullptr, 10));
     i_ = j;
   }
 
@@ -224,6 +314,10 @@ class StepScanner {
       st = Error{entity() + number_problem(huge_->text, huge_->value, true)};
     else if (geometric_ && bare_)
       st = Error{entity() + "'" + *bare_ + "' is no STEP value (a number was expected)"};
+    if (id_.size() > 1)
+      graph_.add(std::strtol(id_.c_str() + 1, nullptr, 10),
+                 keywords_.empty() ? std::string() : keywords_.front(), std::move(refs_));
+    refs_.clear();
     id_.clear();
     keywords_.clear();
     nonfinite_.reset();
@@ -244,6 +338,8 @@ class StepScanner {
   };
   std::optional<Number> nonfinite_, huge_;  // the statement's first such numbers
   std::optional<std::string> bare_;         // its first word that is no keyword
+  std::vector<long> refs_;                  // the entities it refers to
+  ReferenceGraph graph_;
   bool after_equals_ = false, complex_ = false, geometric_ = false;
 };
 

@@ -3,8 +3,9 @@
 // take in silently and choke on later. Numbers that are not finite (1.0E+999 overflows to
 // infinity; an IGES reader takes INF and NaN for numbers) or absurd in a geometric entity (a
 // coordinate, knot, radius or unit factor of more than kMaxFileNumber), and, in STEP, lists
-// nested deeper than kMaxStepNesting (OpenCASCADE's STEP reader recurses once per level and
-// overflows the stack). Errors are one line naming the entity (STEP #id, IGES DE number), without
+// nested deeper than kMaxStepNesting, references in a cycle or chained deeper than
+// kMaxStepReferenceDepth (OpenCASCADE's STEP reader recurses once per level and overflows the
+// stack). Errors are one line naming the entity (STEP #id, IGES DE number), without
 // the file's path (the caller prefixes it).
 //
 // Private to the OpenCASCADE module (no OpenCASCADE type in the interface).
@@ -22,6 +23,10 @@ constexpr double kMaxFileNumber = 1e8;
 /// entity holding a list of lists of poles); every level costs OpenCASCADE's reader a
 /// recursion.
 constexpr int kMaxStepNesting = 100;
+/// Longest chain of references in a STEP file (an entity referring to one that refers to ...).
+/// Real files chain a few dozen (product, representation, shell, face, loop, edge, curve,
+/// point); the reader follows them recursively.
+constexpr int kMaxStepReferenceDepth = 1000;
 
 /// Reads the file `path` and checks it as STEP (`step`) or IGES.
 Status check_file_text(const std::string& path, bool step);

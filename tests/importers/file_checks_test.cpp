@@ -9,6 +9,7 @@
 
 #include "importers/error_checks.hpp"
 
+#include <array>
 #include <regex>
 
 using namespace plyfit;
@@ -149,4 +150,30 @@ TEST_CASE("importers: a STEP number nested 200,000 parentheses deep is an error,
   CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
   CHECK(r.err.find(path) != std::string::npos);
   CHECK(r.err.find(kStepPole) != std::string::npos);
+}
+
+TEST_CASE("importers: STEP references swapped into a cycle are an error naming the entity") {
+  TempDir dir("file_checks_cycle");
+  const std::string step = read_bytes(sample_mold("dish.step"));
+  // An oriented edge and a surface curve that refer to themselves (OpenCASCADE's reader recursed
+  // on them until the stack overflowed), and the face's vertex referring back to the face.
+  const std::vector<std::array<std::string, 3>> cycles = {
+      {"#20 = ORIENTED_EDGE('',*,*,#21,.T.);", "#20 = ORIENTED_EDGE('',*,*,#20,.T.);", "#20"},
+      {"#24 = SURFACE_CURVE('',#25,", "#24 = SURFACE_CURVE('',#24,", "#24"},
+      {"#22 = VERTEX_POINT('',#23);", "#22 = VERTEX_POINT('',#17);", "#17"}};
+  for (const auto& [from, to, entity] : cycles) {
+    INFO(to);
+    std::string s = step;
+    const size_t at = s.find(from);
+    REQUIRE(at != std::string::npos);
+    s.replace(at, from.size(), to);
+    const std::string path = dir.file("cycle.step");
+    write_bytes(path, s);
+    const Run r = run_plyfit("info '" + path + "'", dir);
+    INFO("exit " << r.code << ", stderr: " << r.err);
+    CHECK(r.code == 1);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(r.err.find(path) != std::string::npos);
+    CHECK(r.err.find(entity) != std::string::npos);
+  }
 }
