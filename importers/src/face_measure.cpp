@@ -663,6 +663,11 @@ void add_segment(const gp_Pnt2d& a, const gp_Pnt2d& b, std::vector<EdgeRef>& edg
   ranges.emplace_back(0.0, length);
 }
 
+// `box`, or an empty box when a corner is not finite (a point evaluated off a broken face).
+BBox3 finite_or_empty(const BBox3& box) {
+  return box.empty || (box.min.allFinite() && box.max.allFinite()) ? box : BBox3{};
+}
+
 FaceMeasure fallback(const TopoDS_Face& face, double rel_tol, bool with_box) {
   FaceMeasure m;
   GProp_GProps props;
@@ -678,6 +683,12 @@ FaceMeasure fallback(const TopoDS_Face& face, double rel_tol, bool with_box) {
       m.bbox.add(Vec3(x1, y1, z1));
     }
   }
+  if (!std::isfinite(m.area)) {
+    m.area = 0.0;
+    m.measured = false;
+    m.failure = "OpenCASCADE's integration gave no finite value";
+  }
+  m.bbox = finite_or_empty(m.bbox);
   return m;
 }
 
@@ -892,7 +903,7 @@ FaceMeasure measure_face(const TopoDS_Face& face, double rel_tol, bool with_box,
 
   FaceMeasure m;
   try {
-    if (with_box) m.bbox = face_box(*eval, edges, ranges, u0, u1, v0, v1);
+    if (with_box) m.bbox = finite_or_empty(face_box(*eval, edges, ranges, u0, u1, v0, v1));
     // The inner share assumes the boundary's rows add up to about the area; where they add up
     // to more (rows of both signs that cancel) and the table's error is what misses the
     // accuracy, the table is made again, tighter by the ratio.
