@@ -122,6 +122,16 @@ class Checker {
     }
   }
   void bspline(const Handle(Geom_BSplineSurface) & b);
+  // The poles (checked by `at`), weights and knots of a B-spline or Bezier curve, 3D or 2D.
+  template <typename Curve, typename At>
+  void poles_and_knots(const Curve& c, const At& at) {
+    for (int i = 1; i <= c->NbPoles() && ok(); ++i) {
+      at(c->Pole(i), "pole " + index_text(i));
+      if (c->IsRational()) weight(c->Weight(i), "weight " + index_text(i));
+    }
+    if constexpr (requires { c->NbKnots(); })
+      for (int i = 1; i <= c->NbKnots(); ++i) parameter(c->Knot(i), "knot " + index_text(i));
+  }
   void elementary(const Handle(Geom_Surface) & s);
 
   std::string context_;
@@ -192,21 +202,15 @@ void Checker::surface(const Handle(Geom_Surface) & s, int depth) {
 
 void Checker::curve(const Handle(Geom_Curve) & c, int depth) {
   if (c.IsNull() || !ok() || depth > kMaxWrapping) return;
+  auto at = [this](const gp_Pnt& p, const std::string& what) { point(p, what); };
   if (const auto t = Handle(Geom_TrimmedCurve)::DownCast(c); !t.IsNull()) {
     bound_value(t->FirstParameter(), "trim bound");
     bound_value(t->LastParameter(), "trim bound");
     curve(t->BasisCurve(), depth + 1);
   } else if (const auto b = Handle(Geom_BSplineCurve)::DownCast(c); !b.IsNull()) {
-    for (int i = 1; i <= b->NbPoles() && ok(); ++i) {
-      point(b->Pole(i), "pole " + index_text(i));
-      if (b->IsRational()) weight(b->Weight(i), "weight " + index_text(i));
-    }
-    for (int i = 1; i <= b->NbKnots(); ++i) parameter(b->Knot(i), "knot " + index_text(i));
+    poles_and_knots(b, at);
   } else if (const auto z = Handle(Geom_BezierCurve)::DownCast(c); !z.IsNull()) {
-    for (int i = 1; i <= z->NbPoles(); ++i) {
-      point(z->Pole(i), "pole " + index_text(i));
-      weight(z->Weight(i), "weight " + index_text(i));
-    }
+    poles_and_knots(z, at);
   } else if (const auto l = Handle(Geom_Line)::DownCast(c); !l.IsNull()) {
     point(l->Position().Location(), "origin");
     direction(l->Position().Direction().XYZ(), "direction");
@@ -237,16 +241,9 @@ void Checker::curve2d(const Handle(Geom2d_Curve) & c, int depth) {
     bound_value(t->LastParameter(), "trim bound");
     curve2d(t->BasisCurve(), depth + 1);
   } else if (const auto b = Handle(Geom2d_BSplineCurve)::DownCast(c); !b.IsNull()) {
-    for (int i = 1; i <= b->NbPoles() && ok(); ++i) {
-      uv(b->Pole(i), "pole " + index_text(i));
-      if (b->IsRational()) weight(b->Weight(i), "weight " + index_text(i));
-    }
-    for (int i = 1; i <= b->NbKnots(); ++i) parameter(b->Knot(i), "knot " + index_text(i));
+    poles_and_knots(b, uv);
   } else if (const auto z = Handle(Geom2d_BezierCurve)::DownCast(c); !z.IsNull()) {
-    for (int i = 1; i <= z->NbPoles(); ++i) {
-      uv(z->Pole(i), "pole " + index_text(i));
-      weight(z->Weight(i), "weight " + index_text(i));
-    }
+    poles_and_knots(z, uv);
   } else if (const auto l = Handle(Geom2d_Line)::DownCast(c); !l.IsNull()) {
     uv(l->Location(), "origin");
     parameter(l->Direction().X(), "direction");

@@ -89,67 +89,59 @@ void rejected(const std::string& path, const std::string& entity) {
   CHECK(r.error().message.find(entity) != std::string::npos);
 }
 
+// plyfit info on `path` exits 1 with one line naming the file and `entity`.
+void binary_refuses(const std::string& path, const std::string& entity, const TempDir& dir) {
+  const Run r = run_plyfit("info '" + path + "'", dir);
+  INFO("exit " << r.code << ", stderr: " << r.err);
+  CHECK(r.code == 1);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK(r.err.find(path) != std::string::npos);
+  CHECK(r.err.find(entity) != std::string::npos);
+}
+
 // The dish's surface (#77) and its first pole (#78); in IGES the 128 entity is DE 3, degree 2
 // with 3 x 3 poles.
 const std::string kStepSurface = "#77", kStepPole = "#78";
 constexpr int kIgesSurface = 3;
+const int kIgesPole = first_pole_field(2, 2, 2, 2);
+
+// The dish with `value` as number k of STEP entity `step_id`, and as field `iges_field` of the
+// IGES surface: opening either is an error naming that entity.
+void rejects_value(const TempDir& dir, const std::string& value, const std::string& step_id, int k,
+                   int iges_field) {
+  INFO(value);
+  const std::string s = dir.file("changed.step"), i = dir.file("changed.igs");
+  write_bytes(s, step_with(read_bytes(sample_mold("dish.step")), step_id, k, value));
+  rejected(s, step_id);
+  write_bytes(i, iges_with(read_bytes(sample_mold("dish.igs")), kIgesSurface, iges_field, value));
+  rejected(i, "DE " + std::to_string(kIgesSurface));
+}
 
 }  // namespace
 
 TEST_CASE("importers: an INF or NaN pole is an error naming the file and the entity") {
   TempDir dir("file_checks_inf");
-  const std::string step = read_bytes(sample_mold("dish.step"));
-  const std::string iges = read_bytes(sample_mold("dish.igs"));
-  const int pole = first_pole_field(2, 2, 2, 2);
-  for (const std::string v : {"INF", "NaN"}) {
-    INFO(v);
-    const std::string s = dir.file("inf_pole.step"), i = dir.file("inf_pole.igs");
-    write_bytes(s, step_with(step, kStepPole, 0, v));
-    rejected(s, kStepPole);
-    write_bytes(i, iges_with(iges, kIgesSurface, pole + 1, v));
-    rejected(i, "DE " + std::to_string(kIgesSurface));
-  }
+  for (const std::string v : {"INF", "NaN"}) rejects_value(dir, v, kStepPole, 0, kIgesPole + 1);
 }
 
 TEST_CASE("importers: a coordinate of 1.0E+999 or 1.E308 is an error naming the entity") {
   TempDir dir("file_checks_big");
-  const std::string step = read_bytes(sample_mold("dish.step"));
-  const std::string iges = read_bytes(sample_mold("dish.igs"));
-  const int pole = first_pole_field(2, 2, 2, 2);
-  for (const std::string v : {"1.0E+999", "-1.0E+999", "1.E308", "-1.E308"}) {
-    INFO(v);
-    const std::string s = dir.file("big.step"), i = dir.file("big.igs");
-    write_bytes(s, step_with(step, kStepPole, 2, v));
-    rejected(s, kStepPole);
-    write_bytes(i, iges_with(iges, kIgesSurface, pole + 2, v));
-    rejected(i, "DE " + std::to_string(kIgesSurface));
-  }
+  for (const std::string v : {"1.0E+999", "-1.0E+999", "1.E308", "-1.E308"})
+    rejects_value(dir, v, kStepPole, 2, kIgesPole + 2);
 }
 
 TEST_CASE("importers: a huge integer count is an error naming the entity") {
   TempDir dir("file_checks_count");
-  const std::string step = read_bytes(sample_mold("dish.step"));
-  const std::string iges = read_bytes(sample_mold("dish.igs"));
-  for (const std::string v : {"2147483648", "9223372036854775808"}) {
-    INFO(v);
-    const std::string s = dir.file("count.step"), i = dir.file("count.igs");
-    write_bytes(s, step_with(step, kStepSurface, 0, v));  // the degree in u
-    rejected(s, kStepSurface);
-    write_bytes(i, iges_with(iges, kIgesSurface, 1, v));  // K1: the poles in u, less one
-    rejected(i, "DE " + std::to_string(kIgesSurface));
-  }
+  // STEP: the surface's degree in u; IGES: K1, its poles in u less one.
+  for (const std::string v : {"2147483648", "9223372036854775808"})
+    rejects_value(dir, v, kStepSurface, 0, 1);
 }
 
 TEST_CASE("importers: a STEP number nested 200,000 parentheses deep is an error, not a crash") {
   TempDir dir("file_checks_nest");
   const std::string path = dir.file("nested.step");
   write_bytes(path, step_with(read_bytes(sample_mold("dish.step")), kStepPole, 1, "", 200000));
-  const Run r = run_plyfit("info '" + path + "'", dir);
-  INFO("exit " << r.code << ", stderr: " << r.err);
-  CHECK(r.code == 1);
-  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-  CHECK(r.err.find(path) != std::string::npos);
-  CHECK(r.err.find(kStepPole) != std::string::npos);
+  binary_refuses(path, kStepPole, dir);
 }
 
 TEST_CASE("importers: STEP references swapped into a cycle are an error naming the entity") {
@@ -169,11 +161,6 @@ TEST_CASE("importers: STEP references swapped into a cycle are an error naming t
     s.replace(at, from.size(), to);
     const std::string path = dir.file("cycle.step");
     write_bytes(path, s);
-    const Run r = run_plyfit("info '" + path + "'", dir);
-    INFO("exit " << r.code << ", stderr: " << r.err);
-    CHECK(r.code == 1);
-    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-    CHECK(r.err.find(path) != std::string::npos);
-    CHECK(r.err.find(entity) != std::string::npos);
+    binary_refuses(path, entity, dir);
   }
 }
