@@ -466,9 +466,10 @@ Status check_iges_text(const std::string& text) {
     if (fields.empty()) continue;
     const int type = std::atoi(fields[0].c_str());
     const std::string where = "DE " + std::to_string(de) + " (type " + fields[0] + "), parameter ";
-    for (size_t k = 1; k < fields.size(); ++k)
-      if (auto st =
-              check_iges_field(fields[k], iges_geometry(type), where + std::to_string(k) + ": ");
+    // Field 0, the entity type, is a number too (the directory entry's type is the one read).
+    for (size_t k = 0; k < fields.size(); ++k)
+      if (auto st = check_iges_field(fields[k], k > 0 && iges_geometry(type),
+                                     where + std::to_string(k) + ": ");
           !st)
         return st;
   }
