@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -25,7 +24,6 @@ std::optional<double> number_value(std::string_view text) {
   for (char& c : s)
     if (c == 'D' || c == 'd') c = 'E';
   if (s.empty()) return std::nullopt;
-  errno = 0;
   char* end = nullptr;
   const double v = std::strtod(s.c_str(), &end);
   if (end != s.c_str() + s.size()) return std::nullopt;
