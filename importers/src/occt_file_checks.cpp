@@ -343,11 +343,11 @@ class StepScanner {
 
 // ---- IGES ----------------------------------------------------------------------------------
 
-// IGES entity types whose real parameters are coordinates, parameters, weights or factors:
-// curves, surfaces, points, directions and transformation matrices (100-199), and the vertex
-// list (502).
+// IGES entity types whose numbers are coordinates, parameters, weights, factors, counts or
+// pointers: curves, surfaces, points, directions and transformation matrices (100-199), and the
+// B-rep entities (vertex list to shell, 502-514).
 bool iges_geometry(int type) {
-  return (type >= 100 && type < 200) || type == 502;
+  return (type >= 100 && type < 200) || (type >= 502 && type <= 514);
 }
 
 struct IgesRecords {

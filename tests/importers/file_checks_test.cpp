@@ -135,6 +135,11 @@ TEST_CASE("importers: a huge integer count is an error naming the entity") {
   // STEP: the surface's degree in u; IGES: K1, its poles in u less one.
   for (const std::string v : {"2147483648", "9223372036854775808"})
     rejects_value(dir, v, kStepSurface, 0, 1);
+  // The pointer to a trim curve in an IGES loop (type 508, DE 7 of the split cylinder; its
+  // record has room for one character more).
+  const std::string path = dir.file("loop_pointer.igs");
+  write_bytes(path, iges_with(read_bytes(sample_mold("cylinder-split.igs")), 7, 8, "1E9"));
+  rejected(path, "DE 7");
 }
 
 TEST_CASE("importers: a STEP number nested 200,000 parentheses deep is an error, not a crash") {
