@@ -5,8 +5,9 @@
 //   convergence  discretisation error against spacing on cases with exact answers
 //   hard         hard cases, one full drape each
 
-#include <plyfit/kernel/analytic_surfaces.hpp>
-#include <plyfit/kernel/flat_pattern.hpp>
+#include <plyfit/exporters/messages.hpp>
+#include "geometry/analytic_surfaces.hpp"
+#include "pattern/flat_pattern.hpp"
 
 #include "bench.hpp"
 #include "drape_cases.hpp"
@@ -57,7 +58,7 @@ double loglog_slope(const std::vector<double>& x, const std::vector<double>& y) 
 }
 
 void print_error(const std::string& what, const Error& e) {
-  std::fprintf(stderr, "plyfit-bench: %s: %s\n", what.c_str(), e.message.c_str());
+  std::fprintf(stderr, "plyfit-bench: %s: %s\n", what.c_str(), exporters::describe(e).c_str());
 }
 
 /// A face of the throughput and tolerance tables with its drape problem at spacing d.
@@ -601,7 +602,8 @@ Table hard_case_table(int runs, bool* ok) {
     DrapeRun first;
     auto tm = median_drape_time(*c.face, c.problem, c.options, runs, &first);
     if (!tm) {
-      t.add({c.name, "error: " + tm.error().message, "-", "-", "-", "-", "-", "-", "-", "-", "-"});
+      t.add({c.name, "error: " + exporters::describe(tm.error()), "-", "-", "-", "-", "-", "-", "-",
+             "-", "-"});
       if (ok) *ok = false;
       continue;
     }

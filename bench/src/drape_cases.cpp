@@ -35,7 +35,7 @@ Result<FacePtr> builtin_face(const std::string& name, const std::map<std::string
 Result<FacePtr> cad_face(const std::string& file, int index) {
   auto f = importers::load_face(shared_dir() + "/cad/" + file, index);
   if (!f) return f.error();
-  return FacePtr(std::make_shared<const Face>(std::move(f).value()));
+  return FacePtr(std::make_shared<const Face>(dynamic_cast<const Face&>(f->impl())));
 }
 
 Result<FacePtr> data_face(NurbsSurfaceData surface, std::vector<TrimLoop> loops) {

@@ -3,9 +3,9 @@
 // cases): faces, problems with their initial conditions, timed runs with memory figures, and
 // the net's constraint errors measured from the nodes.
 
-#include <plyfit/kernel/drape.hpp>
-#include <plyfit/kernel/face.hpp>
 #include <plyfit/kernel/result.hpp>
+#include "drape/drape.hpp"
+#include "surface/face.hpp"
 
 #include "support/problems.hpp"
 

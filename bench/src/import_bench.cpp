@@ -3,6 +3,7 @@
 
 #include "bench.hpp"
 
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/importers/importers.hpp>
 
 #include <cstdio>
@@ -34,7 +35,7 @@ int run_import(const std::vector<std::string>& args) {
   }
   auto file = importers::open_mold(path);
   if (!file) {
-    std::cerr << "plyfit-bench: " << file.error().message << "\n";
+    std::cerr << "plyfit-bench: " << exporters::describe(file.error()) << "\n";
     return 1;
   }
   const Mold& m = (*file)->mold();

@@ -6,6 +6,7 @@
 // system's temporary directory) when missing. BIN is another plyfit binary (e.g. one built from
 // the commit before OpenCASCADE was loaded lazily) timed in the same run.
 
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/importers/importers.hpp>
 
 #include "bench.hpp"
@@ -203,7 +204,7 @@ ImportReport import_report(int runs, const std::string& stress_dir, const std::s
     std::fprintf(stderr, "import: %s\n", f.label.c_str());
     auto file = importers::open_mold(f.path);
     if (!file) {
-      std::fprintf(stderr, "plyfit-bench: %s\n", file.error().message.c_str());
+      std::fprintf(stderr, "plyfit-bench: %s\n", exporters::describe(file.error()).c_str());
       rep.ok = false;
       continue;
     }

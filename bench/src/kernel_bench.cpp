@@ -2,10 +2,10 @@
 // derivatives (NurbsSurface::eval1 against Geom_BSplineSurface::D1), on the same random
 // parameters, for a bicubic, a biquintic and a rational biquadratic surface.
 
-#include <plyfit/kernel/nurbs_surface.hpp>
+#include <plyfit/kernel/nurbs.hpp>
 
 #include "bench.hpp"
-#include "occt_geometry.hpp"
+#include "nurbs_conversion.hpp"
 #include "tables.hpp"
 
 #include <GeomAdaptor_Surface.hxx>

@@ -1,6 +1,6 @@
 #include "occt_util.hpp"
 
-#include "occt_geometry.hpp"
+#include "nurbs_conversion.hpp"
 
 #include <gp_Pnt.hxx>
 #include <gp_Vec.hxx>

@@ -2,7 +2,7 @@
 // An independent point-to-surface distance for plyfit-bench, computed with OpenCASCADE's
 // evaluator on the same NURBS (converted by exporters/src/occt_geometry).
 
-#include <plyfit/kernel/nurbs_surface.hpp>
+#include <plyfit/kernel/nurbs.hpp>
 
 #include <Geom_BSplineSurface.hxx>
 

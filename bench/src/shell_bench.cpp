@@ -5,6 +5,7 @@
 
 #include "bench.hpp"
 
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/importers/importers.hpp>
 
 #include <cstdio>
@@ -44,13 +45,13 @@ int run_shell(const std::vector<std::string>& args) {
   }
   auto file = importers::open_mold(path);
   if (!file) {
-    std::cerr << "plyfit-bench: " << file.error().message << "\n";
+    std::cerr << "plyfit-bench: " << exporters::describe(file.error()) << "\n";
     return 1;
   }
   const std::vector<int> chosen = faces.empty() ? (*file)->all_faces() : faces;
   auto shell = (*file)->convert_shell(faces);
   if (!shell) {
-    std::cerr << "plyfit-bench: " << shell.error().message << "\n";
+    std::cerr << "plyfit-bench: " << exporters::describe(shell.error()) << "\n";
     return 1;
   }
   // The three timings interleaved run by run, so that a change in the machine's load (it is

@@ -5,11 +5,10 @@
 #include "bench.hpp"
 #include "tables.hpp"
 
-#include <plyfit/kernel/analytic_surfaces.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
-#include <plyfit/kernel/builtin_shells.hpp>
-#include <plyfit/kernel/drape.hpp>
-#include <plyfit/kernel/shell.hpp>
+#include "drape/drape.hpp"
+#include "geometry/analytic_surfaces.hpp"
+#include "surface/shell/shell.hpp"
 
 #include "support/problems.hpp"
 

@@ -2,8 +2,9 @@
 // mean iterations and surface evaluations, ns per solve (median of runs), and the
 // distribution of final residuals (|F1| + |F2|) / d.
 
-#include <plyfit/kernel/analytic_surfaces.hpp>
-#include <plyfit/kernel/solvers.hpp>
+#include <plyfit/exporters/messages.hpp>
+#include "drape/solvers/solvers.hpp"
+#include "geometry/analytic_surfaces.hpp"
 
 #include "bench.hpp"
 #include "support/solver_cases.hpp"
@@ -88,7 +89,7 @@ bool run_rows(std::vector<Row>& rows) {
     fd.surface = sf.data;
     auto face = Face::create(fd);
     if (!face) {
-      std::fprintf(stderr, "plyfit-bench: %s\n", face.error().message.c_str());
+      std::fprintf(stderr, "plyfit-bench: %s\n", exporters::describe(face.error()).c_str());
       return false;
     }
     const Face& f = *face;

@@ -2,9 +2,9 @@
 // (occt_mold_writer.cpp), loaded by the first write; without OpenCASCADE here.
 
 #include <plyfit/exporters/mold_writer.hpp>
-#include <plyfit/importers/occt_module.hpp>
+#include <plyfit/occt/module.hpp>
 
-#include "mold_writer_api.hpp"
+#include <plyfit/occt/mold_writer_api.hpp>
 
 namespace plyfit::exporters {
 
@@ -12,11 +12,11 @@ namespace {
 
 // The module's mold writer, loading the module on first use; errors name `path`.
 Result<const OcctMoldWriterApi*> occt_mold_writer(const std::string& path) {
-  auto entry = importers::occt_module_symbol(kMoldWriterEntry);
-  if (!entry) return Error{path + ": " + entry.error().message};
+  auto entry = plyfit::occt::occt_module_symbol(kMoldWriterEntry);
+  if (!entry) return Error{path}.because(entry.error());
   const OcctMoldWriterApi* api = reinterpret_cast<OcctMoldWriterEntry>(*entry)();
-  if (!api || api->abi != importers::kOcctModuleAbi)
-    return Error{path + ": plyfit's OpenCASCADE module " + importers::kOcctModuleFile +
+  if (!api || api->abi != plyfit::occt::kOcctModuleAbi)
+    return Error{path + ": plyfit's OpenCASCADE module " + plyfit::occt::kOcctModuleFile +
                  " is from another build of plyfit"};
   return api;
 }

@@ -1,6 +1,6 @@
 #include "net_util.hpp"
 
-#include <plyfit/kernel/cells.hpp>
+#include <plyfit/kernel/drape.hpp>
 
 #include <algorithm>
 #include <array>

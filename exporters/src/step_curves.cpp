@@ -130,7 +130,7 @@ std::string refs(const std::vector<int>& ids) {
 Result<int> add_curve(Writer& w, const NurbsCurveData3& c) {
   if (!c.weights.empty()) return Error{"rational curves are not written"};
   auto valid = NurbsCurve3::create(c);
-  if (!valid) return Error{"invalid curve: " + valid.error().message};
+  if (!valid) return Error{"invalid curve"}.because(valid.error());
   std::vector<int> points;
   for (const auto& p : c.poles) {
     if (!p.allFinite()) return Error{"a curve point is not finite"};
@@ -162,7 +162,7 @@ Result<StepCurveSet> polyline_set(std::string name, const std::vector<std::vecto
     std::vector<Vec3> pts = line;
     if (closed && pts.size() >= 2 && pts.front() != pts.back()) pts.push_back(pts.front());
     auto c = polyline_curve(pts);
-    if (!c) return Error{set.name + ": " + c.error().message};
+    if (!c) return Error{set.name}.because(c.error());
     set.curves.push_back(c->data());
   }
   return set;
@@ -207,7 +207,7 @@ Status emit(std::ostream& out, const std::vector<StepCurveSet>& sets, const Step
     std::vector<int> curves;
     for (const auto& c : set.curves) {
       auto id = add_curve(w, c);
-      if (!id) return Error{set.name + ": " + id.error().message};
+      if (!id) return Error{set.name}.because(id.error());
       curves.push_back(*id);
     }
     const int curve_set = w.add("GEOMETRIC_CURVE_SET(''," + refs(curves) + ")");
@@ -234,7 +234,7 @@ Status write_step_curves(const std::string& path, const std::vector<StepCurveSet
   if (!file.ok()) return Error{path + ": cannot create the file (folder missing or not writable?)"};
   if (auto st = emit(file.stream(), sets, info); !st) {
     file.discard();
-    return Error{path + ": " + st.error().message};
+    return Error{path}.because(st.error());
   }
   return file.commit();
 }

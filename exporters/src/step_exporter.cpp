@@ -17,7 +17,7 @@
 #include <plyfit/exporters/exporters.hpp>
 #include <plyfit/exporters/step_curves.hpp>
 #include <plyfit/kernel/flat_pattern.hpp>
-#include <plyfit/kernel/nurbs_curve.hpp>
+#include <plyfit/kernel/nurbs.hpp>
 
 #include "plugins.hpp"
 
@@ -64,11 +64,11 @@ Result<std::vector<StepCurveSet>> boundary_sets(const FlatPattern& flat) {
       continue;
     }
     auto set = polyline_set(name, {pts}, true);
-    if (!set) return Error{"cannot build the " + set.error().message};
+    if (!set) return Error{"cannot build a curve set"}.because(set.error());
     sets.push_back(std::move(set).value());
   }
   auto set = polyline_set("ply_boundary", outer, true);
-  if (!set) return Error{"cannot build the " + set.error().message};
+  if (!set) return Error{"cannot build a curve set"}.because(set.error());
   sets.insert(sets.begin(), std::move(set).value());
   return sets;
 }
@@ -93,7 +93,7 @@ Result<std::vector<StepCurveSet>> net_curve_sets(const ExportContext& ctx) {
       auto curve = ctx.options.curve_degree == 3 ? interpolate_cubic(pts) : polyline_curve(pts);
       if (!curve) curve = polyline_curve(pts);
       if (!curve)
-        return Error{std::string("cannot build a ") + g.name + " curve: " + curve.error().message};
+        return Error{std::string("cannot build a ") + g.name + " curve"}.because(curve.error());
       set.curves.push_back(curve->data());
     }
     sets.push_back(std::move(set));
@@ -108,7 +108,7 @@ Result<std::vector<StepCurveSet>> net_curve_sets(const ExportContext& ctx) {
 
 Status write_step(const ExportContext& ctx, const std::string& path) {
   auto sets = net_curve_sets(ctx);
-  if (!sets) return Error{path + ": " + sets.error().message};
+  if (!sets) return Error{path}.because(sets.error());
   StepFileInfo info;
   info.file_name = "net.step";
   info.description = "plyfit draped thread net";

@@ -565,7 +565,7 @@ struct Camera {
 
 std::string drape_svg(const ExportContext& ctx) {
   const DrapeResult& r = ctx.result;
-  const DrapeSurface& surface = ctx.surface;
+  const MoldSurface& surface = ctx.surface;
   const Camera cam = Camera::from(ctx.options.view);
   const ShearScale scale = shear_scale(r);
   const double top = scale.top;

@@ -1,11 +1,10 @@
-// The importer registry. The readers are in the OpenCASCADE module (occt_module.hpp), loaded
+// The importer registry. The readers are in the OpenCASCADE module (occt/), loaded
 // by the first open(): listing the importers, finding one by extension or validating a --format
 // does not load OpenCASCADE.
 
 #include <plyfit/importers/importers.hpp>
-#include <plyfit/importers/occt_module.hpp>
 
-#include "occt_module_api.hpp"
+#include "formats.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -20,42 +19,11 @@ std::string lower(std::string s) {
   return s;
 }
 
-// The module's importers, loading the module on first use.
-Result<const OcctImporterApi*> occt_importers() {
-  auto entry = occt_module_symbol(kImportersEntry);
-  if (!entry) return entry.error();
-  const OcctImporterApi* api = reinterpret_cast<OcctImporterEntry>(*entry)();
-  if (!api || api->abi != kOcctModuleAbi)
-    return Error{std::string("plyfit's OpenCASCADE module ") + kOcctModuleFile +
-                 " is from another build of plyfit (interface " +
-                 std::to_string(api ? api->abi : -1) + ", expected " +
-                 std::to_string(kOcctModuleAbi) + ")"};
-  return api;
-}
-
-// An importer whose reader is in the OpenCASCADE module.
-Importer occt_importer(std::string key, std::vector<std::string> extensions,
-                       std::string description) {
-  Importer imp{key, std::move(extensions), std::move(description), {}};
-  imp.open = [key](const std::string& path,
-                   const ImportOptions& options) -> Result<std::unique_ptr<MoldFile>> {
-    auto api = occt_importers();
-    if (!api) return Error{path + ": " + api.error().message};
-    return (*api)->open(key, path, options);
-  };
-  return imp;
-}
 }  // namespace
 
 const std::vector<Importer>& registry() {
-  // One registration line per format (its reader: occt_module_entry.cpp).
-  static const std::vector<Importer> list = {
-      occt_importer("step", {"step", "stp"},
-                    "STEP (ISO 10303-21: AP203, AP214, AP242) via OpenCASCADE"),
-      occt_importer("iges", {"iges", "igs"},
-                    "IGES (5.x: 128/114 surfaces, 144 trimmed surfaces, 186/514/510 solids) "
-                    "via OpenCASCADE"),
-  };
+  // One registration line per format (each format's file: *_importer.cpp).
+  static const std::vector<Importer> list = {step_importer(), iges_importer()};
   return list;
 }
 
@@ -94,13 +62,13 @@ Result<std::unique_ptr<MoldFile>> open_mold(const std::string& path, const Impor
   return imp->open(path, options);
 }
 
-Result<Face> load_face(const std::string& path, int index, const ImportOptions& options) {
+Result<MoldSurface> load_face(const std::string& path, int index, const ImportOptions& options) {
   auto file = open_mold(path, options);
   if (!file) return file.error();
   auto data = (*file)->convert_face(index);
   if (!data) return data.error();
-  auto face = Face::create(std::move(data).value(), options.tolerances);
-  if (!face) return Error{path + ": face " + std::to_string(index) + ": " + face.error().message};
+  auto face = MoldSurface::from_face(std::move(data).value(), options.tolerances);
+  if (!face) return Error{path + ": face " + std::to_string(index)}.because(face.error());
   return face;
 }
 

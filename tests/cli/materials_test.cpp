@@ -1,13 +1,14 @@
 // The materials table: --material picks an entry of plyfit's own table (data/materials.ini,
 // built in) or of --materials FILE; its warning and limit angles are the defaults of
 // --warn-angle and --lock-angle; one-line errors name the table and list the known names.
-// Also: the README agrees with the table and with samples/sphere-octant-a.ini.
+// Also: the manual (docs/) agrees with the table and with samples/sphere-octant-a.ini.
 
 #include <nlohmann/json.hpp>
 
 #include <catch2/catch.hpp>
 
 #include "cli/cli_util.hpp"
+#include "cli/markdown.hpp"
 
 #include <regex>
 #include <set>
@@ -19,11 +20,7 @@ namespace {
 
 const std::string& kFlags = kOctantFlags;
 
-std::string source(const std::string& rel) {
-  return slurp(std::string(PLYFIT_SOURCE_DIR) + "/" + rel);
-}
-
-// The value of `key = ...` in a dumped scene.
+// The value of the first `key = ...` line of a dumped scene or another INI text.
 std::string dumped(const std::string& dump, const std::string& key) {
   const std::regex re("(^|\n)" + key + " = ([^\n]*)");
   std::smatch m;
@@ -168,15 +165,53 @@ TEST_CASE("cli: an unknown material or a bad table is a one-line error naming th
                      ": key 'ply-angle': must be in [-180, 180] degrees\n");
 }
 
-TEST_CASE("cli: the README lists every material of the table and shows the sample scene as it is") {
-  const std::string readme = source("README.md");
-  const auto names = sections(source("data/materials.ini"));
+TEST_CASE(
+    "cli: docs/materials.md lists every material of the table with its label and angles, "
+    "and docs/scene-files.md shows the sample scene as it is") {
+  const std::string doc = source_file("docs/materials.md");
+  const std::string table = source_file("data/materials.ini");
+  const auto names = sections(table);
   REQUIRE(names.size() >= 5);
   for (const auto& n : names) {
     INFO(n);
-    CHECK(readme.find("| `" + n + "` |") != std::string::npos);
+    const auto row = table_row(doc, "`" + n + "`");
+    REQUIRE(row);
+    REQUIRE(row->size() == 4);
+    const std::string entry = table.substr(table.find("[" + n + "]"));
+    CHECK((*row)[1].find(dumped(entry, "label")) != std::string::npos);
+    CHECK((*row)[2] == dumped(entry, "warning") + "°");
+    const std::string limit = dumped(entry, "limit");
+    CHECK((*row)[3] == (limit == "none" ? limit : limit + "°"));
   }
   // The scene example is samples/sphere-octant-a.ini, verbatim.
-  const std::string sample = source("samples/sphere-octant-a.ini");
-  CHECK(readme.find("```ini\n" + sample + "```\n") != std::string::npos);
+  const std::string sample = source_file("samples/sphere-octant-a.ini");
+  CHECK(source_file("docs/scene-files.md").find("```ini\n" + sample + "```\n") !=
+        std::string::npos);
+}
+
+TEST_CASE("cli: report.json echoes the angles as given, not through radians and back") {
+  // 30 and 15 degrees become 29.999999999999996 and 14.999999999999998 through radians.
+  Scratch tmp("materials_echo");
+  for (const auto& [flags, warn] : std::vector<std::pair<std::string, double>>{
+           {"--warn-angle 30", 30.0}, {"--material cpd-example", 15.0}}) {
+    INFO(flags);
+    const CliRun r = plyfit_run(
+        "drape " + kFlags + " " + flags + " --outputs json -o '" + tmp.file("o") + "'", tmp);
+    REQUIRE(r.code == 0);
+    const json j = json::parse(slurp(tmp.file("o") + "/report.json"));
+    CHECK(j["inputs"]["warn_angle_deg"].get<double>() == warn);
+  }
+}
+
+TEST_CASE("cli: --dump-scene writes the effective min-width") {
+  // Not given: the default the flat pattern takes, half the larger spacing.
+  Scratch tmp("materials_min_width");
+  const CliRun d = plyfit_run("drape " + kFlags + " --dump-scene", tmp);
+  REQUIRE(d.code == 0);
+  const std::string spacing = dumped(d.out, "spacing");
+  REQUIRE(spacing != "<absent>");
+  CHECK(std::stod(dumped(d.out, "min-width")) == 0.5 * std::stod(spacing));
+  const CliRun g = plyfit_run("drape " + kFlags + " --min-width 0.25 --dump-scene", tmp);
+  REQUIRE(g.code == 0);
+  CHECK(dumped(g.out, "min-width") == "0.25");
 }

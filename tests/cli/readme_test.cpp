@@ -1,92 +1,363 @@
-// The README documents every command, every drape option (= scene key), every built-in
-// mold, every output file and every report.json node status; its test command is the one CI
-// runs. Read from the built plyfit's own listings, so a new option without documentation
-// fails here.
+// The README and the manual (docs/): the README gives the two commands (the second is the one
+// CI runs) and links into docs/, whose pages document every command, every option of every
+// command, every scene key, built-in mold and shell, output file and report.json field, each on
+// its own page. Read from the built plyfit's own listings and outputs, so a new option, key or
+// field without documentation fails here; every link of the README and of docs/ must lead to
+// a file and heading that exist. (The README's first drape, on a shared CAD file, is run in
+// readme_corpus_test.cpp.)
 
 #include <plyfit/exporters/exporters.hpp>
-#include <plyfit/kernel/builtin_molds.hpp>
-#include <plyfit/kernel/drape.hpp>
+
+#include <nlohmann/json.hpp>
 
 #include <catch2/catch.hpp>
 
 #include "cli/cli_util.hpp"
+#include "cli/markdown.hpp"
 
+#include <algorithm>
+#include <filesystem>
+#include <map>
 #include <regex>
+#include <set>
 #include <sstream>
 
 using namespace plyfit;
 using namespace plyfit::test;
+namespace fs = std::filesystem;
 
 namespace {
-std::string readme() {
-  return slurp(std::string(PLYFIT_SOURCE_DIR) + "/README.md");
-}
-}  // namespace
 
-TEST_CASE("cli: the README documents every command, option, mold, output and status") {
-  const std::string doc = readme();
-  REQUIRE(doc.size() > 1000);
-  Scratch s("readme");
-  // Commands, as plyfit --help lists them.
+const std::string kReadme = "README.md";
+
+/// The page of docs/ that documents each command's options.
+const std::map<std::string, std::string> kCommandPages = {
+    {"info", "docs/info.md"},       {"drape", "docs/options.md"},     {"batch", "docs/batch.md"},
+    {"compare", "docs/compare.md"}, {"optimize", "docs/optimize.md"}, {"sample", "docs/sample.md"}};
+
+/// The commands `plyfit --help` lists.
+std::vector<std::string> commands(const Scratch& s) {
   const CliRun help = plyfit_run("--help", s);
   REQUIRE(help.code == 0);
+  std::vector<std::string> out;
   std::istringstream lines(help.out.substr(help.out.find("commands:")));
-  std::string line;
+  std::string line, name;
   std::getline(lines, line);
-  int commands = 0;
   while (std::getline(lines, line)) {
     std::istringstream w(line);
-    std::string name;
-    if (!(w >> name)) continue;
-    INFO("command " << name);
-    CHECK(doc.find("plyfit " + name) != std::string::npos);
-    ++commands;
+    if (w >> name) out.push_back(name);
   }
-  CHECK(commands >= 5);
-  // Drape options: every key of the scene-key table, as a flag or a key.
+  REQUIRE(out.size() >= 6);
+  return out;
+}
+
+/// The options (without the dashes) that `plyfit COMMAND --help` lists, one per line:
+/// "  --name ..." or Boost's "  -j [ --jobs ] ...".
+std::vector<std::string> help_options(const std::string& command, const Scratch& s) {
+  const CliRun help = plyfit_run(command + " --help", s);
+  REQUIRE(help.code == 0);
+  std::vector<std::string> out;
+  const std::regex option(R"(^  (?:-[a-z] \[ )?--([a-z][a-z0-9-]*))");
+  std::istringstream lines(help.out);
+  std::string line;
+  std::smatch m;
+  while (std::getline(lines, line))
+    if (std::regex_search(line, m, option)) out.push_back(m[1]);
+  return out;
+}
+
+/// The text between the first pair of backticks of `cell`.
+std::string code_of(const std::string& cell) {
+  const auto a = cell.find('`'), b = cell.find('`', a + 1);
+  return a == std::string::npos || b == std::string::npos ? std::string()
+                                                          : cell.substr(a + 1, b - a - 1);
+}
+
+/// The rows of `plyfit drape --scene-keys`: key -> its cells (section, value, default, ...).
+std::map<std::string, std::vector<std::string>> scene_keys(const Scratch& s) {
   const CliRun keys = plyfit_run("drape --scene-keys", s);
   REQUIRE(keys.code == 0);
-  const std::regex key_row(R"(^\| `([a-z0-9-]+)`)");
-  int options = 0;
-  std::istringstream kl(keys.out);
-  while (std::getline(kl, line)) {
-    std::smatch m;
-    if (!std::regex_search(line, m, key_row)) continue;
-    INFO("option --" << m[1]);
-    CHECK(doc.find("`--" + m[1].str() + "`") != std::string::npos);
-    ++options;
+  std::map<std::string, std::vector<std::string>> out;
+  for (const auto& row : table_rows(keys.out))
+    if (row.size() == 5 && row[0].rfind("`", 0) == 0) out[code_of(row[0])] = row;
+  REQUIRE(out.size() >= 25);
+  return out;
+}
+
+/// Every field path of a report.json (`a.b`, `a[].b` for the elements of array a), but not the
+/// keys of the maps keyed by a failure's reason.
+void field_paths(const nlohmann::json& j, const std::string& at, std::set<std::string>& out) {
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string path = at.empty() ? it.key() : at + "." + it.key();
+    out.insert(path);
+    if (path == "nodes.failed_reasons" || path == "nodes.conflict_reasons") continue;
+    if (it->is_object()) field_paths(*it, path, out);
+    if (it->is_array() && !it->empty() && it->front().is_object())
+      field_paths(it->front(), path + "[]", out);
   }
-  CHECK(options >= 25);
-  // Built-in molds and their parameters.
-  for (const auto& b : builtin_molds()) {
-    INFO("built-in mold " << b.name);
-    CHECK(doc.find("`" + b.name + "`") != std::string::npos);
-    for (const auto& p : b.params) CHECK(doc.find(p.key + "=") != std::string::npos);
-  }
-  // Output files of every writer, in the README's "Output files" section.
-  const auto sec = doc.find("## Output files");
-  REQUIRE(sec != std::string::npos);
-  const std::string outputs = doc.substr(sec, doc.find("\n## ", sec + 3) - sec);
+}
+
+/// The markdown files of the manual: the README and every page under docs/.
+std::vector<std::string> manual_files() {
+  std::vector<std::string> out = {kReadme};
+  const fs::path root(PLYFIT_SOURCE_DIR);
+  for (const auto& e : fs::recursive_directory_iterator(root / "docs"))
+    if (e.is_regular_file() && e.path().extension() == ".md")
+      out.push_back(fs::relative(e.path(), root).string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("cli: the README gives both commands, and its first one drapes into the files it names") {
+  const std::string readme = source_file(kReadme);
+  const auto block = readme.find("```sh\n");
+  REQUIRE(block != std::string::npos);
+  std::istringstream lines(readme.substr(block + 6));
+  std::string first, second;
+  std::getline(lines, first);
+  std::getline(lines, second);
+  // The second is the one .ci/run runs.
+  const std::string ci = source_file(".ci/run");
+  const auto a = ci.find("cmd='"), b = ci.find("'", a + 5);
+  REQUIRE(a != std::string::npos);
+  CHECK(second == ci.substr(a + 5, b - a - 5));
+  // The first builds plyfit and drapes a sample into ./out: run that drape.
+  const std::string drape = "&& build/bin/plyfit ";
+  const auto at = first.rfind(drape);
+  REQUIRE(at != std::string::npos);
+  std::string args = first.substr(at + drape.size());
+  REQUIRE(args.size() > 7);
+  REQUIRE(args.substr(args.size() - 7) == " -o out");
+  Scratch s("readme_first");
+  args = args.substr(0, args.size() - 3) + "'" + s.file("out") + "'";
+  const CliRun run = plyfit_run(args, s, PLYFIT_SOURCE_DIR);
+  INFO(run.err);
+  REQUIRE(run.code == 0);
+  // The files the README says it writes: every file of every writer, and they are there.
+  const auto into = readme.find("into `./out`:");
+  REQUIRE(into != std::string::npos);
+  const std::string named = readme.substr(into, readme.find(". ", into) - into);
+  std::set<std::string> said, written;
+  const std::regex file("`([a-z]+\\.[a-z]+)`");
+  for (auto it = std::sregex_iterator(named.begin(), named.end(), file);
+       it != std::sregex_iterator(); ++it)
+    said.insert((*it)[1]);
   for (const auto& e : exporters::registry())
     for (const auto& f : e.files) {
       INFO("output " << f);
-      CHECK(outputs.find(f) != std::string::npos);
+      CHECK(fs::exists(s.file("out/" + f)));
+      written.insert(f);
     }
-  // Node statuses (report.json's nodes).
-  for (const char* st : {"mapped", "auxiliary", "outside", "off_ply", "shear_limit", "failed",
-                         "overlap", "conflict", "path_end", "failed_reasons", "conflict_reasons"}) {
-    INFO("status " << st);
-    std::string quoted = "`";
-    quoted += st;
-    quoted += '`';
-    CHECK(doc.find(quoted) != std::string::npos);
+  CHECK(said == written);
+}
+
+TEST_CASE(
+    "cli: every command has its page in docs/, linked from the README and listed in "
+    "docs/exit-codes.md") {
+  Scratch s("readme_commands");
+  const std::string readme = source_file(kReadme);
+  const std::string exits = source_file("docs/exit-codes.md");
+  for (const auto& c : commands(s)) {
+    INFO("plyfit " << c);
+    const auto page = kCommandPages.find(c);
+    REQUIRE(page != kCommandPages.end());
+    CHECK(source_file(page->second).find("plyfit " + c) != std::string::npos);
+    const auto row = table_row(readme, "`plyfit " + c + "`");
+    REQUIRE(row);
+    CHECK(row->back().find("(" + page->second + ")") != std::string::npos);
+    CHECK(table_row(exits, "`plyfit " + c + "`"));
+  }
+  CHECK(table_row(exits, "`plyfit`"));
+}
+
+TEST_CASE("cli: docs/index.md lists every page of the manual, and the README links to it") {
+  const std::string index = source_file("docs/index.md");
+  const auto links = link_targets(index);
+  const std::set<std::string> linked(links.begin(), links.end());
+  int pages = 0;
+  for (const auto& f : manual_files()) {
+    if (f == kReadme || f == "docs/index.md") continue;
+    const std::string rel = f.substr(5);  // without "docs/"
+    if (rel.find('/') != std::string::npos && rel != "decisions/README.md") continue;
+    INFO(f);
+    CHECK(linked.count(rel) == 1);
+    ++pages;
+  }
+  CHECK(pages >= 15);
+  const auto readme_links = link_targets(source_file(kReadme));
+  CHECK(std::find(readme_links.begin(), readme_links.end(), "docs/index.md") != readme_links.end());
+}
+
+TEST_CASE("cli: docs/options.md documents every plyfit drape option, with plyfit's defaults") {
+  Scratch s("readme_options");
+  const std::string doc = source_file("docs/options.md");
+  const auto keys = scene_keys(s);
+  const auto options = help_options("drape", s);
+  CHECK(options.size() >= keys.size() + 4);
+  for (const auto& o : options) {
+    INFO("--" << o);
+    const auto row = table_row_holding(doc, "`--" + o + "`");
+    REQUIRE(row);
+    REQUIRE(row->size() == 4);
+    // An option that is also a scene key has the key's default.
+    if (const auto k = keys.find(o); k != keys.end()) CHECK((*row)[2] == k->second[3]);
+  }
+  CHECK(table_row_holding(doc, "`--help`"));
+}
+
+TEST_CASE("cli: docs/scene-files.md documents every scene key, with its section and default") {
+  Scratch s("readme_keys");
+  const std::string doc = md_section(source_file("docs/scene-files.md"), "## Keys");
+  REQUIRE(!doc.empty());
+  for (const auto& [key, cells] : scene_keys(s)) {
+    INFO("key " << key);
+    const auto row = table_row(doc, cells[0]);
+    REQUIRE(row);
+    REQUIRE(row->size() == 5);
+    CHECK((*row)[1] == cells[1]);  // section
+    CHECK((*row)[2] == cells[2]);  // value
+    CHECK((*row)[3] == cells[3]);  // default
   }
 }
 
-TEST_CASE("cli: the README's test command is the one .ci/run runs") {
-  const std::string ci = slurp(std::string(PLYFIT_SOURCE_DIR) + "/.ci/run");
-  const auto a = ci.find("cmd='"), b = ci.find("'", a + 5);
-  REQUIRE(a != std::string::npos);
-  const std::string cmd = ci.substr(a + 5, b - a - 5);
-  CHECK(readme().find(cmd) != std::string::npos);
+TEST_CASE("cli: each command's page documents each of its options") {
+  Scratch s("readme_command_options");
+  for (const auto& [command, page] : kCommandPages) {
+    if (command == "drape") continue;  // options.md, checked with the defaults above
+    const std::string doc = source_file(page);
+    const auto options = help_options(command, s);
+    CHECK(options.size() >= 3);
+    for (const auto& o : options) {
+      INFO(page << ": --" << o);
+      CHECK(table_row_holding(doc, "`--" + o + "`"));
+    }
+  }
+}
+
+TEST_CASE(
+    "cli: docs/molds.md documents every built-in mold with its parameters, and every "
+    "built-in shell") {
+  Scratch s("readme_molds");
+  const std::string doc = source_file("docs/molds.md");
+  // "  NAME: k=v k=v" lines of plyfit drape --help.
+  const CliRun help = plyfit_run("drape --help", s);
+  REQUIRE(help.code == 0);
+  const std::regex mold(R"(^  ([a-z0-9-]+):((?: [A-Za-z0-9_]+=[^ ]+)*)$)");
+  std::istringstream lines(help.out.substr(help.out.find("built-in molds")));
+  std::string line;
+  std::smatch m;
+  int molds = 0;
+  while (std::getline(lines, line)) {
+    if (!std::regex_search(line, m, mold)) continue;
+    INFO("built-in mold " << m[1]);
+    const auto row = table_row(doc, "`" + m[1].str() + "`");
+    REQUIRE(row);
+    std::string params = trimmed(m[2]);
+    for (std::size_t p = 0; (p = params.find(' ', p)) != std::string::npos; p += 2)
+      params.replace(p, 1, ", ");
+    CHECK((*row)[1] == params);
+    ++molds;
+  }
+  CHECK(molds >= 12);
+  // "built-in shells: a b c" of plyfit sample --help.
+  const CliRun sample = plyfit_run("sample --help", s);
+  const auto at = sample.out.find("built-in shells:");
+  REQUIRE(at != std::string::npos);
+  std::istringstream shells(sample.out.substr(at + 16, sample.out.find('\n', at) - at - 16));
+  int count = 0;
+  for (std::string name; shells >> name; ++count) {
+    INFO("built-in shell " << name);
+    CHECK(table_row(doc, "`" + name + "`"));
+  }
+  CHECK(count >= 3);
+}
+
+TEST_CASE(
+    "cli: the manual documents every output file: drape's under their keys, and those of "
+    "batch and optimize") {
+  const std::string doc = source_file("docs/outputs.md");
+  const auto titles = headings(doc);
+  for (const auto& e : exporters::registry()) {
+    INFO("output " << e.key);
+    const auto row = table_row(doc, "`" + e.key + "`");
+    REQUIRE(row);
+    std::string files;
+    for (const auto& f : e.files) {
+      files += (files.empty() ? "`" : ", `") + f + "`";
+      INFO(f);
+      CHECK(std::any_of(titles.begin(), titles.end(),
+                        [&](const std::string& t) { return t.find(f) != std::string::npos; }));
+    }
+    CHECK((*row)[1] == files);
+  }
+  const auto batch = headings(source_file("docs/batch.md"));
+  CHECK(std::find(batch.begin(), batch.end(), "summary.json and summary.csv") != batch.end());
+  const std::string optimize = md_section(source_file("docs/optimize.md"), "## Output");
+  for (const char* file : {"optimize.json", "front.svg", "best-OBJECTIVE.ini"}) {
+    INFO(file);
+    CHECK(table_row(optimize, std::string("`") + file + "`"));
+  }
+}
+
+TEST_CASE("cli: docs/report-json.md lists every field of report.json, and no other") {
+  Scratch s("readme_report");
+  // One face and a shell (whose inputs name its faces).
+  std::set<std::string> fields;
+  const CliRun drape =
+      plyfit_run("drape " + kOctantFlags + " --outputs json -o '" + s.file("face") + "'", s);
+  REQUIRE(drape.code == 0);
+  const CliRun shell =
+      plyfit_run("drape '" + std::string(PLYFIT_SOURCE_DIR) +
+                     "/samples/sphere-8.ini' --outputs json -o '" + s.file("shell") + "'",
+                 s);
+  REQUIRE(shell.code == 0);
+  for (const char* dir : {"face", "shell"})
+    field_paths(nlohmann::json::parse(slurp(s.file(std::string(dir) + "/report.json"))), "",
+                fields);
+  REQUIRE(fields.size() >= 100);
+  const std::string doc = source_file("docs/report-json.md");
+  std::set<std::string> documented;
+  for (const auto& row : table_rows(doc))
+    if (!row.empty() && row[0].size() > 2 && row[0].front() == '`' && row[0].back() == '`')
+      documented.insert(row[0].substr(1, row[0].size() - 2));
+  for (const auto& f : fields) {
+    INFO("report.json field " << f);
+    CHECK(documented.count(f) == 1);
+  }
+  for (const auto& d : documented) {
+    INFO("documented field " << d << " is in no report");
+    CHECK(fields.count(d) == 1);
+  }
+  // Every node status is described where the scan is (docs/method.md, "The scan").
+  const std::string scan = md_section(source_file("docs/method.md"), "## The scan");
+  const auto nodes = nlohmann::json::parse(slurp(s.file("face/report.json")))["nodes"];
+  for (auto it = nodes.begin(); it != nodes.end(); ++it) {
+    if (!it->is_number_integer() || it.key() == "with_angle") continue;
+    if (it.key() == "mapped" || it.key() == "auxiliary") continue;  // statuses that go on
+    INFO("status " << it.key());
+    CHECK(scan.find("- `" + it.key() + "`:") != std::string::npos);
+  }
+}
+
+TEST_CASE("cli: every link of the README and of docs/ leads to a file and heading that exist") {
+  int links = 0;
+  for (const auto& file : manual_files()) {
+    const fs::path dir = fs::path(file).parent_path();
+    for (const auto& target : link_targets(source_file(file))) {
+      if (target.rfind("http://", 0) == 0 || target.rfind("https://", 0) == 0) continue;
+      INFO(file << ": link " << target);
+      const auto hash = target.find('#');
+      const std::string path = target.substr(0, hash);
+      const std::string rel = path.empty() ? file : (dir / path).lexically_normal().string();
+      CHECK(fs::exists(fs::path(PLYFIT_SOURCE_DIR) / rel));
+      if (hash != std::string::npos) {
+        const auto list = anchors(source_file(rel));
+        CHECK(std::find(list.begin(), list.end(), target.substr(hash + 1)) != list.end());
+      }
+      ++links;
+    }
+  }
+  CHECK(links >= 50);
 }

@@ -30,9 +30,8 @@
 //    sample), so a wrong derivative at a point where it is small is still caught.
 // Tolerance: every deviation must stay below kOcctAgreementRel (1e-12) times its scale.
 
-#include <plyfit/kernel/analytic_surfaces.hpp>
-#include <plyfit/kernel/nurbs_curve.hpp>
-#include <plyfit/kernel/nurbs_surface.hpp>
+#include <plyfit/kernel/nurbs.hpp>
+#include "geometry/analytic_surfaces.hpp"
 
 #include <Geom2d_BSplineCurve.hxx>
 #include <Geom_BSplineCurve.hxx>
@@ -51,9 +50,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "occt_geometry.hpp"
+#include "nurbs_conversion.hpp"  // occt/src: kernel NURBS as OpenCASCADE geometry
 
-#include "reference_nurbs.hpp"
+#include "occt/reference_nurbs.hpp"
 #include "test_util.hpp"
 
 #include <algorithm>

@@ -4,8 +4,7 @@
 // not A2.3), in boost's 113-bit binary float. It is slow and used only to decide which of the
 // kernel and OpenCASCADE is right where they disagree.
 
-#include <plyfit/kernel/nurbs_curve.hpp>
-#include <plyfit/kernel/nurbs_surface.hpp>
+#include <plyfit/kernel/nurbs.hpp>
 
 #include <boost/multiprecision/cpp_bin_float.hpp>
 

@@ -4,6 +4,7 @@
 // trim tolerance of the built-in's); the files committed under samples/molds are exactly what
 // `plyfit sample` writes today (regenerable, deterministic bytes).
 
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/exporters/mold_writer.hpp>
 #include <plyfit/importers/importers.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
@@ -21,6 +22,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include "surface/face.hpp"
 
 using namespace plyfit;
 using namespace plyfit::test;
@@ -179,34 +181,39 @@ TEST_CASE("samples: the mold writer refuses what it cannot write, naming the fil
   const FaceData data = builtin_mold("plane", {}).value();
   auto st = exporters::write_mold(data, (tmp.dir / "m.obj").string());
   REQUIRE_FALSE(st.ok());
-  CHECK(st.error().message.find("m.obj: unknown mold format 'obj'") != std::string::npos);
+  CHECK(exporters::describe(st.error()).find("m.obj: unknown mold format 'obj'") !=
+        std::string::npos);
   // Trims: a loop off the surface's domain, a loop of two points, a trim curve that is not a
   // valid NURBS curve, and exact loops that do not match the polylines.
   FaceData off = data;
   off.loops.push_back({{Vec2(0.5, 0.5), Vec2(1.5, 0.5), Vec2(0.5, 0.9)}, {}});
   st = exporters::write_mold(off, (tmp.dir / "t.step").string());
   REQUIRE_FALSE(st.ok());
-  CHECK(st.error().message.find("t.step: trim loop 0 leaves the surface's parameter domain") !=
+  CHECK(exporters::describe(st.error())
+            .find("t.step: trim loop 0 leaves the surface's parameter domain") !=
         std::string::npos);
   FaceData two = data;
   two.loops.push_back({{Vec2(0.5, 0.5), Vec2(0.6, 0.5)}, {}});
   st = exporters::write_mold(two, (tmp.dir / "t.step").string());
   REQUIRE_FALSE(st.ok());
-  CHECK(st.error().message.find("fewer than three points") != std::string::npos);
+  CHECK(exporters::describe(st.error()).find("fewer than three points") != std::string::npos);
   BuiltinFace bad = builtin_face("plate", {{"hole_r", 5}}).value();
   bad.exact_loops[1][0].weights[1] = -1.0;
   st = exporters::write_mold(bad, (tmp.dir / "t.igs").string());
   REQUIRE_FALSE(st.ok());
-  CHECK(st.error().message.find("t.igs: invalid trim curve in loop 1") != std::string::npos);
+  CHECK(exporters::describe(st.error()).find("t.igs: invalid trim curve in loop 1") !=
+        std::string::npos);
   bad.exact_loops.pop_back();
   st = exporters::write_mold(bad, (tmp.dir / "t.igs").string());
   REQUIRE_FALSE(st.ok());
-  CHECK(st.error().message.find("1 exact trim loops for 2 trim polylines") != std::string::npos);
+  CHECK(exporters::describe(st.error()).find("1 exact trim loops for 2 trim polylines") !=
+        std::string::npos);
   CHECK_FALSE(std::filesystem::exists(tmp.dir / "t.step"));
   CHECK_FALSE(std::filesystem::exists(tmp.dir / "t.igs"));
   st = exporters::write_mold(data, (tmp.dir / "no-such-folder" / "p.step").string());
   REQUIRE_FALSE(st.ok());
-  CHECK(st.error().message.find("p.step: cannot create the file") != std::string::npos);
+  CHECK(exporters::describe(st.error()).find("p.step: cannot create the file") !=
+        std::string::npos);
   // Bytes depend only on the inputs (the same name in two folders: equal bytes).
   std::filesystem::create_directories(tmp.dir / "x");
   std::filesystem::create_directories(tmp.dir / "y");

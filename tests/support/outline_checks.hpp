@@ -6,10 +6,10 @@
 // vertex, is no crossing). Shared by the kernel tests, the sample tests and the fuzz's C++
 // counterpart.
 
-#include <plyfit/kernel/cells.hpp>
-#include <plyfit/kernel/drape.hpp>
-#include <plyfit/kernel/flat_pattern.hpp>
-#include <plyfit/kernel/solvers.hpp>
+#include "drape/drape.hpp"
+#include "drape/solvers/solvers.hpp"
+#include "pattern/cells.hpp"
+#include "pattern/flat_pattern.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -20,6 +20,7 @@
 #include <string>
 #include <utility>
 #include <vector>
+#include "surface/drape_surface.hpp"
 
 namespace plyfit::support {
 

@@ -1,8 +1,8 @@
 #pragma once
 // Built-in shells for the tests (no Catch here: the callers check the result).
 
-#include <plyfit/kernel/builtin_shells.hpp>
-#include <plyfit/kernel/shell.hpp>
+#include <plyfit/kernel/builtin_molds.hpp>
+#include "surface/shell/shell.hpp"
 
 #include <map>
 #include <string>

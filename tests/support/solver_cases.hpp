@@ -2,7 +2,7 @@
 // Valid configurations for the mapping solvers, built independently of them (bisection along
 // surface curves), shared by the property tests and plyfit-bench.
 
-#include <plyfit/kernel/face.hpp>
+#include "surface/face.hpp"
 
 #include <cmath>
 #include <random>

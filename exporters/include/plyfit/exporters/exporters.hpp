@@ -3,7 +3,6 @@
 /// (json, dxf, step, svg, vtk). Each writes its files into an output folder, atomically.
 
 #include <plyfit/kernel/drape.hpp>
-#include <plyfit/kernel/face.hpp>
 #include <plyfit/kernel/mold.hpp>
 #include <plyfit/kernel/result.hpp>
 
@@ -31,6 +30,7 @@ struct RunInfo {
   double tolerance_rel = 0;  ///< Newton tolerance relative to d
   int max_iterations = 0;
   double lock_angle_deg = 90;
+  double warn_angle_deg = 0;    ///< as given (or the material's), echoed in report.json
   std::string guess = "paper";  ///< initial-guess rule of the two-sphere solver
   std::uint64_t max_nodes = 0;  ///< node cap
   std::string ply_name;         ///< for labels
@@ -57,8 +57,8 @@ struct ExportOptions {
 struct ExportContext {
   const DrapeProblem& problem;
   const DrapeResult& result;
-  const DrapeSurface& surface;  ///< one face or a shell
-  const FlatPattern* flat;      ///< may be null
+  const MoldSurface& surface;  ///< one face or a shell
+  const FlatPattern* flat;     ///< may be null
   const RunInfo& run;
   const ExportOptions& options;
 };

@@ -4,9 +4,8 @@
 /// `plyfit sample` to make the sample molds under samples/.
 
 #include <plyfit/kernel/builtin_molds.hpp>
-#include <plyfit/kernel/face.hpp>
+#include <plyfit/kernel/mold.hpp>
 #include <plyfit/kernel/result.hpp>
-#include <plyfit/kernel/shell.hpp>
 
 #include <string>
 #include <vector>

@@ -5,7 +5,7 @@
 /// (sets `weft`, `warp`, `base_path`); OpenCASCADE (XDE, with names) and DRAW read it back.
 /// No OpenCASCADE is involved, so writing net.step does not load it.
 
-#include <plyfit/kernel/nurbs_curve.hpp>
+#include <plyfit/kernel/nurbs.hpp>
 #include <plyfit/kernel/result.hpp>
 
 #include <string>

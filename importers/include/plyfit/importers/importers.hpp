@@ -4,10 +4,8 @@
 /// Opening a file reads it and lists its faces (kernel::Mold) without converting any
 /// surface; a face is converted to kernel data only when asked for.
 
-#include <plyfit/kernel/face.hpp>
 #include <plyfit/kernel/mold.hpp>
 #include <plyfit/kernel/result.hpp>
-#include <plyfit/kernel/shell.hpp>
 #include <plyfit/kernel/tolerances.hpp>
 
 #include <functional>
@@ -101,8 +99,9 @@ std::string supported_extensions();
 Result<std::unique_ptr<MoldFile>> open_mold(const std::string& path,
                                             const ImportOptions& options = {});
 
-/// Opens `path` and converts face `index` into a kernel Face.
-Result<Face> load_face(const std::string& path, int index, const ImportOptions& options = {});
+/// Opens `path` and converts face `index` into a surface ready to drape.
+Result<MoldSurface> load_face(const std::string& path, int index,
+                              const ImportOptions& options = {});
 
 /// Opens `path` and sews faces `indices` (empty: all) into a shell (MoldFile::convert_shell).
 /// `warnings`, when given, receives the file's reader and sewing warnings.

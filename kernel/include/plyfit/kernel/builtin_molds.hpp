@@ -1,9 +1,10 @@
 #pragma once
-/// \file Built-in molds: exact analytic faces by name, so that a drape needs no file.
+/// \file Built-in molds: exact analytic faces by name, so that a drape needs no file, and
+/// built-in shells: several such faces sewn along shared edges.
 /// All have the outward (convex-side) normal; lengths in millimetres, angles in degrees.
 
-#include <plyfit/kernel/face.hpp>
-#include <plyfit/kernel/nurbs_curve.hpp>
+#include <plyfit/kernel/mold.hpp>
+#include <plyfit/kernel/nurbs.hpp>
 #include <plyfit/kernel/result.hpp>
 #include <plyfit/kernel/tolerances.hpp>
 
@@ -57,5 +58,16 @@ Result<FaceData> builtin_mold(const std::string& name, const std::map<std::strin
 /// Parses "NAME[:key=value,...]" (the part after "builtin:") into name and parameters.
 Result<std::pair<std::string, std::map<std::string, double>>> parse_builtin_spec(
     const std::string& spec);
+
+// ---- shells ----
+
+/// Every built-in shell.
+const std::vector<BuiltinInfo>& builtin_shells();
+/// True when `name` is a built-in shell.
+bool is_builtin_shell(const std::string& name);
+/// The shell of built-in `name` with `params` overriding the defaults. Errors name an unknown
+/// shell, an unknown key or an invalid value.
+Result<ShellData> builtin_shell(const std::string& name,
+                                const std::map<std::string, double>& params);
 
 }  // namespace plyfit

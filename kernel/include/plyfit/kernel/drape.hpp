@@ -2,10 +2,10 @@
 /// \file The drape: initial conditions (§4.2), the base path (§5.1), the frontier scan (§6.2)
 /// and the metrics of §7.1, over a DrapeSurface.
 
-#include <plyfit/kernel/face.hpp>
+#include <plyfit/kernel/metrics.hpp>
+#include <plyfit/kernel/mold.hpp>
 #include <plyfit/kernel/ply.hpp>
 #include <plyfit/kernel/result.hpp>
-#include <plyfit/kernel/solvers.hpp>
 #include <plyfit/kernel/tolerances.hpp>
 
 #include <atomic>
@@ -19,15 +19,19 @@
 
 namespace plyfit {
 
+class NodeIndex;  // NodeId -> node position (kernel internal)
+
 /// What became of a node the scan reached.
 enum class NodeStatus : std::uint8_t {
   kMapped,      ///< on the face, all constraints satisfied
   kOutside,     ///< its solution lies outside the face (domain or trims)
   kOffPly,      ///< beyond the ply rectangle: no cloth there
   kShearLimit,  ///< the thread angle would pass the lock angle (eq. 12) or come within
-                ///< Tolerances::fold_angle of 0 or pi, or its cell would fold (the net around
-                ///< it is sheared flat), or the node has one mapped neighbour and a locked one
-                ///< (its thread would fold past it)
+                ///< Tolerances::fold_angle of 0 or pi, or no point fits its links (the cell is
+                ///< sheared so flat they pass below the face), or its cell would fold (the net
+                ///< around it is sheared flat), or the node has one mapped neighbour and a
+                ///< stopped one (its thread would fold past it): ShearStop says which, and
+                ///< NodeCounts::shear_limit_reasons counts them
   kFailed,      ///< the solver found no solution (see the solver's reason)
   kOverlap,     ///< the cloth would lie on cloth already laid: the base path or the surface
                 ///< closes on itself (a closed plane section, a seam crossed all round), a
@@ -105,52 +109,6 @@ struct DrapeNode {
   }
 };
 
-/// Map from NodeId to node index. Regular nodes live in a sparse grid of dense 32 x 32
-/// blocks (neighbours share a block; a few bytes per node), path-only nodes in a small hash;
-/// memory grows with the nodes reached, never with the size of the ply.
-class NodeIndex {
- public:
-  /// Index of `id`, or -1.
-  std::int64_t find(const NodeId& id) const;
-  /// Inserts id -> index (id must be absent).
-  void insert(const NodeId& id, std::uint32_t index);
-  /// Removes `id`; false if it is absent. (A regular node's block stays: see truncate().)
-  bool erase(const NodeId& id);
-  /// What the index has allocated, for truncate().
-  struct Mark {
-    std::size_t blocks = 0, block_slots = 0, cells_capacity = 0;
-  };
-  Mark mark() const { return {block_count_, blocks_.size(), cells_.capacity()}; }
-  /// Drops the blocks of regular nodes added since `m` (their ids erased already) and gives
-  /// back the memory they took: the index allocates as if they had never been added.
-  void truncate(const Mark& m);
-  std::size_t size() const { return size_; }
-  std::size_t memory_bytes() const;
-
- private:
-  static constexpr int kBlockBits = 5;
-  static constexpr int kBlock = 1 << kBlockBits;  // 32 x 32 nodes per block
-  struct Slot {
-    std::uint64_t key;
-    std::uint32_t value;
-  };
-  // The key of NodeId::path(INT32_MIN): no node has it (path indices stay within
-  // +-Ply::kMaxPathNodes). (All ones would be the key of regular node (-1, -1).)
-  static constexpr std::uint64_t kEmpty = (std::uint64_t{0x7fffffff} << 32) | 0x80000000u;
-  static std::int64_t probe(const std::vector<Slot>& slots, std::uint64_t key);
-  static void put(std::vector<Slot>& slots, std::size_t& count, std::uint64_t key,
-                  std::uint32_t value);
-  static bool remove(std::vector<Slot>& slots, std::size_t& count, std::uint64_t key);
-  std::vector<Slot> blocks_;  // block key -> block number
-  std::size_t block_count_ = 0;
-  std::vector<std::int32_t> cells_;  // kBlock^2 entries per block, -1 = absent
-  std::vector<Slot> path_;           // path-only node key -> index
-  std::size_t path_count_ = 0;
-  std::size_t size_ = 0;
-  mutable std::uint64_t last_key_ = kEmpty;  // one-entry cache of the last block looked up
-  mutable std::int64_t last_block_ = -1;
-};
-
 /// A link between two nodes.
 enum class LinkKind : std::uint8_t { kWeft, kWarp, kBase };
 struct DrapeLink {
@@ -205,90 +163,16 @@ struct DrapeOptions {
   std::function<void(std::uint64_t mapped)> progress;
 };
 
-/// Node counts by status (regular and auxiliary nodes apart).
-struct NodeCounts {
-  std::uint64_t mapped = 0;     ///< mapped regular mesh points (the paper's "area")
-  std::uint64_t auxiliary = 0;  ///< mapped auxiliary base-path points
-  std::uint64_t outside = 0;
-  std::uint64_t off_ply = 0;
-  std::uint64_t shear_limit = 0;
-  std::uint64_t failed = 0;
-  std::uint64_t overlap = 0;   ///< stopped where the cloth would lie on itself
-  std::uint64_t conflict = 0;  ///< where two fronts of cloth met and disagree (kConflict)
-  std::uint64_t path_end = 0;  ///< base-path points past where the path ends (kPathEnd)
-  /// The failed nodes counted by the solver's reason (SolveResult::reason, e.g. "no convergence
-  /// within the iteration cap"); the counts add up to `failed`.
-  std::map<std::string, std::uint64_t> failed_reasons;
-  /// The conflict nodes counted by their reason ("the fronts disagree: a third link is off",
-  /// "the fronts disagree: the thread between them would stretch"); the counts add up to
-  /// `conflict`.
-  std::map<std::string, std::uint64_t> conflict_reasons;
-};
-
-/// The metrics of §7.1 and independent residual checks.
-struct DrapeMetrics {
-  NodeCounts nodes;
-  std::uint64_t area_mesh_points = 0;  ///< = nodes.mapped
-  double flat_area = 0.0;              ///< 2D area of the mapped cells (cells cut by the path count
-                                       ///< their mapped parts)
-  double surface_area = 0.0;           ///< 3D area those cells cover
-  double gamma_min = 0.0, gamma_max = 0.0;  ///< thread angles, radians (0 if none)
-  double shear_energy = 0.0;                ///< sum of cos^2(gamma) over mapped regular nodes
-  std::uint64_t angles = 0;                 ///< nodes with a thread angle
-  /// The paper's own thread angles (eq. 12, §7.1): at each mapped node solved from a weft and
-  /// a warp neighbour (DrapeNode::kSolvedTwo), the angle at the node between its links to those
-  /// two, one-sided, each link taken along +x or +y (a node solved from its -x and +y
-  /// neighbours has the angle pi minus that between the links, so that both definitions
-  /// measure one gamma). Nodes solved from one neighbour, or on the base path, have none.
-  struct PaperFigures {
-    double gamma_min = 0.0, gamma_max = 0.0;  ///< radians (0 if no node has the angle)
-    double energy = 0.0;                      ///< sum of cos^2(gamma) over those nodes (eq. 14)
-    double shear_max = 0.0;                   ///< largest |pi/2 - gamma| (radians)
-    std::uint64_t angles = 0;                 ///< nodes with the angle
-  };
-  PaperFigures paper;
-  /// max | |p_a - p_b| - rest | / d over links between mapped nodes.
-  double edge_length_max_rel = 0.0;
-  /// max |S(u, v) - p| over mapped nodes, with S evaluated afresh (model units).
-  double surface_distance_max = 0.0;
-  /// max distance of mapped base-path nodes from the base plane / d.
-  double base_plane_max_rel = 0.0;
-  /// Solver statistics.
-  std::uint64_t solves = 0, iterations = 0, evaluations = 0;
-  /// Largest final residual |F1| + |F2| of eq. (9) over the solves that mapped a node, / d
-  /// (links closed by no solve, where a node had more known neighbours than a solver uses,
-  /// show in edge_length_max_rel, not here).
-  double solve_residual_max_rel = 0.0;
-
-  // Figures derived from the above, owned here so that writers and commands do not compute
-  // them again.
-  /// Largest shear |pi/2 - gamma| over the nodes with a thread angle (radians; 0 if none).
-  double shear_max = 0.0;
-  /// surface_area over the area of the surface: the part of the face (or shell) the mapped
-  /// cells cover (more than 1 + kCoverageSlack: cloth on cloth, see DrapeResult::warnings).
-  double coverage = 0.0;
-  /// Largest crease angle (radians) of the shared edges that links between mapped nodes
-  /// cross (0 on one face, or where every join crossed is tangent).
-  double crease_angle_max = 0.0;
-  /// Per face of the surface (one for a single face).
-  struct FaceFigures {
-    double area = 0.0;          ///< the face's area
-    std::uint64_t mapped = 0;   ///< mapped regular nodes on the face
-    double covered_area = 0.0;  ///< 3D area of the mapped cells on it (each cell's area
-                                ///< shared equally among its corners' faces)
-  };
-  std::vector<FaceFigures> faces;
-};
-
 /// Everything the drape computed.
 struct DrapeResult {
   bool partial = false;                  ///< stopped early, or some nodes failed or conflict
   std::vector<std::string> warnings;     ///< why partial, and other notes
   std::vector<DrapeNode> nodes;          ///< every node reached, in resolution order
-  NodeIndex index;                       ///< NodeId -> position in `nodes`
+  std::shared_ptr<NodeIndex> index;      ///< NodeId -> position in `nodes` (kernel internal)
   std::vector<std::uint32_t> base_path;  ///< base-path nodes in order, mapped or kInHole
-  /// Why each failed or conflict node (kFailed, kConflict: its status tells which) was not
-  /// mapped: (index in `nodes`, the reason), in resolution order.
+  /// Why each failed, conflict or shear-limit node (kFailed, kConflict, kShearLimit: its
+  /// status tells which) was not mapped: (index in `nodes`, the reason; for kShearLimit the
+  /// code of its ShearStop), in resolution order.
   std::vector<std::pair<std::uint32_t, const char*>> failures;
   std::shared_ptr<const Ply> ply;
   DrapeMetrics metrics;
@@ -301,10 +185,7 @@ struct DrapeResult {
   double drape_ms = 0.0;              ///< wall time of drape()
 
   /// Node by id, or nullptr.
-  const DrapeNode* find(const NodeId& id) const {
-    const auto k = index.find(id);
-    return k < 0 ? nullptr : &nodes[static_cast<std::size_t>(k)];
-  }
+  const DrapeNode* find(const NodeId& id) const;
   /// The node across the thread link from `id` in direction dir, if reached.
   const DrapeNode* neighbour(const NodeId& id, ThreadDir dir) const;
   /// The node across the thread link from node n in direction dir, if reached.
@@ -326,9 +207,18 @@ struct DrapeResult {
   double bytes_per_node() const;
 };
 
+/// A mapped cell part: its cell (lower-left regular node (i, j)) and its nodes (indices into
+/// DrapeResult::nodes, counter-clockwise).
+struct MappedCell {
+  std::int32_t i = 0, j = 0;
+  std::vector<std::uint32_t> nodes;
+};
+/// Every mapped cell part, row by row (j, then i), parts of one cell in cell_parts order.
+std::vector<MappedCell> mapped_cells(const DrapeResult& r);
+
 /// Drapes the ply on `surface`. Errors (bad input) name the problem; numerical trouble during
 /// the scan is reported per node, never as an error.
-Result<DrapeResult> drape(const DrapeSurface& surface, const DrapeProblem& problem,
+Result<DrapeResult> drape(const MoldSurface& surface, const DrapeProblem& problem,
                           const DrapeOptions& options = {});
 
 /// A drape leaves the overlap test's grid (up to 64 MiB of pages and its slot table) to the

@@ -3,8 +3,9 @@
 /// in ply coordinates.
 
 #include <plyfit/kernel/drape.hpp>
-#include <plyfit/kernel/face.hpp>
+#include <plyfit/kernel/mold.hpp>
 
+#include <algorithm>
 #include <optional>
 #include <vector>
 
@@ -50,10 +51,14 @@ struct FlatPatternOptions {
   /// Minimum width of cloth and of gaps in the cut outline (model units); 0 makes the cut
   /// outline the exact one; empty: half the net spacing (the larger of d_weft, d_warp).
   std::optional<double> min_width;
+  /// The minimum width used for a ply of `spec`: min_width, or its default.
+  double width_for(const PlySpec& spec) const {
+    return min_width.value_or(0.5 * std::max(spec.d_weft, spec.d_warp));
+  }
 };
 
 /// Computes the flat pattern of a drape on `surface`.
-FlatPattern flat_pattern(const DrapeSurface& surface, const DrapeResult& result,
+FlatPattern flat_pattern(const MoldSurface& surface, const DrapeResult& result,
                          const FlatPatternOptions& options = {});
 
 }  // namespace plyfit

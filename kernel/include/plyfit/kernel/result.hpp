@@ -1,20 +1,139 @@
 #pragma once
-/// \file Result<T>: a value or an error message, for expected failures of user input.
+/// \file Result<T>: a value or an Error; Error and Warning: codes with data.
 ///
-/// Exceptions are kept for broken internal invariants; everything a user can get wrong
-/// (a bad file, a bad option, an invalid NURBS definition) comes back as an Error.
+/// Exceptions are kept for broken internal invariants; everything a user can get wrong (a bad
+/// file, a bad option, an invalid NURBS definition) comes back as an Error: a code, the input it
+/// blames and the values its text needs. Text is made only at the edge (the CLI, report.json:
+/// plyfit/exporters/messages.hpp); code, tests and callers look at codes, never at words.
 
-#include <optional>
+#include <cstdint>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <variant>
+#include <vector>
 
 namespace plyfit {
 
-/// An expected failure: a one-line, user-facing message.
+/// The error codes, one line each: X(Name, name) makes ErrorCode::kName, printed "name", whose
+/// text is text_name() in exporters/src/render/ (a code without one does not build). Grouped by
+/// the module that raises them.
+#define PLYFIT_ERROR_CODES(X)                                                               \
+  /* general */                                                                             \
+  X(Internal, internal)                                                                     \
+  X(Cancelled, cancelled)                                                                   \
+  /* not yet given a code of its own: its sentence is values[0] (to go: see Error(text)) */ \
+  X(Text, text)                                                                             \
+  /* kernel: drape problem and ply */                                                       \
+  X(SweepCountMismatch, sweep_count_mismatch)                                               \
+  X(StartNotFinite, start_not_finite)                                                       \
+  X(BaseNormalZero, base_normal_zero)                                                       \
+  X(LockAngleRange, lock_angle_range)                                                       \
+  X(StartNotProjected, start_not_projected)                                                 \
+  X(StartNoNormal, start_no_normal)                                                         \
+  X(BaseNormalTangent, base_normal_tangent)                                                 \
+  X(Sweep3dZero, sweep3d_zero)                                                              \
+  X(Sweep3dAlongPath, sweep3d_along_path)                                                   \
+  X(Sweeps3dSameSide, sweeps3d_same_side)                                                   \
+  X(SweepZero, sweep_zero)                                                                  \
+  X(SweepAlongPath, sweep_along_path)                                                       \
+  X(SpacingNotPositive, spacing_not_positive)                                               \
+  X(PlySizeNotPositive, ply_size_not_positive)                                              \
+  X(Start2dNotFinite, start2d_not_finite)                                                   \
+  X(BaseDirZero, base_dir_zero)                                                             \
+  X(NoSweep, no_sweep)                                                                      \
+  X(TooManySweeps, too_many_sweeps)                                                         \
+  X(SweepsSameSide, sweeps_same_side)                                                       \
+  X(Start2dOffPly, start2d_off_ply)                                                         \
+  /* kernel: geometry (NURBS), surface (faces, shells), molds, search */                    \
+  /* importers and the OpenCASCADE module */                                                \
+  X(FileNotReadable, file_not_readable)                                                     \
+  X(FileNumberNotFinite, file_number_not_finite)                                            \
+  X(FileNumberTooLarge, file_number_too_large)                                              \
+  X(StepWordForNumber, step_word_for_number)                                                \
+  X(StepNestingTooDeep, step_nesting_too_deep)                                              \
+  X(StepReferenceCycle, step_reference_cycle)                                               \
+  X(StepReferencesTooDeep, step_references_too_deep)                                        \
+  X(FaceGeometryNotFinite, face_geometry_not_finite)                                        \
+  X(FaceGeometryTooLarge, face_geometry_too_large)                                          \
+  X(FaceWeightNotPositive, face_weight_not_positive)                                        \
+  X(FaceToleranceInvalid, face_tolerance_invalid)                                           \
+  X(FaceScaleInvalid, face_scale_invalid)                                                   \
+  X(FaceAreaNotMeasured, face_area_not_measured)                                            \
+  /* exporters */                                                                           \
+  /* cli */
+
+/// What went wrong (see PLYFIT_ERROR_CODES).
+enum class ErrorCode : std::uint16_t {
+#define PLYFIT_ENUM_ENTRY(name, snake) k##name,
+  PLYFIT_ERROR_CODES(PLYFIT_ENUM_ENTRY)
+#undef PLYFIT_ENUM_ENTRY
+};
+/// The code's name, e.g. "spacing_not_positive" (stable: printed by the CLI, checked by tests).
+const char* to_string(ErrorCode code);
+
+/// A value an error or warning carries for its text: a count or index, a measure, a name.
+using MessageValue = std::variant<std::int64_t, double, std::string>;
+
+/// An expected failure: its code, the input it blames and its data.
 struct Error {
-  std::string message;
+  ErrorCode code = ErrorCode::kInternal;
+  /// The input it blames, as its caller knows it: a drape input by its scene key ("spacing",
+  /// "start3d", "sweep2d"), a file by its path; empty when the caller adds it (Error::in()).
+  std::string input;
+  /// The code's values, in the order its text uses them (messages.cpp lists them per code).
+  std::vector<MessageValue> values;
+  /// The face (its index in the mold file) it concerns, or -1.
+  int face = -1;
+  /// Where in its input: a file's entity ("#12" in STEP, "DE 34" in IGES), a ply's name.
+  std::string where;
+  /// The error this one wraps (a face that does not convert because its surface does not): its
+  /// text follows this one's.
+  std::shared_ptr<const Error> cause;
+
+  Error() = default;
+  Error(ErrorCode c, std::string blamed = {}, std::vector<MessageValue> v = {})
+      : code(c), input(std::move(blamed)), values(std::move(v)) {}
+  /// An error not yet given a code of its own (ErrorCode::kText): its sentence as it is.
+  /// Transitional: every raiser is being given codes.
+  explicit Error(std::string sentence) : code(ErrorCode::kText), values{std::move(sentence)} {}
+  /// This error, wrapping `inner` (its cause).
+  Error&& because(Error inner) && {
+    cause = std::make_shared<const Error>(std::move(inner));
+    return std::move(*this);
+  }
+  /// Names the input it blames, unless it names one already (the innermost knows best).
+  Error& in(const std::string& blamed) & {
+    if (input.empty()) input = blamed;
+    return *this;
+  }
+  Error&& in(const std::string& blamed) && { return std::move(in(blamed)); }
+  /// Says which face it concerns, unless it says so already.
+  Error&& at_face(int f) && {
+    if (face < 0) face = f;
+    return std::move(*this);
+  }
+};
+
+/// The warning codes, as PLYFIT_ERROR_CODES: X(Name, name).
+#define PLYFIT_WARNING_CODES(X) \
+  /* general */                 \
+  X(Note, note)
+
+/// What a run reports that is not an error (see PLYFIT_WARNING_CODES).
+enum class WarningCode : std::uint16_t {
+#define PLYFIT_ENUM_ENTRY(name, snake) k##name,
+  PLYFIT_WARNING_CODES(PLYFIT_ENUM_ENTRY)
+#undef PLYFIT_ENUM_ENTRY
+};
+/// The code's name, e.g. "start_far".
+const char* to_string(WarningCode code);
+
+/// Something a run reports that did not stop it: its code and data.
+struct Warning {
+  WarningCode code = WarningCode::kNote;
+  std::vector<MessageValue> values;  ///< in the order its text uses them (messages.cpp)
 };
 
 /// Either a T or an Error (a minimal `tl::expected`).
@@ -51,7 +170,9 @@ class [[nodiscard]] Result {
 
  private:
   void check() const {
-    if (!ok()) throw std::logic_error("Result::value() on an error: " + std::get<1>(v_).message);
+    if (!ok())
+      throw std::logic_error(std::string("Result::value() on an error: ") +
+                             to_string(std::get<1>(v_).code));
   }
   std::variant<T, Error> v_;
 };

@@ -1,0 +1,136 @@
+#pragma once
+// A drape job: every input of `plyfit drape`, from command-line flags and scene files alike,
+// and running it (import, drape, flat pattern, outputs). Shared by drape, batch and compare.
+
+#include <plyfit/kernel/drape.hpp>
+#include <plyfit/kernel/optimize.hpp>
+#include <plyfit/kernel/result.hpp>
+
+#include <atomic>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace plyfit::exporters {
+struct RunInfo;
+}
+
+namespace plyfit::cli {
+
+/// One option of the drape job: its key (flag --key, scene key `key`), value form, default
+/// (empty: none) and help.
+struct OptionSpec {
+  std::string key;
+  std::string value;  ///< e.g. "X,Y"; empty for a switch
+  std::string def;    ///< default as text, empty if none
+  std::string help;
+  bool repeatable = false;
+  std::string section;  ///< scene-file section it is listed under by --dump-scene
+};
+
+/// All options of a drape job, in help order.
+const std::vector<OptionSpec>& drape_options();
+
+/// Raw values by key, before conversion (switches have the value "true").
+struct RawOptions {
+  std::map<std::string, std::vector<std::string>> values;
+  /// Folder that relative paths in each key's value are relative to (the scene file's
+  /// folder, or the working directory for flags).
+  std::map<std::string, std::string> dirs;
+  /// Where each key's value came from ("command line" or a scene file), for messages: a flag
+  /// that overrides a scene key is named as the flag.
+  std::map<std::string, std::string> origins;
+  std::string origin;  ///< where they came from, for messages ("command line", a file path)
+};
+
+/// Every input of a drape, converted and validated.
+struct DrapeJob {
+  std::string mold;  ///< file path (resolved) or "builtin:NAME[:k=v,...]"
+  int face = 0;
+  std::vector<int> faces;  ///< --faces: file faces sewn into a shell (empty: --face)
+  bool all_faces = false;  ///< --faces all
+  std::string format;      ///< importer override
+  DrapeProblem problem;
+  DrapeOptions drape;  ///< lock angle, tolerances, guess rule, node cap
+  double lock_angle_deg = 90.0;
+  double tolerance_rel = 1e-14;
+  int max_iterations = 40;
+  bool flip_normal = false;
+  std::string outdir;
+  std::vector<std::string> outputs;
+  int curve_degree = 1;
+  Vec3 view = Vec3(1, 1, 1);
+  bool dxf_threads = false;  ///< THREADS layer in flat.dxf
+  /// --min-width: the cut outline's minimum width; empty: half the spacing.
+  std::optional<double> min_width;
+  double warn_angle_deg = 25.0;
+  std::string ply_name = "ply";
+  double ply_angle_deg = 0.0;      ///< the ply's fibre direction on the part (labels)
+  std::string material = "woven";  ///< name in the materials table
+  std::string material_label;      ///< the material's label
+  std::string materials_file;      ///< materials table file; empty: plyfit's own
+  std::string scene;               ///< scene file the job came from, if any
+  /// How messages name the inputs drape() checks against the mold (start3d, base-normal,
+  /// sweep3d, sweep2d, lock-angle): "--key", or "FILE: key 'key'" for a scene's key.
+  std::map<std::string, std::string> input_names;
+};
+
+/// Parses flags (the arguments after `plyfit drape`, minus a leading scene file) into raw
+/// values. Unknown flags are errors.
+Result<RawOptions> raw_from_args(const std::vector<std::string>& args);
+/// Reads a scene file (INI; sections allowed, keys as the flags without dashes).
+Result<RawOptions> raw_from_scene(const std::string& path);
+/// Values of `over` replace those of `base` key by key.
+RawOptions merge(const RawOptions& base, const RawOptions& over);
+
+/// Converts raw values into a job. `need_output` requires the output folder.
+Result<DrapeJob> make_job(const RawOptions& raw, bool need_output = true);
+
+/// The effective scene as INI text (defaults filled in), loadable again with
+/// raw_from_scene.
+std::string dump_scene(const DrapeJob& job);
+
+/// What a finished job reports (also for batch summaries).
+struct JobOutcome {
+  std::string status = "error";  ///< ok, partial, error
+  std::string error;             ///< for status error
+  std::uint64_t mapped = 0;
+  double shear_max_deg = 0.0;
+  double total_ms = 0.0;
+  std::vector<std::string> files;
+  DrapeMetrics metrics;
+  double face_area = 0.0;
+  double flat_outline_area = 0.0;  ///< area of the cut outline (FlatPattern::cut_area)
+  /// The share of the surface the flat pattern's outline covers (outline_coverage.hpp).
+  double outline_coverage = 0.0;
+  std::vector<std::string> warnings;  ///< the drape's (why partial, and notes)
+  /// The mold's (reading and sewing it: report.json's mold.warnings, e.g. faces that share
+  /// no edge form separate shells).
+  std::vector<std::string> mold_warnings;
+};
+
+/// Imports the surface a job drapes: a built-in mold (one face, or a built-in shell), one face
+/// of a file (--face), or several faces of a file sewn into a shell (--faces), with the job's
+/// side applied; `run`, if given, gets what the report says of the mold. run_job's import,
+/// shared with `plyfit optimize` (which drapes one surface many times).
+Result<MoldSurface> load_surface(const DrapeJob& job, exporters::RunInfo* run = nullptr);
+
+/// Runs a job end to end; outputs are written atomically into job.outdir. `cancel` stops
+/// the drape (no files are written then). Progress goes to stderr when it is a terminal and
+/// `progress` is true.
+Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel = nullptr,
+                           bool progress = false);
+
+/// Parses a finite number; the error names `what`.
+Result<double> parse_number(const std::string& text, const std::string& what);
+
+/// The scene the search of initial conditions starts from (plyfit optimize).
+SearchScene search_scene(const DrapeJob& job);
+/// The scene of a candidate of the search: the scene with the candidate's seed, ply angle and
+/// sweeps (both sides of the base path), loadable with dump_scene.
+DrapeJob candidate_job(const DrapeJob& scene, const MoldSurface& face, const OptimizeResult& r,
+                       const Candidate& c);
+
+}  // namespace plyfit::cli

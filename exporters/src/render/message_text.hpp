@@ -1,0 +1,36 @@
+#pragma once
+// The text functions of the error and warning codes: text_<name>(values) for each code of
+// PLYFIT_ERROR_CODES and warning_<name>(values) for each of PLYFIT_WARNING_CODES, defined in
+// the error_text_*.cpp / warning_text*.cpp files of this folder by the module that raises them.
+
+#include <plyfit/kernel/result.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace plyfit::exporters::render {
+
+/// A code's values as its text reads them (by position, as the raiser gave them). A missing or
+/// mistyped value shows as -1, 0 or "?" (a bug, but never a crash while reporting a problem).
+struct Values {
+  const std::vector<MessageValue>& v;
+  std::int64_t count(std::size_t k) const;
+  double number(std::size_t k) const;
+  std::string text(std::size_t k) const;
+  /// count(k) in decimal.
+  std::string n(std::size_t k) const { return std::to_string(count(k)); }
+  /// number(k) to three significant digits (a measure in a sentence).
+  std::string brief(std::size_t k) const;
+  /// number(k) with std::to_string's six decimals (an input echoed as given).
+  std::string fixed(std::size_t k) const { return std::to_string(number(k)); }
+};
+
+#define PLYFIT_DECLARE_TEXT(name, snake) std::string text_##snake(const Values& x);
+PLYFIT_ERROR_CODES(PLYFIT_DECLARE_TEXT)
+#undef PLYFIT_DECLARE_TEXT
+#define PLYFIT_DECLARE_TEXT(name, snake) std::string warning_##snake(const Values& x);
+PLYFIT_WARNING_CODES(PLYFIT_DECLARE_TEXT)
+#undef PLYFIT_DECLARE_TEXT
+
+}  // namespace plyfit::exporters::render

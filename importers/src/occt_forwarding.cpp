@@ -1,0 +1,38 @@
+// Importers whose reader lives in the OpenCASCADE module (occt/), loaded on the first open.
+#include "formats.hpp"
+
+#include <plyfit/occt/importer_api.hpp>
+#include <plyfit/occt/module.hpp>
+
+namespace plyfit::importers {
+
+namespace {
+
+// The module's importers, loading the module on first use.
+Result<const OcctImporterApi*> occt_importers() {
+  auto entry = plyfit::occt::occt_module_symbol(kImportersEntry);
+  if (!entry) return entry.error();
+  const OcctImporterApi* api = reinterpret_cast<OcctImporterEntry>(*entry)();
+  if (!api || api->abi != plyfit::occt::kOcctModuleAbi)
+    return Error{std::string("plyfit's OpenCASCADE module ") + plyfit::occt::kOcctModuleFile +
+                 " is from another build of plyfit (interface " +
+                 std::to_string(api ? api->abi : -1) + ", expected " +
+                 std::to_string(plyfit::occt::kOcctModuleAbi) + ")"};
+  return api;
+}
+
+}  // namespace
+
+Importer occt_importer(std::string key, std::vector<std::string> extensions,
+                       std::string description) {
+  Importer imp{key, std::move(extensions), std::move(description), {}};
+  imp.open = [key](const std::string& path,
+                   const ImportOptions& options) -> Result<std::unique_ptr<MoldFile>> {
+    auto api = occt_importers();
+    if (!api) return Error{path}.because(api.error());
+    return (*api)->open(key, path, options);
+  };
+  return imp;
+}
+
+}  // namespace plyfit::importers

@@ -1,0 +1,126 @@
+// §5.1: the base path, mapped both ways from the start by intersecting the base plane, a
+// sphere of the link length about the last point, and the surface.
+#include "drape/scan/scanner.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace plyfit::detail {
+
+// The base path both ways from the start.
+void Scanner::map_path(const Vec3& t3) {
+  const PathNode* p0 = ply_.path_node(0);
+  const std::uint32_t i0 = node_for(p0->id, p0->pos);
+  DrapeNode& n0 = node(i0);
+  n0.status = NodeStatus::kMapped;
+  n0.point = res_.start_point;
+  n0.set_at(res_.start_at);
+  n0.flags |= DrapeNode::kOnPath | DrapeNode::kStart;
+  n0.order = order_++;
+  overlaps(i0);  // records the start
+  std::vector<std::uint32_t> ahead{i0}, behind;
+  for (int dirn = 0; dirn < 2; ++dirn) {
+    const bool fwd = dirn == 0;
+    auto& chain = fwd ? ahead : behind;
+    std::uint32_t prev = i0;
+    Vec3 travel = fwd ? t3 : Vec3(-t3);
+    for (std::int32_t k = fwd ? 1 : -1;; k += fwd ? 1 : -1) {
+      const PathNode* pk = ply_.path_node(k);
+      if (!pk) {
+        if (ply_.spec().rect) ++path_off_ply_;  // the cloth ends here
+        break;
+      }
+      const double rest = std::abs(pk->tau - ply_.path_node_if(fwd ? k - 1 : k + 1)->tau);
+      const PathNode pcopy = *pk;  // path_node() may reallocate; keep a copy
+      if (res_.nodes.size() >= opt_.max_nodes) {
+        truncated_ = true;
+        break;
+      }
+      const std::uint32_t idx = node_for(pcopy.id, pcopy.pos);
+      node(idx).flags |= DrapeNode::kOnPath;
+      const DrapeNode& from = node(prev);
+      const SolveResult r =
+          solve_base_path(s_, {from.point, from.at(), res_.base_normal, travel, rest}, st_);
+      resolve(idx, r);
+      // Across a hole of the face the path goes on, on the face's surface under the hole
+      // (kInHole: outside, extended), and comes back onto the face beyond it: the seed curve
+      // is not cut by a cutout. Past the outer boundary it stops.
+      if (!node(idx).carries()) {
+        path_stop_[dirn] = pcopy.pos;
+        break;
+      }
+      if (overlaps(idx)) {  // a closed plane section: the path came round
+        stop_overlap(idx);
+        break;
+      }
+      chain.push_back(idx);
+      travel = node(idx).point - node(prev).point;
+      prev = idx;
+      if (cancelled_now()) break;
+    }
+  }
+  std::reverse(behind.begin(), behind.end());
+  res_.base_path = behind;
+  res_.base_path.insert(res_.base_path.end(), ahead.begin(), ahead.end());
+  for (std::uint32_t k = 0; k < res_.base_path.size(); ++k) path_pos_[res_.base_path[k]] = k;
+  for (std::uint32_t k : res_.base_path) push_neighbours(k);
+}
+
+// Direction of the base path at path node a, along +tau (a chord to a path neighbour).
+Vec3 Scanner::path_chord(const DrapeNode& a) const {
+  const auto it = path_pos_.find(static_cast<std::uint32_t>(&a - res_.nodes.data()));
+  if (it == path_pos_.end()) return res_.base_tangent;
+  const auto& bp = res_.base_path;
+  const std::uint32_t k = it->second;
+  if (k + 1 < bp.size()) return res_.nodes[bp[k + 1]].point - a.point;
+  if (k > 0) return a.point - res_.nodes[bp[k - 1]].point;
+  return res_.base_tangent;
+}
+
+// The slit a path stopped at a gap leaves (see PathSlit): the lattice links around the
+// path's line, beyond both its ends, whose two ends lie on the two sides and are mapped.
+Scanner::PathSlit Scanner::path_slits() const {
+  PathSlit out;
+  if (res_.base_path.empty() || ply_.sweep_for_side(1) < 0 || ply_.sweep_for_side(-1) < 0)
+    return out;
+  const Vec2 o = ply_.spec().start, dir = ply_.base_dir();
+  double t0 = std::numeric_limits<double>::infinity(), t1 = -t0;
+  for (const std::uint32_t k : res_.base_path) {
+    const double t = (res_.nodes[k].ply - o).dot(dir);
+    t0 = std::min(t0, t);
+    t1 = std::max(t1, t);
+  }
+  const double merge = opt_.tol.ply_merge_rel * ply_.d();
+  auto mapped_at = [&](std::int32_t i, std::int32_t j) {
+    const DrapeNode* n = res_.find(NodeId::regular(i, j));
+    return n && n->mapped();
+  };
+  constexpr std::int32_t kSteps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+  for (const DrapeNode& a : res_.nodes) {
+    if (!a.mapped() || a.id.is_path_only() || far_from_path(a.ply) || ply_.side(a.ply) <= 0)
+      continue;
+    for (const auto& st : kSteps) {
+      // The node across the line: one link on, or two where the one between lies on it.
+      std::int32_t i = a.id.i + st[0], j = a.id.j + st[1];
+      int sb = ply_.side(ply_.pos(i, j));
+      if (sb > 0) continue;
+      if (sb == 0) {
+        if (mapped_at(i, j)) continue;
+        i += st[0];
+        j += st[1];
+        sb = ply_.side(ply_.pos(i, j));
+      }
+      if (sb >= 0 || !mapped_at(i, j)) continue;
+      // Where the segment crosses the line, along the path.
+      const Vec2 pb = ply_.pos(i, j);
+      const double ca = cross2(dir, a.ply - o), cb = cross2(dir, pb - o);
+      const double t = (a.ply + ca / (ca - cb) * (pb - a.ply) - o).dot(dir);
+      if (t >= t0 - merge && t <= t1 + merge) continue;
+      if (out.links++ == 0) out.stop = path_stop_[t > t1 ? 0 : 1];
+    }
+  }
+  return out;
+}
+
+}  // namespace plyfit::detail

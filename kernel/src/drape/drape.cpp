@@ -1,0 +1,342 @@
+// The drape: validation of the inputs, the 3D initial conditions of §4.2.2 (start projected,
+// base plane, sweeps paired with the 2D ones by handedness), then the scan and the metrics.
+#include "drape/drape.hpp"
+
+#include "drape/metrics.hpp"
+#include "drape/scan/scanner.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+namespace plyfit {
+
+namespace {
+
+using detail::kPi;
+
+// The base plane must cut the surface at the start: the sine of the angle between the base
+// plane and the tangent plane there must exceed this.
+constexpr double kMinPlaneCutSin = 1e-3;
+constexpr double kRadToDeg = 180.0 / kPi;
+// Node-count estimate (expected_nodes): samples per cell width across the face, the grid's
+// bounds per direction, a relative margin, boundary-ring nodes per sqrt(nodes), and a floor.
+constexpr double kEstimateSamplesPerCell = 0.3;
+constexpr int kEstimateGridMin = 8;
+constexpr int kEstimateGridMax = 64;
+constexpr double kEstimateMargin = 1.05;
+constexpr double kEstimateRing = 8.0;
+constexpr double kEstimateMinNodes = 64.0;
+// The mapped cells (flat chords of the surface, inside it) cover at most its area; a little
+// more is the trim polylines' chord error. More is cloth lying on cloth: the overlap test
+// runs at every mapped node on every face (unless DrapeOptions::overlap_test is off), but it
+// stops only a node within kOverlapRel * d of a laid node; cloth that comes back with its
+// nodes between the laid ones (all farther than that) overlaps unseen. The coverage shows it.
+constexpr double kCoverageSlack = 0.01;
+
+// Number of nodes the scan is expected to reach, to size the node vector once (no
+// reallocation copies, no doubled capacity): the face area on the swept side(s) of the base
+// plane, by the midpoint rule on a grid in (u, v), over the cell area, plus a ring of
+// boundary and path nodes; bounded by the ply rectangle and the node cap. The grid has about
+// kEstimateSamplesPerCell samples per ply cell across the face, from kEstimateGridMin to
+// kEstimateGridMax per direction (a fraction of a percent of the drape's time).
+std::size_t expected_nodes(const DrapeSurface& s, const Ply& ply, const Vec3& start,
+                           const Vec3& base_normal, const std::vector<Vec3>& sweeps,
+                           std::uint64_t cap) {
+  const double dw = ply.spec().d_weft, dp = ply.spec().d_warp;
+  const int g = std::clamp(static_cast<int>(kEstimateSamplesPerCell * s.size() / std::min(dw, dp)),
+                           kEstimateGridMin, kEstimateGridMax);
+  bool plus = false, minus = false;
+  for (const Vec3& w : sweeps) (base_normal.dot(w) > 0 ? plus : minus) = true;
+  double area = 0.0;
+  for (std::int32_t f = 0; f < s.face_count(); ++f) {
+    const SurfaceLocation chart(Vec2::Zero(), f);
+    const ParamDomain& dom = s.domain(chart);
+    const double hu = dom.width_u() / g, hv = dom.width_v() / g;
+    for (int a = 0; a < g; ++a) {
+      for (int b = 0; b < g; ++b) {
+        const SurfaceLocation at =
+            chart.with_uv(Vec2(dom.u0 + (a + 0.5) * hu, dom.v0 + (b + 0.5) * hv));
+        if (!s.contains(at)) continue;
+        const SurfaceEval1 e = s.eval1(at);
+        if (!e.ok) continue;
+        const double side = base_normal.dot(e.p - start);
+        if (!((side >= 0 && plus) || (side <= 0 && minus))) continue;
+        area += e.du.cross(e.dv).norm() * hu * hv;
+      }
+    }
+  }
+  double n = area / (dw * dp);
+  if (ply.spec().rect)
+    n = std::min(n, (ply.spec().rect->x() / dw + 2) * (ply.spec().rect->y() / dp + 2));
+  n = kEstimateMargin * n + kEstimateRing * std::sqrt(n) + kEstimateMinNodes;
+  return static_cast<std::size_t>(std::min(n, static_cast<double>(cap)));
+}
+
+// x in the shortest of 3 significant digits (messages).
+std::string brief(double x) {
+  std::ostringstream os;
+  os.precision(3);
+  os << x;
+  return os.str();
+}
+
+// Warnings of a drape that ran but is not what was asked for: a start far from the surface, no
+// cell mapped at all (partial), or a sweep that maps nothing while another does (a note); the
+// last two only for a scan that ran to its end (`complete`).
+void judge_drape(const DrapeSurface& s, const DrapeProblem& pb, const Tolerances& tol,
+                 bool complete, DrapeResult& res) {
+  const double far = tol.start_far_rel * s.size();
+  if (res.start_moved > far) {
+    res.partial = true;
+    const Vec3& p = res.start_point;
+    res.warnings.push_back(
+        "the 3D start lies " + brief(res.start_moved) + " mm from the surface, more than " +
+        brief(tol.start_far_rel) + " times its size (" + brief(s.size()) +
+        " mm, the bounding-box diagonal): the drape starts at the nearest point of the surface, (" +
+        brief(p.x()) + ", " + brief(p.y()) + ", " + brief(p.z()) +
+        "), far from where it was asked to; check the start, the face and "
+        "the unit");
+  }
+  if (!complete) return;
+  if (!(res.metrics.flat_area > 0.0)) {
+    res.partial = true;
+    res.warnings.push_back(
+        "the drape maps no cell: the cloth leaves the face at the base path on every swept side "
+        "(do the sweep directions point into the face from the base path?)");
+    return;
+  }
+  const Ply& P = *res.ply;
+  std::vector<std::uint64_t> per_sweep(pb.sweeps.size(), 0);
+  for (const DrapeNode& n : res.nodes) {
+    if (!n.mapped() || n.id.is_path_only() || n.has(DrapeNode::kOnPath)) continue;
+    const int k = P.sweep_for_side(P.side(n.ply));
+    if (k >= 0 && static_cast<std::size_t>(k) < per_sweep.size()) ++per_sweep[k];
+  }
+  for (std::size_t k = 0; k < per_sweep.size(); ++k)
+    if (per_sweep[k] == 0)
+      res.warnings.push_back("sweep direction " + std::to_string(k + 1) +
+                             " maps no node: the cloth leaves the face at the base path on its "
+                             "side (the start on the face's edge?)");
+}
+
+// Length of the surface's free boundary: its loops' segments in 3D, each followed in its
+// face's parameters by up to kBoundaryPieces chords (a domain rectangle's side can be a whole
+// circle), kBoundaryChords chords per loop at least; collapsed edges, seams and junctions left
+// out.
+constexpr int kBoundaryPieces = 16;
+constexpr std::size_t kBoundaryChords = 256;
+double boundary_length(const DrapeSurface& s) {
+  double len = 0.0;
+  for (const BoundaryLoop& l : s.boundary()) {
+    const std::size_t n = std::min(l.points.size(), l.kinds.size());
+    const int pieces = static_cast<int>(
+        std::clamp<std::size_t>(kBoundaryChords / std::max<std::size_t>(n, 1), 1, kBoundaryPieces));
+    for (std::size_t k = 0; k < n; ++k) {
+      const SurfaceLocation& a = l.points[k];
+      const SurfaceLocation& b = l.points[(k + 1) % l.points.size()];
+      if (l.kinds[k] != BoundaryLoop::kEdge || a.face != b.face) continue;
+      Vec3 prev = Vec3::Zero();
+      for (int i = 0; i <= pieces; ++i) {
+        const SurfaceEval1 e = s.eval1(a.with_uv(a.uv + (b.uv - a.uv) * (double(i) / pieces)));
+        if (!e.ok) break;
+        if (i > 0) len += (e.p - prev).norm();
+        prev = e.p;
+      }
+    }
+  }
+  return len;
+}
+
+// A drape that ends without stopping early may still leave part of the surface uncovered: a
+// lock, the fold guards, or sweeps that cannot reach round a concave outline (the paper's
+// uncalculated regions, Fig. 3). The mapped cells always miss a band along the boundary, at
+// most a cell's diagonal wide (cells that cross it are not counted); more uncovered area than
+// that band is worth a warning, with the stops inside the surface that bound the cloth.
+void warn_uncovered(const DrapeSurface& s, DrapeResult& res) {
+  const DrapeMetrics& m = res.metrics;
+  const PlySpec& spec = res.ply->spec();
+  const double band = std::hypot(spec.d_weft, spec.d_warp) * boundary_length(s);
+  const double uncovered = s.area() * (1.0 - std::min(m.coverage, 1.0));
+  if (!(uncovered > band) || spec.rect) return;  // a ply rectangle covers what it covers
+  const NodeCounts& c = m.nodes;
+  std::string stops;
+  auto add = [&](std::uint64_t count, const char* what) {
+    if (count) stops += (stops.empty() ? "" : ", ") + std::to_string(count) + " " + what;
+  };
+  add(c.shear_limit, "at the shear limit");
+  add(c.overlap, "overlapping");
+  add(c.failed, "failed");
+  add(c.conflict, "in conflict");
+  add(c.path_end, "past the base path's end");
+  res.warnings.push_back(
+      "the mapped cells cover " + std::to_string(static_cast<int>(std::lround(100 * m.coverage))) +
+      "% of the surface, less than the cells along its boundary explain: " +
+      (stops.empty() ? std::string("the sweeps do not reach the rest (another start, base path "
+                                   "or sweep may)")
+                     : "the cloth stops inside it (" + stops + ")"));
+}
+
+// A warning for each end of the base path (one for a path of one point) where the base
+// plane's section turned back or ended within one link (NodeStatus::kPathEnd): where, and the angle
+// between the base plane and the tangent plane at the path's last point there.
+void warn_path_ends(const DrapeSurface& s, DrapeResult& res) {
+  if (res.metrics.nodes.path_end == 0 || res.base_path.empty()) return;
+  const DrapeNode& a = res.nodes[res.base_path.front()];
+  const DrapeNode& b = res.nodes[res.base_path.back()];
+  const DrapeNode* warned = nullptr;  // a path of one point ends both ways there: one warning
+  for (const DrapeNode& n : res.nodes) {
+    if (n.status != NodeStatus::kPathEnd) continue;
+    const DrapeNode& last = (a.ply - n.ply).norm() <= (b.ply - n.ply).norm() ? a : b;
+    if (&last == warned) continue;
+    warned = &last;
+    const SurfaceNormal sn = s.normal(last.at());
+    const double sine = std::min(sn.n.cross(res.base_normal).norm(), 1.0);
+    res.partial = true;
+    res.warnings.push_back(
+        "the base path ends at ply (" + brief(last.ply.x()) + ", " + brief(last.ply.y()) +
+        "): the base plane lies " + brief(std::asin(sine) * kRadToDeg) +
+        " deg from the surface's tangent plane there and its section turns back (or ends where "
+        "the plane touches the surface) within one link ahead, so the path cannot go on; a "
+        "base-plane normal more nearly along the surface there carries the path further");
+  }
+}
+
+}  // namespace
+
+Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const DrapeOptions& opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto ply = Ply::create(pb.ply, opt.tol);
+  if (!ply) return ply.error();
+  if (pb.sweeps.size() != pb.ply.sweeps.size())
+    return Error{ErrorCode::kSweepCountMismatch,
+                 "sweep3d",
+                 {static_cast<std::int64_t>(pb.ply.sweeps.size()),
+                  static_cast<std::int64_t>(pb.sweeps.size())}};
+  if (!pb.start.allFinite()) return Error{ErrorCode::kStartNotFinite, "start3d"};
+  if (!pb.base_normal.allFinite() || !(pb.base_normal.norm() > 0.0))
+    return Error{ErrorCode::kBaseNormalZero, "base-normal"};
+  if (!(opt.lock_angle > 0.0) || opt.lock_angle > kPi / 2)
+    return Error{ErrorCode::kLockAngleRange, "lock-angle"};
+
+  DrapeResult res;
+  res.index = std::make_shared<NodeIndex>();
+  res.base_normal = pb.base_normal.normalized();
+  const Projection pr = s.project(pb.start);
+  if (!pr.ok) return Error{ErrorCode::kStartNotProjected, "start3d"};
+  res.start_point = pr.point;
+  res.start_at = pr.at;
+  res.start_moved = pr.distance;
+  const SurfaceNormal sn = s.normal(pr.at);
+  if (!sn.ok) return Error{ErrorCode::kStartNoNormal, "start3d"};
+  const Vec3 n0 = sn.n;
+  Vec3 t3 = n0.cross(res.base_normal);
+  if (t3.norm() < kMinPlaneCutSin) return Error{ErrorCode::kBaseNormalTangent, "base-normal"};
+  t3.normalize();
+  // Pairing of 2D and 3D: (base, sweep) has the same handedness about the normal in both.
+  const Ply& P = *ply;
+  // Each sweep's part across the path, in the tangent plane: the sine of its angle with the
+  // plane of the path and the normal.
+  const Vec3 across = n0.cross(t3);
+  std::vector<double> side3;
+  for (std::size_t k = 0; k < pb.sweeps.size(); ++k) {
+    const Vec3& w = pb.sweeps[k];
+    if (!w.allFinite() || !(w.norm() > 0.0))
+      return Error{ErrorCode::kSweep3dZero, "sweep3d", {static_cast<std::int64_t>(k + 1)}};
+    const double c = across.dot(w) / w.norm();
+    if (!(std::abs(c) >= std::sin(opt.tol.sweep_min_angle)))
+      return Error{
+          ErrorCode::kSweep3dAlongPath,
+          "sweep3d",
+          {static_cast<std::int64_t>(k + 1), std::asin(std::min(std::abs(c), 1.0)) * kRadToDeg,
+           opt.tol.sweep_min_angle * kRadToDeg}};
+    side3.push_back(c > 0 ? 1.0 : -1.0);
+  }
+  std::vector<double> side2;
+  for (const Vec2& w : P.spec().sweeps) side2.push_back(cross2(P.base_dir(), w) > 0 ? 1.0 : -1.0);
+  if (side3[0] != side2[0]) {
+    t3 = -t3;
+    for (double& x : side3) x = -x;
+  }
+  if (side3.size() == 2 && side3[1] != side2[1])
+    return Error{ErrorCode::kSweeps3dSameSide, "sweep3d"};
+  res.base_tangent = t3;
+  auto mply = std::make_shared<Ply>(std::move(ply).value());  // the scan extends the path
+  res.ply = mply;
+
+  res.nodes.reserve(
+      expected_nodes(s, *mply, res.start_point, res.base_normal, pb.sweeps, opt.max_nodes));
+  detail::Scanner scanner(s, *mply, opt, res);
+  scanner.run(t3);
+  detail::compute_metrics(s, opt.tol, res);
+  res.metrics.nodes.off_ply += scanner.path_off_ply();
+  if (scanner.cancelled()) {
+    res.partial = true;
+    res.warnings.push_back("cancelled");
+  }
+  if (scanner.truncated()) {
+    res.partial = true;
+    res.warnings.push_back("stopped at the node cap of " + std::to_string(opt.max_nodes) +
+                           " nodes");
+  }
+  if (res.metrics.coverage > 1.0 + kCoverageSlack) {
+    res.partial = true;
+    res.warnings.push_back(
+        "the mapped cells cover " +
+        std::to_string(static_cast<int>(std::lround(100 * res.metrics.coverage))) +
+        "% of the surface: the cloth lies on itself somewhere");
+  }
+  if (res.metrics.nodes.failed > 0) {
+    res.partial = true;
+    res.warnings.push_back(std::to_string(res.metrics.nodes.failed) +
+                           " node(s) where the solver found no solution");
+  }
+  if (res.metrics.nodes.conflict > 0) {
+    res.partial = true;
+    res.warnings.push_back(
+        std::to_string(res.metrics.nodes.conflict) +
+        " conflict node(s): two fronts of cloth met there and disagree (no point of the surface "
+        "fits all their links), so the cloth cannot be laid there as one piece: a dart or a "
+        "splice is needed there, or another start or base path");
+  }
+  warn_path_ends(s, res);
+  if (const auto& te = scanner.thread_ends(); te.nodes > 0)
+    res.warnings.push_back(
+        std::to_string(te.nodes) + " node(s), the first at ply (" + brief(te.first.x()) + ", " +
+        brief(te.first.y()) +
+        "), marked outside: a thread continued from one neighbour cannot follow the surface "
+        "for one link there (the section of its plane, square to the surface, turns back: the "
+        "surface curls tighter than the thread spacing); a finer spacing follows it further");
+  if (const auto slit = scanner.path_slits(); slit.links > 0) {
+    res.partial = true;
+    res.warnings.push_back(
+        "the base path stops at ply (" + brief(slit.stop.x()) + ", " + brief(slit.stop.y()) +
+        ") while the cloth goes on beyond it along the path's line (the base plane's section "
+        "ends there: at a gap in the surface that is no hole of one face, such as a missing "
+        "face or a notch outside the face's outer boundary, or where the section leaves the "
+        "face or curls back on itself): " +
+        std::to_string(slit.links) +
+        " thread link(s) across the path's line there join the two sweeps' cloth unsolved "
+        "(a slit in the flat pattern)");
+  }
+  judge_drape(s, pb, opt.tol, !scanner.cancelled() && !scanner.truncated(), res);
+  if (!res.partial) warn_uncovered(s, res);
+  res.drape_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return res;
+}
+
+void release_drape_scratch() {
+  detail::OverlapGrid::release_thread_spare();
+}
+
+}  // namespace plyfit
+namespace plyfit {
+
+Result<DrapeResult> drape(const MoldSurface& surface, const DrapeProblem& problem,
+                          const DrapeOptions& options) {
+  return drape(surface.impl(), problem, options);
+}
+
+}  // namespace plyfit

@@ -1,0 +1,472 @@
+// The frontier scan of §6.2: nodes next to mapped ones, in sweep order; node bookkeeping, and
+// the overlap and fold tests that stop the cloth where it would lie on itself.
+#include "drape/scan/scanner.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace plyfit::detail {
+
+Scanner::Scanner(const DrapeSurface& s, Ply& ply, const DrapeOptions& opt, DrapeResult& res)
+    : s_(s), ply_(ply), opt_(opt), res_(res) {
+  st_.spacing = ply.d();
+  st_.tol = opt.tol;
+  res_.gamma_min_limit = std::max(0.0, kPi / 2 - opt.lock_angle);
+  st_.gamma_min = std::max(res_.gamma_min_limit, opt.tol.fold_angle);
+  far_ = kFarFromPathCells * std::hypot(ply.spec().d_weft, ply.spec().d_warp);
+  one_face_ = s.face_count() == 1;
+  cell_ = kOverlapRel * ply.d();
+  // With the test every mapped node is recorded; without it only the base path's nodes (the
+  // path's own test for a plane section that comes round): the table grows from its least.
+  grid_.init(cell_, opt.overlap_test ? res_.nodes.capacity() : 0);
+}
+
+void Scanner::run(const Vec3& t3) {
+  map_path(t3);
+  scan();
+}
+
+// The id across the thread link from `id` in direction d, if that node can exist.
+std::optional<NodeId> Scanner::neighbour_id(const NodeId& id, ThreadDir d) const {
+  if (!id.is_path_only()) {
+    if (far_from_path(ply_.pos(id.i, id.j))) {  // no link of (i, j) is split by the path
+      const int k = static_cast<int>(d);
+      return NodeId::regular(id.i + (k == 0   ? 1
+                                     : k == 1 ? -1
+                                              : 0),
+                             id.j + (k == 2   ? 1
+                                     : k == 3 ? -1
+                                              : 0));
+    }
+    const auto n = ply_.neighbour(id.i, id.j, d);
+    return n ? std::optional<NodeId>(n->id) : std::nullopt;
+  }
+  const PathNode* pn = ply_.path_node_if(id.j);
+  if (!pn || !pn->link_from) return std::nullopt;
+  if (d == opposite(pn->link_dir)) return *pn->link_from;
+  if (d == pn->link_dir) {
+    const NodeId a = *pn->link_from;
+    return pn->link_dir == ThreadDir::kPlusX ? NodeId::regular(a.i + 1, a.j)
+                                             : NodeId::regular(a.i, a.j + 1);
+  }
+  return std::nullopt;
+}
+
+// True when ply point p lies so far from the base path line that no thread link from it
+// (and no link within kFarFromPathCells - 1 cells of it) can cross the path.
+bool Scanner::far_from_path(const Vec2& p) const {
+  return std::abs(cross2(ply_.base_dir(), p - ply_.spec().start)) > far_;
+}
+
+// Node for id, created (pending) at ply position `pos` if absent, linked both ways to the
+// existing nodes across its thread links.
+std::uint32_t Scanner::node_for(const NodeId& id, const Vec2& pos) {
+  const auto k = res_.index->find(id);
+  if (k >= 0) return static_cast<std::uint32_t>(k);
+  DrapeNode n;
+  n.id = id;
+  n.ply = pos;
+  const auto idx = static_cast<std::uint32_t>(res_.nodes.size());
+  for (int d = 0; d < 4; ++d) {
+    const auto nid = neighbour_id(id, static_cast<ThreadDir>(d));
+    if (!nid) continue;
+    const auto m = res_.index->find(*nid);
+    if (m < 0) continue;
+    n.nb[d] = static_cast<std::int32_t>(m);
+    const auto mi = static_cast<std::uint32_t>(m);
+    std::int32_t& back = res_.nodes[mi].nb[static_cast<int>(opposite(static_cast<ThreadDir>(d)))];
+    if (speculating_ && mi < cp_.nodes) {
+      if (back >= 0) keep(mi);  // a link replaced: kept whole
+      linked_.push_back(mi);
+    }
+    back = static_cast<std::int32_t>(idx);
+  }
+  if (res_.nodes.size() == res_.nodes.capacity())  // beyond the estimate: grow by half
+    res_.nodes.reserve(res_.nodes.capacity() + res_.nodes.capacity() / 2 + 16);
+  res_.nodes.push_back(n);
+  res_.index->insert(id, idx);
+  return idx;
+}
+
+void Scanner::resolve(std::uint32_t idx, const SolveResult& r) {
+  DrapeNode& n = node(idx);
+  n.order = order_++;
+  ++res_.metrics.solves;
+  res_.metrics.iterations += static_cast<std::uint64_t>(r.iterations);
+  res_.metrics.evaluations += static_cast<std::uint64_t>(r.evaluations);
+  switch (r.status) {
+    case SolveStatus::kConverged:
+      n.status = NodeStatus::kMapped;
+      n.point = r.point;
+      n.set_at(r.at);
+      res_.metrics.solve_residual_max_rel =
+          std::max(res_.metrics.solve_residual_max_rel, r.residual / st_.spacing);
+      break;
+    case SolveStatus::kLeftFace:
+      n.status = NodeStatus::kOutside;
+      if (r.extended) {
+        n.point = r.point;
+        n.set_at(r.at);
+        n.flags |= DrapeNode::kExtended;
+        // In a hole of the face the surface runs on under it: the cloth goes on from the node
+        // as on a face without the hole (the flat pattern cuts the hole out).
+        if (s_.in_hole(r.at)) n.flags |= DrapeNode::kInHole;
+      }
+      break;
+    case SolveStatus::kShearLimit:
+      n.status = NodeStatus::kShearLimit;
+      res_.failures.emplace_back(idx, to_string(shear_stop(r)));
+      break;
+    case SolveStatus::kFailed:
+      // The base path ends where its plane's section turns back (path_end).
+      if (r.section_ends && n.has(DrapeNode::kOnPath)) {
+        n.status = NodeStatus::kPathEnd;
+        break;
+      }
+      // A thread continued from one node whose plane's section turns back within the link:
+      // the surface curls back tighter than the thread spacing (surf114 face 2, towards its
+      // degenerate edge: at most 0.97 d from the node). No point of the face lies a link
+      // ahead on the thread: the cloth leaves the surface there, outside (warned).
+      if (r.section_ends) {
+        n.status = NodeStatus::kOutside;
+        if (thread_ends_.nodes++ == 0) thread_ends_.first = n.ply;
+        break;
+      }
+      n.status = r.fronts_disagree ? NodeStatus::kConflict : NodeStatus::kFailed;
+      res_.failures.emplace_back(idx, r.reason);
+      break;
+  }
+}
+
+// The guard that stopped a node at the shear limit: an angle past gamma_min is the lock's
+// where it passes the lock angle, else the fold angle's (Tolerances::fold_angle).
+ShearStop Scanner::shear_stop(const SolveResult& r) const {
+  if (r.shear_stop != ShearStop::kLock) return r.shear_stop;
+  const double lock = res_.gamma_min_limit;
+  const bool past_lock = lock > 0.0 && (r.thread_angle < lock || r.thread_angle > kPi - lock);
+  return past_lock ? ShearStop::kLock : ShearStop::kFoldAngle;
+}
+
+// True if node k (just mapped) lies on cloth already laid: a recorded node within
+// kOverlapRel * d in 3D but at least kOverlapSeparation * d away on the ply; otherwise
+// records it.
+bool Scanner::overlaps(std::uint32_t k) {
+  const DrapeNode& n = node(k);
+  // Called only for nodes the grid's filter passes (rare): everything it needs is worked
+  // out here, not before the test.
+  return grid_.test_insert(n.point, k, [this, &n](std::uint32_t m) {
+    const DrapeNode& o = res_.nodes[m];
+    const double sep = kOverlapSeparation * ply_.d();
+    return (o.point - n.point).squaredNorm() < cell_ * cell_ &&
+           (o.ply - n.ply).squaredNorm() >= sep * sep;
+  });
+}
+
+// Node k, mapped or in a hole, lies on cloth already laid: mapped, it is an overlap; in a
+// hole, the cloth under the hole goes no further from it.
+void Scanner::stop_overlap(std::uint32_t k) {
+  DrapeNode& n = node(k);
+  if (n.mapped())
+    n.status = NodeStatus::kOverlap;
+  else
+    n.flags = static_cast<std::uint8_t>(n.flags & ~DrapeNode::kInHole);
+}
+
+bool Scanner::cancelled_now() {
+  if (opt_.cancel && opt_.cancel->load(std::memory_order_relaxed)) cancelled_ = true;
+  return cancelled_;
+}
+
+// Adds the unknown regular neighbours of a mapped node to the frontier.
+void Scanner::push_neighbours(std::uint32_t idx) {
+  for (int d = 0; d < 4; ++d) {
+    if (node(idx).nb[d] >= 0) continue;  // already reached (pending or resolved)
+    const auto q = neighbour_id(node(idx).id, static_cast<ThreadDir>(d));
+    if (!q || q->is_path_only()) continue;  // path nodes are mapped by the base path
+    const Vec2 qp = ply_.pos(q->i, q->j);
+    const int side = ply_.side(qp);
+    // On the path: mapped (or not) by the base path, which goes on across holes of the face
+    // (map_path). (Solving the line from the sweep that reaches it first lets one sweep's
+    // cloth cross the line and meet the other's sheared on a curved face.)
+    if (side == 0) continue;
+    if (ply_.sweep_for_side(side) < 0) continue;  // that half-plane is not swept
+    if (res_.nodes.size() >= opt_.max_nodes) {
+      truncated_ = true;
+      continue;
+    }
+    const std::uint32_t qi = node_for(*q, qp);
+    if (!ply_.on_ply(qp)) {
+      keep(qi);
+      node(qi).status = NodeStatus::kOffPly;
+      node(qi).order = order_++;
+      continue;
+    }
+    heap_.push({ply_.sweep_distance(qp), (qp - ply_.spec().start).norm(), q->i, q->j, qi});
+  }
+}
+
+// True if a thread through node k (just mapped) turns back on itself there: the link to
+// a mapped neighbour and that neighbour's next link along the same thread make an angle
+// over 90 degrees. A smooth surface turns a thread by about d / R per link (60 degrees
+// at a curvature radius R = d); more is cloth folded onto itself, which two-sphere solves
+// from a net sheared nearly flat can produce without end on a face that never lets it go.
+bool Scanner::folds_back(std::uint32_t k) const {
+  const DrapeNode& q = res_.nodes[k];
+  for (int d = 0; d < 4; ++d) {
+    const DrapeNode* a = mapped_nb(q, static_cast<ThreadDir>(d));
+    const DrapeNode* a2 = a ? mapped_nb(*a, static_cast<ThreadDir>(d)) : nullptr;
+    if (!a2) continue;
+    const Vec3 l1 = a2->point - a->point, l2 = a->point - q.point;
+    if (l1.dot(l2) >= 0.0) continue;
+    // Past a crease (a shell's G0 shared edge, a thin flange's rim) the surface itself turns:
+    // a thread turning by no more than 90 degrees beyond the turn of the surface's normal
+    // between its ends follows the surface.
+    const SurfaceNormal n1 = s_.normal(a2->at()), n2 = s_.normal(q.at());
+    const double turn = std::atan2(l1.cross(l2).norm(), l1.dot(l2));
+    const double bend = std::atan2(n1.n.cross(n2.n).norm(), n1.n.dot(n2.n));
+    if (!n1.ok || !n2.ok || turn > bend + 0.5 * kPi) return true;
+  }
+  return false;
+}
+
+// True if a neighbour of q stopped at the shear limit. Such a node, reached from one side
+// only, is stopped as well: continuing its thread straight (solver 3) past the locked
+// node would fold the cloth over the cells the lock left open (on the sphere octant,
+// case (c) with a 30 degree lock: mapped nodes sheared to 88 degrees, links off by 0.7 d).
+bool Scanner::behind_lock(const DrapeNode& q) const {
+  for (int d = 0; d < 4; ++d) {
+    const std::int32_t k = q.nb[d];
+    if (k >= 0 && res_.nodes[static_cast<std::size_t>(k)].status == NodeStatus::kShearLimit)
+      return true;
+  }
+  return false;
+}
+
+// The scan. The overlap test almost never finds cloth (only where the cloth comes round onto
+// itself), and nodes tested in batches, one after the other, cost the drape less than testing
+// each as it is mapped (1000^2, the four faces of BENCHMARKS.md's overlap table: 0.6 to 3.8 %
+// less drape time, paired runs; the test's code and the grid's lines stay in the caches
+// while a batch is tested, the scan's while it maps). So while it speculates, the scan goes
+// on as if every node passed
+// the test, keeping what it needs to go back: its state at a checkpoint (the frontier,
+// counters) and every node there that it changes since, as it was (keep()). settle() tests
+// the batch in the order the nodes were resolved, which is the order the test node by node
+// takes them in, against the same recorded nodes: if none lies on laid cloth, the scan is
+// the one that test gives, and a new batch begins. If one does (and folds_back() has not
+// stopped it already), the scan goes back to the checkpoint and on from there testing node
+// by node for the rest of the drape (where the cloth came round once it is likely to
+// again), without testing again the batch's nodes before that one (recorded already). A
+// node about to be solved a second time (a frontier entry twice) settles the batch first:
+// the test sees every node where it was when it was resolved. The drape is the same bit for
+// bit either way.
+void Scanner::scan() {
+  speculating_ = opt_.overlap_test && opt_.overlap_batch > 1;
+  if (speculating_) checkpoint();
+  for (;;) {
+    while (!heap_.empty()) {
+      if (speculating_ &&
+          (pending_.size() >= opt_.overlap_batch ||
+           node(heap_.top().node).status != NodeStatus::kPending) &&
+          !settle())
+        continue;  // back at the checkpoint
+      const FrontierEntry e = heap_.top();
+      heap_.pop();
+      if (++popped_ % kCancelEvery == 0 && cancelled_now()) break;
+      if (opt_.progress && popped_ % kProgressEvery == 0) opt_.progress(res_.metrics.solves);
+      step(e.node);
+    }
+    // The last batch. Back at the checkpoint, the scan goes on from there (cancelled, it
+    // stops there: the checkpoint's scan is a whole one).
+    if (!speculating_ || settle() || cancelled_) break;
+  }
+  while (!heap_.empty()) heap_.pop();  // cancelled: pending nodes stay unresolved
+}
+
+// Solves frontier node qi from its known neighbours and, if the cloth goes on from it,
+// adds its neighbours to the frontier.
+void Scanner::step(std::uint32_t qi) {
+  if (speculating_ && qi < cp_.nodes) solved_.push_back(qi);  // pending (scan())
+  const DrapeNode& qn = node(qi);
+  // Known neighbours, weft and warp.
+  struct Known {
+    ThreadDir dir;
+    const DrapeNode* n;
+  };
+  Known known[4];
+  int nk = 0;
+  for (int d = 0; d < 4; ++d)
+    if (const DrapeNode* m = mapped_nb(qn, static_cast<ThreadDir>(d)))
+      known[nk++] = {static_cast<ThreadDir>(d), m};
+  SolveResult r;
+  if (nk >= 2) {
+    // Prefer a weft-warp pair whose cell's fourth corner is mapped, then any weft-warp
+    // pair, then two neighbours on one thread.
+    int best_a = 0, best_b = 1, best_score = -1;
+    for (int x = 0; x < nk; ++x) {
+      for (int y = x + 1; y < nk; ++y) {
+        int score = 0;
+        if (is_weft(known[x].dir) != is_weft(known[y].dir)) {
+          score = 1;
+          const DrapeNode* a = known[x].n;
+          const DrapeNode* b = known[y].n;
+          if (!a->id.is_path_only() && !b->id.is_path_only()) {
+            const DrapeNode* c = mapped_nb(*a, known[y].dir);
+            if (c &&
+                c->id == NodeId::regular(a->id.i + b->id.i - qn.id.i, a->id.j + b->id.j - qn.id.j))
+              score = 2;
+          }
+        }
+        if (score > best_score) {
+          best_score = score;
+          best_a = x;
+          best_b = y;
+        }
+      }
+    }
+    // Weft neighbour first, so that guesses and branches are reproducible.
+    Known ka = known[best_a], kb = known[best_b];
+    if (!is_weft(ka.dir) && is_weft(kb.dir)) std::swap(ka, kb);
+    if (is_weft(ka.dir) != is_weft(kb.dir)) node(qi).set_solved_from(ka.dir, kb.dir);  // eq. 12
+    r = solve_two(qn, *ka.n, ka.dir, res_.rest_length(qn, ka.dir), *kb.n, kb.dir,
+                  res_.rest_length(qn, kb.dir));
+    // The solver tests eq. (12) on the face only; under a hole the cloth stops at the shear
+    // limit as it would on the face without the hole.
+    if (is_weft(ka.dir) != is_weft(kb.dir) && r.status == SolveStatus::kLeftFace && r.extended &&
+        st_.gamma_min > 0.0 &&
+        (r.thread_angle < st_.gamma_min || r.thread_angle > kPi - st_.gamma_min) &&
+        s_.in_hole(r.at)) {
+      r.status = SolveStatus::kShearLimit;
+      r.shear_stop = ShearStop::kLock;
+      r.reason = "thread angle beyond the shear limit (under a hole of the face)";
+    }
+    // Links to further known neighbours (fronts that met around a hole in the net) are
+    // not solved for: a node that breaks one is no point of the cloth (three links on a
+    // 2-D surface: in general no point fits them all; a conflict, not a solver failure).
+    const bool landed = r.status == SolveStatus::kConverged ||
+                        (r.status == SolveStatus::kLeftFace && r.extended && s_.in_hole(r.at));
+    for (int x = 0; x < nk && landed && r.status != SolveStatus::kFailed; ++x) {
+      if (known[x].n == ka.n || known[x].n == kb.n) continue;
+      const double rest = res_.rest_length(qn, known[x].dir);
+      const double err = std::abs((r.point - known[x].n->point).norm() - rest);
+      if (err > kFrontMismatchRel * ply_.d()) {
+        r.status = SolveStatus::kFailed;
+        r.reason = "the fronts disagree: a third link is off";
+        r.fronts_disagree = true;
+      }
+    }
+  } else if (nk == 1 && behind_lock(qn)) {
+    r.status = SolveStatus::kShearLimit;
+    r.shear_stop = ShearStop::kBehindStop;
+    r.reason = "behind the shear limit";
+  } else if (nk == 1) {
+    r = solve_one(qn, *known[0].n, known[0].dir, res_.rest_length(qn, known[0].dir));
+  } else {
+    r.reason = "no known neighbour";
+  }
+  resolve(qi, r);
+  // The cloth can come round onto itself (a closed face, a face that wraps over itself, a
+  // net sheared nearly flat), or fold its threads back (folds_back()). In a hole the cloth
+  // under the hole stops there (the node stays outside).
+  if (!node(qi).carries()) return;
+  bool over = false;
+  if (speculating_) {
+    pending_.push_back(qi);
+  } else if (replayed_ < replay_.size() && replay_[replayed_] == qi) {
+    ++replayed_;  // tested before the roll-back: recorded, on no laid cloth
+  } else {
+    // Past the replay, or off its order (never: the scan is deterministic), which ends it: a
+    // node recorded twice would only add candidates the exact test rejects.
+    replay_.clear();
+    over = opt_.overlap_test && overlaps(qi);
+  }
+  if (over || folds_back(qi)) stop_overlap(qi);
+  if (node(qi).carries()) push_neighbours(qi);
+}
+
+void Scanner::checkpoint() {
+  cp_.heap = heap_;
+  cp_.nodes = res_.nodes.size();
+  cp_.capacity = res_.nodes.capacity();
+  cp_.index = res_.index->mark();
+  cp_.failures = res_.failures.size();
+  cp_.order = order_;
+  cp_.popped = popped_;
+  cp_.thread_ends = thread_ends_;
+  cp_.truncated = truncated_;
+  cp_.solves = res_.metrics.solves;
+  cp_.iterations = res_.metrics.iterations;
+  cp_.evaluations = res_.metrics.evaluations;
+  cp_.residual_max = res_.metrics.solve_residual_max_rel;
+  undo_.clear();
+  solved_.clear();
+  linked_.clear();
+  pending_.clear();
+}
+
+// Tests the batch's nodes in turn (recording those on no laid cloth). True if none is on laid
+// cloth where the scan went on from it; a new batch begins. Else rolls back (false).
+bool Scanner::settle() {
+  for (std::size_t t = 0; t < pending_.size(); ++t) {
+    const std::uint32_t k = pending_[t];
+    // A node folds_back() stopped already is stopped as the test would have stopped it.
+    if (overlaps(k) && node(k).carries()) {
+      roll_back(t);
+      return false;
+    }
+  }
+  checkpoint();
+  return true;
+}
+
+// Back to the checkpoint, the batch's first `tested` nodes recorded; the rest of the scan tests
+// node by node.
+void Scanner::roll_back(std::size_t tested) {
+  replay_.assign(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(tested));
+  replayed_ = 0;
+  // The checkpoint's nodes as they were: whole where kept; solved ones pending again as
+  // node_for() made them (id, ply position, links); no link to a node made since.
+  for (auto u = undo_.rbegin(); u != undo_.rend(); ++u) res_.nodes[u->first] = u->second;
+  for (const std::uint32_t k : solved_) {
+    DrapeNode& n = res_.nodes[k];
+    DrapeNode fresh;
+    fresh.id = n.id;
+    fresh.ply = n.ply;
+    std::copy(std::begin(n.nb), std::end(n.nb), std::begin(fresh.nb));
+    n = fresh;
+  }
+  const auto cut = static_cast<std::int32_t>(cp_.nodes);
+  auto unlink = [this, cut](std::uint32_t k) {
+    for (std::int32_t& b : res_.nodes[k].nb)
+      if (b >= cut) b = -1;
+  };
+  for (const std::uint32_t k : linked_) unlink(k);
+  for (const auto& u : undo_) unlink(u.first);
+  for (std::size_t k = cp_.nodes; k < res_.nodes.size(); ++k) res_.index->erase(res_.nodes[k].id);
+  res_.nodes.erase(res_.nodes.begin() + static_cast<std::ptrdiff_t>(cp_.nodes), res_.nodes.end());
+  // No more memory than the scan node by node allocates: the batch may have gone on beyond
+  // the node vector's estimate and into new blocks of the index.
+  res_.index->truncate(cp_.index);
+  if (res_.nodes.capacity() > cp_.capacity) {
+    std::vector<DrapeNode> nodes;
+    nodes.reserve(cp_.capacity);
+    nodes.assign(res_.nodes.begin(), res_.nodes.end());
+    res_.nodes.swap(nodes);
+  }
+  res_.failures.resize(cp_.failures);
+  heap_ = std::move(cp_.heap);
+  order_ = cp_.order;
+  popped_ = cp_.popped;
+  thread_ends_ = cp_.thread_ends;
+  truncated_ = cp_.truncated;
+  res_.metrics.solves = cp_.solves;
+  res_.metrics.iterations = cp_.iterations;
+  res_.metrics.evaluations = cp_.evaluations;
+  res_.metrics.solve_residual_max_rel = cp_.residual_max;
+  speculating_ = false;
+  undo_ = {};
+  solved_ = {};
+  linked_ = {};
+  pending_ = {};
+}
+
+}  // namespace plyfit::detail

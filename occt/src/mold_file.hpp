@@ -1,0 +1,197 @@
+#pragma once
+// Code shared by the STEP and IGES importers: everything after a format's reader has turned
+// the file into an OpenCASCADE shape. The face walk and listing (FaceInfo without any
+// conversion), the conversion of one face to kernel data (NURBS surface, trim polylines,
+// seams, orientation), the guard that turns OpenCASCADE exceptions and signals into Errors,
+// the silencing of OpenCASCADE's messages and the summaries of its check lists.
+//
+// Private to plyfit_importers: OpenCASCADE headers are allowed here, never in a public header.
+
+#include <plyfit/importers/importers.hpp>
+
+#include "face_measure.hpp"
+
+#include <Interface_CheckIterator.hxx>
+#include <Message_ProgressIndicator.hxx>
+#include <Standard_ErrorHandler.hxx>
+#include <Standard_Failure.hxx>
+#include <TCollection_HAsciiString.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Shape.hxx>
+#include <Transfer_TransientProcess.hxx>
+#include <XSControl_Reader.hxx>
+
+#include <chrono>
+#include <cstdint>
+#include <exception>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace plyfit::importers::occt {
+
+/// A progress indicator whose only job is to stop a transfer that runs past a deadline
+/// (OpenCASCADE's readers poll UserBreak() while they transfer entities).
+class Deadline : public Message_ProgressIndicator {
+ public:
+  /// Deadline `seconds` from now.
+  explicit Deadline(double seconds);
+  /// True once the deadline has passed.
+  bool expired() const;
+  /// The time limit this deadline was made with, seconds.
+  double seconds() const { return seconds_; }
+
+ protected:
+  Standard_Boolean UserBreak() override { return expired(); }
+  void Show(const Message_ProgressScope&, const Standard_Boolean) override {}
+
+ private:
+  std::chrono::steady_clock::time_point end_;
+  double seconds_;
+};
+
+/// What a format's reader hands over to the shared code.
+struct ReadOutput {
+  TopoDS_Shape shape;                 ///< every transferred root, as one shape
+  std::string schema;                 ///< STEP schema, or IGES version and sending system
+  std::string unit;                   ///< the file's length unit, as the file names it
+  std::vector<std::string> warnings;  ///< summarised reader messages
+  /// Names of the entities that produced transferred shapes (faces are looked up here).
+  std::vector<std::pair<TopoDS_Shape, std::string>> shape_names;
+  /// The file's length precision in millimetres (see file_precision()).
+  double precision = 0.0;
+  /// The entity of the file that made each face ("#12", "DE 5"; entity_label()).
+  std::vector<std::pair<TopoDS_Shape, std::string>> face_entities;
+};
+
+/// A format's reading step: reads `path` into a shape (units converted to millimetres).
+/// Errors are messages without the path (the caller prefixes it).
+using ReadFunction = std::function<Result<ReadOutput>(const std::string& path, Deadline& deadline)>;
+
+/// The format a file's first bytes look like.
+enum class Sniffed { kStep, kIges, kUnknown };
+
+/// Looks at the first bytes of `head` (the start of a file): STEP Part 21 or IGES.
+Sniffed sniff(const std::string& head);
+
+/// Checks that `path` exists, is a regular non-empty file, looks like `format_key` ("step" or
+/// "iges") and is complete (its trailer or terminate section is there); the format it is.
+Result<Sniffed> check_file_head(const std::string& path, const std::string& format_key);
+
+/// Tests: PLYFIT_DEBUG_READER_FAULT=segv or =stack makes the guarded read fault as a broken
+/// reader would (a segmentation fault; a stack overflow by a recursion without end).
+void debug_reader_fault();
+
+/// Silences OpenCASCADE's default messenger (idempotent; called by open_with()).
+void prepare_occt();
+
+/// While alive, OpenCASCADE's signal handlers (OSD::SetSignal) are installed so that a fault
+/// inside an OCC_CATCH_SIGNALS scope becomes an OSD_Signal exception; the previous handlers
+/// (the host program's, a test framework's) are restored on destruction.
+class SignalScope {
+ public:
+  SignalScope();
+  ~SignalScope();
+  SignalScope(const SignalScope&) = delete;
+  SignalScope& operator=(const SignalScope&) = delete;
+
+ private:
+  struct Saved;
+  Saved* saved_;
+};
+
+/// Opens `path` with a format's reader and lists its faces. Checks first that the file exists,
+/// is a regular non-empty file and looks like `format_key` ("step" or "iges"); then reads it
+/// under the guard and deadline.
+Result<std::unique_ptr<MoldFile>> open_with(const std::string& path, const std::string& format_key,
+                                            const ImportOptions& options, const ReadFunction& read);
+
+/// Reads `path` with an OpenCASCADE reader (STEP or IGES, `format_name` for messages) and
+/// sets the length unit of its output to millimetres. Errors have no path prefix.
+Status read_file(XSControl_Reader& reader, const std::string& path, const std::string& format_name);
+
+/// Transfers every root of a reader's model (under `deadline`) into `out`: the shape, the
+/// load and transfer check summaries, the face names found by `name_of` and the faces' entities.
+void transfer_roots(XSControl_Reader& reader, Deadline& deadline,
+                    const std::function<std::string(const Handle(Standard_Transient) &)>& name_of,
+                    ReadOutput& out);
+
+/// The length precision (mm) a reader works to: a STEP file's uncertainty measure, an IGES
+/// file's global-section resolution, each in the file's unit converted to millimetres; the
+/// reader's default precision (read.precision.val) when the file states none. Defined in
+/// occt_shell.cpp.
+double file_precision(XSControl_Reader& reader);
+
+/// Tag of a face's edge in its trim loops (TrimLoop::edges).
+using EdgeTag = std::function<std::int32_t(const TopoDS_Edge&)>;
+
+/// Converts one face to kernel data (MoldFile::convert_face). With `tag`, the face has explicit
+/// trim loops even when its natural boundary bounds it, and loop segment k carries
+/// (*tag)(the edge of `face` it was sampled from) in TrimLoop::edges.
+Result<FaceData> convert_face(const TopoDS_Face& face, const FaceInfo& info, const Tolerances& tol,
+                              const EdgeTag* tag);
+
+/// What sewing a file's faces into a shell needs from the opened file.
+struct ShellInput {
+  const std::string& source;                ///< the file's path, for messages
+  const TopTools_IndexedMapOfShape& faces;  ///< the file's faces in index order (1-based map)
+  double precision;                         ///< the file's precision, mm (file_precision())
+  const ImportOptions& options;
+  /// The listing entry of face i, or an error naming the file and the face.
+  std::function<Result<FaceInfo>(int)> describe;
+};
+
+/// Sews faces `indices` of a file (empty: all) into a shell and converts them
+/// (MoldFile::convert_shell); what the sewing finds (several components, non-manifold edges,
+/// faces reoriented) is appended to `warnings`. Defined in occt_shell.cpp.
+Result<ShellData> sew_faces(const ShellInput& input, const std::vector<int>& indices,
+                            std::vector<std::string>& warnings);
+
+/// One-line summary of the fails and warnings of a check list, grouped by message
+/// ("load: 3 warnings (2x 'A', 1x 'B')"); empty when there are none.
+std::string summarise_checks(const Interface_CheckIterator& checks, const std::string& stage);
+
+/// The names of the entities of `process` that produced faces (or any shape), via `name_of`.
+std::vector<std::pair<TopoDS_Shape, std::string>> shape_names(
+    const Handle(Transfer_TransientProcess) & process,
+    const std::function<std::string(const Handle(Standard_Transient) &)>& name_of);
+
+/// A string of OpenCASCADE, trimmed of blanks; empty for a null handle.
+std::string text(const Handle(TCollection_HAsciiString) & s);
+
+/// Runs `f` (which returns a Result) so that an OpenCASCADE exception, a fault turned into an
+/// exception (OCC_CATCH_SIGNALS) or a C++ exception becomes an Error "`what`: ...".
+template <typename F>
+auto guarded(const std::string& what, F&& f) -> decltype(f()) {
+  const SignalScope signals;
+  try {
+    OCC_CATCH_SIGNALS
+    return f();
+  } catch (const Standard_Failure& e) {
+    std::string msg = e.GetMessageString() ? e.GetMessageString() : "";
+    for (auto& c : msg)
+      if (c == '\n' || c == '\r') c = ' ';
+    return Error{what + ": OpenCASCADE failed (" + e.DynamicType()->Name() +
+                 (msg.empty() ? std::string() : ": " + msg) + ")"};
+  } catch (const std::bad_alloc&) {
+    return Error{what + ": out of memory"};
+  } catch (const std::exception& e) {
+    return Error{what + ": " + e.what()};
+  }
+}
+
+/// The sentence of an error not yet given a code (ErrorCode::kText), its causes' after it;
+/// empty for a coded one. Transitional, while the module's errors are given codes.
+inline std::string legacy_text(const Error& e) {
+  const auto* s = e.code == ErrorCode::kText && !e.values.empty()
+                      ? std::get_if<std::string>(&e.values[0])
+                      : nullptr;
+  std::string out = s ? *s : std::string();
+  if (e.cause) out += ": " + legacy_text(*e.cause);
+  return out;
+}
+
+}  // namespace plyfit::importers::occt

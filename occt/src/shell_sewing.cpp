@@ -1,0 +1,365 @@
+// Shells: several faces of a mold file sewn along their shared edges (OpenCASCADE's
+// BRepBuilderAPI_Sewing), each face converted as MoldFile::convert_face converts it, with trim
+// loops whose segments name the shared edge they lie on (ShellData, TrimLoop::edges).
+
+#include "mold_file.hpp"
+
+#include <BRepBuilderAPI_Sewing.hxx>
+#include <BRep_Tool.hxx>
+#include <Geom2d_Curve.hxx>
+#include <Geom_Surface.hxx>
+#include <IGESData_GlobalSection.hxx>
+#include <IGESData_IGESModel.hxx>
+#include <Interface_Static.hxx>
+#include <STEPConstruct_UnitContext.hxx>
+#include <StepData_StepModel.hxx>
+#include <StepGeom_GeomRepContextAndGlobUnitAssCtxAndGlobUncertaintyAssCtx.hxx>
+#include <StepRepr_GlobalUncertaintyAssignedContext.hxx>
+#include <StepRepr_GlobalUnitAssignedContext.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_DataMapOfShapeInteger.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
+#include <TopTools_ListOfShape.hxx>
+#include <TopoDS.hxx>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <set>
+
+namespace plyfit::importers::occt {
+
+namespace {
+
+// The sewing tolerance is never below OpenCASCADE's own point confusion (1e-7 mm: closer
+// points are one point to every OCCT algorithm) ...
+constexpr double kSewingMinTolerance = 1e-7;
+// ... nor above this fraction of the shell's size (0.1 mm on a 1 m part): a file that states a
+// coarse precision, or an edge that a reader's repair left with a large tolerance, must not
+// merge distinct edges of small features (or make the sewing drop small faces as degenerate).
+constexpr double kSewingMaxRel = 1e-4;
+// Points per shared edge at which the gap between its two faces is measured, and golden-section
+// steps that refine the largest (0.618^40 ~ 4e-9 of two sample intervals).
+constexpr int kGapSamples = 32;
+constexpr int kGapRefineSteps = 40;
+// Face lists in messages name at most this many indices.
+constexpr size_t kListedFaces = 12;
+
+// "face 3", "faces 0-17", "faces 3, 4, 9-12": the faces of a message, in the given order.
+std::string face_list(const std::vector<int>& faces) {
+  std::string s = faces.size() == 1 ? "face " : "faces ";
+  size_t k = 0;
+  for (size_t shown = 0; k < faces.size() && shown < kListedFaces; ++shown) {
+    size_t end = k + 1;
+    while (end < faces.size() && faces[end] == faces[end - 1] + 1) ++end;
+    if (shown > 0) s += ", ";
+    s += std::to_string(faces[k]);
+    if (end - k >= 3) {
+      s += '-';
+      s += std::to_string(faces[end - 1]);
+      k = end;
+    } else {
+      ++k;
+    }
+  }
+  if (k < faces.size()) s += ", ...";
+  return s;
+}
+
+// A length in millimetres for messages, to 3 significant digits.
+std::string mm(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g mm", x);
+  return buf;
+}
+
+// "1 edge", "3 edges".
+std::string count(int n, const std::string& noun) {
+  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
+}
+
+// Connected parts of the shell (faces joined by shared edges), by union-find.
+struct Parts {
+  std::vector<int> parent;
+  explicit Parts(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  int find(int i) {
+    while (parent[static_cast<size_t>(i)] != i)
+      i = parent[static_cast<size_t>(i)] =
+          parent[static_cast<size_t>(parent[static_cast<size_t>(i)])];
+    return i;
+  }
+  void join(int a, int b) { parent[static_cast<size_t>(find(a))] = find(b); }
+};
+
+// Largest distance between the two faces' images of the edge, at the same fraction of each
+// pcurve's range (sewing leaves shared edges same-parameter): sampled at kGapSamples + 1
+// points, then maximised by golden section between the neighbours of the largest sample.
+double edge_gap(const TopoDS_Edge& e, const TopoDS_Face& a, const TopoDS_Face& b) {
+  double a0 = 0, a1 = 0, b0 = 0, b1 = 0;
+  const Handle(Geom2d_Curve) ca = BRep_Tool::CurveOnSurface(e, a, a0, a1);
+  const Handle(Geom2d_Curve) cb = BRep_Tool::CurveOnSurface(e, b, b0, b1);
+  const Handle(Geom_Surface) sa = BRep_Tool::Surface(a), sb = BRep_Tool::Surface(b);
+  if (ca.IsNull() || cb.IsNull() || sa.IsNull() || sb.IsNull()) return 0.0;
+  auto gap = [&](double f) {
+    const gp_Pnt2d pa = ca->Value(a0 + f * (a1 - a0)), pb = cb->Value(b0 + f * (b1 - b0));
+    return sa->Value(pa.X(), pa.Y()).Distance(sb->Value(pb.X(), pb.Y()));
+  };
+  int best = 0;
+  double largest = -1.0;
+  for (int k = 0; k <= kGapSamples; ++k) {
+    const double g = gap(static_cast<double>(k) / kGapSamples);
+    if (g > largest) largest = g, best = k;
+  }
+  const double golden = 0.5 * (std::sqrt(5.0) - 1.0);
+  double lo = std::max(0, best - 1) / static_cast<double>(kGapSamples);
+  double hi = std::min(kGapSamples, best + 1) / static_cast<double>(kGapSamples);
+  double x1 = hi - golden * (hi - lo), x2 = lo + golden * (hi - lo);
+  double g1 = gap(x1), g2 = gap(x2);
+  for (int i = 0; i < kGapRefineSteps; ++i) {
+    if (g1 > g2) {
+      hi = x2, x2 = x1, g2 = g1, x1 = hi - golden * (hi - lo), g1 = gap(x1);
+    } else {
+      lo = x1, x1 = x2, g1 = g2, x2 = lo + golden * (hi - lo), g2 = gap(x2);
+    }
+  }
+  return std::max({largest, g1, g2});
+}
+
+// The orientation of each edge of `face` as the face uses it (a seam, used twice, is listed
+// twice).
+std::vector<std::pair<TopoDS_Shape, TopAbs_Orientation>> edge_uses(const TopoDS_Face& face) {
+  std::vector<std::pair<TopoDS_Shape, TopAbs_Orientation>> uses;
+  for (TopExp_Explorer ex(face, TopAbs_EDGE); ex.More(); ex.Next())
+    uses.emplace_back(ex.Current(), ex.Current().Orientation());
+  return uses;
+}
+
+TopAbs_Orientation use_in(const std::vector<std::pair<TopoDS_Shape, TopAbs_Orientation>>& uses,
+                          const TopoDS_Shape& edge) {
+  for (const auto& [e, o] : uses)
+    if (e.IsSame(edge)) return o;
+  return TopAbs_EXTERNAL;
+}
+
+}  // namespace
+
+double file_precision(XSControl_Reader& reader) {
+  const Handle(Interface_InterfaceModel) model = reader.Model();
+  if (const auto iges = Handle(IGESData_IGESModel)::DownCast(model); !iges.IsNull()) {
+    // Resolution in the file's unit; UnitValue() is the file's unit in millimetres (the
+    // readers' xstep.cascade.unit).
+    const IGESData_GlobalSection& g = iges->GlobalSection();
+    const double r = g.Resolution() * g.UnitValue();
+    if (std::isfinite(r) && r > 0.0) return r;
+  } else if (const auto step = Handle(StepData_StepModel)::DownCast(model); !step.IsNull()) {
+    double largest = 0.0;
+    for (int i = 1; i <= step->NbEntities(); ++i) {
+      const auto ctx =
+          Handle(StepGeom_GeomRepContextAndGlobUnitAssCtxAndGlobUncertaintyAssCtx)::DownCast(
+              step->Value(i));
+      if (ctx.IsNull()) continue;
+      STEPConstruct_UnitContext units;
+      if (units.ComputeFactors(ctx->GlobalUnitAssignedContext()) != 0) continue;
+      if (units.ComputeTolerance(ctx->GlobalUncertaintyAssignedContext()) != 0 ||
+          !units.HasUncertainty())
+        continue;
+      const double u = units.Uncertainty() * units.LengthFactor();
+      if (std::isfinite(u) && u > 0.0) largest = std::max(largest, u);
+    }
+    if (largest > 0.0) return largest;
+  }
+  return Interface_Static::RVal("read.precision.val");
+}
+
+Result<ShellData> sew_faces(const ShellInput& in, const std::vector<int>& given,
+                            std::vector<std::string>& warnings) {
+  std::vector<int> indices = given;
+  if (indices.empty()) {
+    indices.resize(static_cast<size_t>(in.faces.Extent()));
+    std::iota(indices.begin(), indices.end(), 0);
+  }
+  const size_t n = indices.size();
+  std::vector<FaceInfo> infos;
+  std::set<int> seen;
+  BBox3 box;
+  for (int i : indices) {
+    auto info = in.describe(i);  // an index out of range is an error naming the file here
+    if (!info) return info.error();
+    if (!seen.insert(i).second)
+      return Error{in.source + ": face " + std::to_string(i) + " is listed twice"};
+    if (!info->bbox.empty) {
+      box.add(info->bbox.min);
+      box.add(info->bbox.max);
+    }
+    infos.push_back(std::move(info).value());
+  }
+  const std::string what = in.source + ": sewing " + face_list(indices);
+  const double size = box.diagonal();
+  if (!(size > 0.0)) return Error{what + ": the faces have zero size"};
+  if (!(in.options.sewing_tolerance >= 0.0) || !std::isfinite(in.options.sewing_tolerance))
+    return Error{what + ": invalid sewing tolerance " + mm(in.options.sewing_tolerance)};
+
+  // Each face as the sewn shell holds it (orientation included), and every edge's faces.
+  std::vector<TopoDS_Face> sewn(n);
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
+  auto sewing = guarded(what, [&]() -> Status {
+    double tol = in.options.sewing_tolerance;
+    if (tol == 0.0) {
+      tol = in.precision;
+      for (int i : indices)
+        for (TopExp_Explorer ex(in.faces(i + 1), TopAbs_EDGE); ex.More(); ex.Next())
+          tol = std::max(tol, BRep_Tool::Tolerance(TopoDS::Edge(ex.Current())));
+      tol =
+          std::clamp(tol, kSewingMinTolerance, std::max(kSewingMinTolerance, kSewingMaxRel * size));
+    }
+    BRepBuilderAPI_Sewing sew(tol, Standard_True, Standard_True, Standard_True, Standard_False);
+    sew.SetNonManifoldMode(Standard_False);
+    for (int i : indices) sew.Add(in.faces(i + 1));
+    Handle(Deadline) deadline = new Deadline(in.options.time_limit_s);
+    sew.Perform(deadline->Start());
+    if (deadline->expired())
+      return Error{what + ": sewing took longer than the time limit (" +
+                   std::to_string(static_cast<int>(in.options.time_limit_s)) + " s)"};
+    const TopoDS_Shape& shape = sew.SewedShape();
+    if (shape.IsNull()) return Error{what + ": the sewing gave no shape"};
+    // The faces as the sewn shape holds them: TopExp_Explorer gives each with the orientation
+    // the sewing chose for it within its shell.
+    TopTools_IndexedMapOfShape oriented;
+    for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) oriented.Add(ex.Current());
+    for (size_t k = 0; k < n; ++k) {
+      const TopoDS_Shape& f = in.faces(indices[k] + 1);
+      const TopoDS_Shape g = sew.IsModifiedSubShape(f) ? sew.ModifiedSubShape(f) : f;
+      const int found = g.IsNull() ? 0 : oriented.FindIndex(g);
+      if (found == 0 || g.ShapeType() != TopAbs_FACE)
+        return Error{in.source + ": face " + std::to_string(indices[k]) +
+                     ": the sewing removed it (smaller than the sewing tolerance, " + mm(tol) +
+                     "?)"};
+      sewn[k] = TopoDS::Face(oriented(found));
+    }
+    TopExp::MapShapesAndAncestors(shape, TopAbs_EDGE, TopAbs_FACE, edge_faces);
+    return ok_status();
+  });
+  if (!sewing) return sewing.error();
+
+  // Which position in `indices` each sewn face has.
+  TopTools_DataMapOfShapeInteger position;
+  for (size_t k = 0; k < n; ++k) position.Bind(sewn[k], static_cast<int>(k));
+
+  // Shared edges: exactly two uses by two different faces. Numbered in the order the faces
+  // (as given) and their edges meet them.
+  TopTools_DataMapOfShapeInteger shared;
+  std::vector<std::pair<int, int>> shared_faces;  // positions of each shared edge's faces
+  std::vector<TopoDS_Edge> shared_edges;
+  int non_manifold = 0;
+  Parts parts(n);
+  for (size_t k = 0; k < n; ++k) {
+    for (TopExp_Explorer ex(sewn[k], TopAbs_EDGE); ex.More(); ex.Next()) {
+      const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
+      if (shared.IsBound(e) || BRep_Tool::Degenerated(e)) continue;
+      const TopTools_ListOfShape* faces = edge_faces.Seek(e);
+      if (!faces) continue;
+      if (faces->Extent() > 2) {
+        // Counted once: marked as seen with a free tag.
+        shared.Bind(e, TrimLoop::kFreeEdge);
+        ++non_manifold;
+        continue;
+      }
+      if (faces->Extent() != 2 || faces->First().IsSame(faces->Last())) continue;  // free, seam
+      const int *a = position.Seek(faces->First()), *b = position.Seek(faces->Last());
+      if (!a || !b) continue;
+      shared.Bind(e, static_cast<int>(shared_edges.size()));
+      shared_edges.push_back(e);
+      shared_faces.emplace_back(*a, *b);
+      parts.join(*a, *b);
+    }
+  }
+
+  // Orientation: the sewing oriented each connected part consistently; a part keeps the
+  // file's orientation on most of its faces (ties: on its first face as given).
+  std::vector<int> agree(n, 0), total(n, 0), first(n, -1);
+  for (size_t k = 0; k < n; ++k) {
+    const int p = parts.find(static_cast<int>(k));
+    const TopAbs_Orientation file_o = in.faces(indices[k] + 1).Orientation();
+    agree[static_cast<size_t>(p)] += sewn[k].Orientation() == file_o ? 1 : 0;
+    total[static_cast<size_t>(p)] += 1;
+    if (first[static_cast<size_t>(p)] < 0) first[static_cast<size_t>(p)] = static_cast<int>(k);
+  }
+  std::vector<int> reoriented;
+  int part_count = 0;
+  for (size_t k = 0; k < n; ++k) {
+    const size_t p = static_cast<size_t>(parts.find(static_cast<int>(k)));
+    if (static_cast<int>(p) == static_cast<int>(k)) ++part_count;
+    const int a = agree[p], t = total[p];
+    const bool first_agrees = sewn[static_cast<size_t>(first[p])].Orientation() ==
+                              in.faces(indices[static_cast<size_t>(first[p])] + 1).Orientation();
+    const bool flip = 2 * a < t || (2 * a == t && !first_agrees);
+    if (flip) sewn[k].Reverse();
+    if (sewn[k].Orientation() != in.faces(indices[k] + 1).Orientation())
+      reoriented.push_back(indices[k]);
+  }
+  // A shared edge is used in opposite directions by its two faces when they are oriented
+  // alike; the sewing guarantees it for the shells it builds. Checked, not assumed.
+  int disagreeing = 0;
+  {
+    std::vector<std::vector<std::pair<TopoDS_Shape, TopAbs_Orientation>>> uses(n);
+    for (size_t k = 0; k < n; ++k) uses[k] = edge_uses(sewn[k]);
+    for (size_t s = 0; s < shared_edges.size(); ++s) {
+      const auto [a, b] = shared_faces[s];
+      if (use_in(uses[static_cast<size_t>(a)], shared_edges[s]) ==
+          use_in(uses[static_cast<size_t>(b)], shared_edges[s]))
+        ++disagreeing;
+    }
+  }
+
+  ShellData shell;
+  shell.edge_count = static_cast<std::int32_t>(shared_edges.size());
+  shell.source_faces = indices;
+  auto gaps = guarded(what, [&]() -> Result<double> {
+    double gap = 0.0;
+    for (size_t s = 0; s < shared_edges.size(); ++s)
+      gap =
+          std::max(gap, edge_gap(shared_edges[s], sewn[static_cast<size_t>(shared_faces[s].first)],
+                                 sewn[static_cast<size_t>(shared_faces[s].second)]));
+    return gap;
+  });
+  if (!gaps) return gaps.error();
+  shell.tolerance = gaps.value();
+
+  const EdgeTag tag = [&](const TopoDS_Edge& e) -> std::int32_t {
+    const int* t = shared.Seek(e);
+    return t ? *t : TrimLoop::kFreeEdge;
+  };
+  for (size_t k = 0; k < n; ++k) {
+    const std::string face_what = in.source + ": face " + std::to_string(indices[k]);
+    auto fd = guarded(face_what, [&]() -> Result<FaceData> {
+      return convert_face(sewn[k], infos[k], in.options.tolerances, &tag);
+    });
+    if (!fd) {
+      if (legacy_text(fd.error()).rfind(face_what, 0) == 0) return fd.error();
+      return Error{face_what}.because(fd.error());
+    }
+    shell.faces.push_back(std::move(fd).value());
+  }
+
+  if (part_count > 1)
+    warnings.push_back("sewing: the " + std::to_string(n) + " faces form " +
+                       std::to_string(part_count) +
+                       " separate shells that no shared edge joins; a drape stays on the one it "
+                       "starts on");
+  if (non_manifold > 0)
+    warnings.push_back("sewing: " + count(non_manifold, "edge") +
+                       (non_manifold == 1 ? " bounds" : " bound") +
+                       " more than two faces (non-manifold), treated as free");
+  if (!reoriented.empty())
+    warnings.push_back("sewing: " + face_list(reoriented) +
+                       " reversed to orient the shell consistently");
+  if (disagreeing > 0)
+    warnings.push_back("sewing: " + count(disagreeing, "shared edge") +
+                       (disagreeing == 1 ? " joins" : " join") +
+                       " faces oriented against each other (a non-orientable shell)");
+  return shell;
+}
+
+}  // namespace plyfit::importers::occt

@@ -1,0 +1,261 @@
+#include <plyfit/exporters/messages.hpp>
+#include <plyfit/kernel/nurbs.hpp>
+#include "geometry/analytic_surfaces.hpp"
+
+#include <catch2/catch.hpp>
+
+#include "test_util.hpp"
+
+#include <cmath>
+#include <limits>
+
+using namespace plyfit;
+using plyfit::test::kRoundoffRel;
+using plyfit::test::Rng;
+
+namespace {
+
+// Random knot vector for `count` poles of `degree`: random spacing, repeated interior knots,
+// clamped or not.
+std::vector<double> random_knots(Rng& rng, int count, int degree, bool clamped) {
+  std::vector<double> k;
+  const int total = count + degree + 1;
+  double x = rng.uniform(-2.0, 2.0);
+  if (clamped) {
+    k.assign(degree + 1, x);
+    while (static_cast<int>(k.size()) < count) {
+      x += rng.uniform(0.05, 1.5);
+      const int mult = std::min(rng.integer(1, degree), count - static_cast<int>(k.size()));
+      k.insert(k.end(), mult, x);
+    }
+    x += rng.uniform(0.05, 1.5);
+    k.insert(k.end(), degree + 1, x);
+  } else {
+    while (static_cast<int>(k.size()) < total) {
+      x += rng.uniform(0.05, 1.5);
+      k.push_back(x);
+    }
+  }
+  return k;
+}
+
+// Greville abscissae: with poles there, a B-spline reproduces linear functions exactly.
+std::vector<double> greville(const std::vector<double>& k, int count, int degree) {
+  std::vector<double> g(count);
+  for (int i = 0; i < count; ++i) {
+    double s = 0.0;
+    for (int j = 1; j <= degree; ++j) s += k[i + j];
+    g[i] = s / degree;
+  }
+  return g;
+}
+
+}  // namespace
+
+TEST_CASE("kernel: validation rejects malformed surfaces with a clear message") {
+  NurbsSurfaceData good = plane_patch(Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY());
+  REQUIRE(NurbsSurface::create(good).ok());
+
+  auto bad = good;
+  bad.knots_u.pop_back();
+  auto r = NurbsSurface::create(bad);
+  REQUIRE_FALSE(r.ok());
+  CHECK_THAT(exporters::describe(r.error()), Catch::Contains("knot count in u"));
+
+  bad = good;
+  bad.knots_v = {0, 1, 0.5, 1};
+  r = NurbsSurface::create(bad);
+  REQUIRE_FALSE(r.ok());
+  CHECK_THAT(exporters::describe(r.error()), Catch::Contains("decrease"));
+
+  bad = good;
+  bad.knots_u = {0, 0, 0, 1};  // multiplicity 3 > degree + 1 = 2
+  r = NurbsSurface::create(bad);
+  REQUIRE_FALSE(r.ok());
+  CHECK_THAT(exporters::describe(r.error()), Catch::Contains("multiplicity"));
+
+  bad = good;
+  bad.poles[2].y() = std::numeric_limits<double>::quiet_NaN();
+  r = NurbsSurface::create(bad);
+  REQUIRE_FALSE(r.ok());
+  CHECK_THAT(exporters::describe(r.error()), Catch::Contains("not finite"));
+
+  bad = good;
+  bad.weights = {1, 1, -0.5, 1};
+  r = NurbsSurface::create(bad);
+  REQUIRE_FALSE(r.ok());
+  CHECK_THAT(exporters::describe(r.error()), Catch::Contains("positive"));
+
+  bad = good;
+  bad.weights = {1, 1, 1};
+  REQUIRE_FALSE(NurbsSurface::create(bad).ok());
+
+  bad = good;
+  bad.degree_u = 26;
+  REQUIRE_FALSE(NurbsSurface::create(bad).ok());
+
+  bad = good;
+  bad.knots_u = {1, 1, 1, 1};
+  bad.knots_u = {0, 1, 1, 1};  // domain [1, 1] is empty
+  r = NurbsSurface::create(bad);
+  REQUIRE_FALSE(r.ok());
+}
+
+TEST_CASE("kernel: linear precision for any degree and knot vector, clamped or not") {
+  // Poles at the Greville abscissae (x_i, y_j, x_i * y_j) reproduce S(u, v) = (u, v, u v)
+  // exactly, with Su = (1, 0, v), Sv = (0, 1, u), Suu = Svv = 0, Suv = (0, 0, 1). This
+  // checks the basis functions and their derivatives for every degree, knot multiplicity and
+  // unclamped vectors, and the extension past the domain (the same polynomial).
+  Rng rng(7);
+  for (int trial = 0; trial < 60; ++trial) {
+    const int p = trial < 50 ? rng.integer(1, 7) : rng.integer(12, 25);
+    const int q = trial < 50 ? rng.integer(1, 7) : rng.integer(1, 4);
+    const int nu = p + 1 + rng.integer(0, 6), nv = q + 1 + rng.integer(0, 6);
+    NurbsSurfaceData d;
+    d.degree_u = p;
+    d.degree_v = q;
+    d.count_u = nu;
+    d.count_v = nv;
+    d.knots_u = random_knots(rng, nu, p, trial % 3 != 0);
+    d.knots_v = random_knots(rng, nv, q, trial % 4 != 0);
+    const auto gu = greville(d.knots_u, nu, p), gv = greville(d.knots_v, nv, q);
+    for (int i = 0; i < nu; ++i)
+      for (int j = 0; j < nv; ++j) d.poles.emplace_back(gu[i], gv[j], gu[i] * gv[j]);
+    auto s = NurbsSurface::create(d);
+    REQUIRE(s.ok());
+    const auto& dom = s->domain();
+    const double scale =
+        1.0 + std::max({std::abs(dom.u0), std::abs(dom.u1), std::abs(dom.v0), std::abs(dom.v1)});
+    const double tol = 1e-11 * scale * scale;  // degree-25 bases lose a few digits
+    for (int k = 0; k < 50; ++k) {
+      // Up to 10% beyond the domain for degrees <= 7. Extrapolating a degree-25 polynomial
+      // that far amplifies rounding by (distance / span)^degree, so high degrees are checked
+      // inside the domain only (the drape extends surfaces by a fraction of one step).
+      const double ext = (p <= 7 && q <= 7) ? 0.1 : 0.0;
+      const double u = rng.uniform(dom.u0 - ext * dom.width_u(), dom.u1 + ext * dom.width_u());
+      const double v = rng.uniform(dom.v0 - ext * dom.width_v(), dom.v1 + ext * dom.width_v());
+      const SurfaceEval2 e = s->eval2(u, v);
+      INFO("trial " << trial << " degrees " << p << "x" << q << " uv " << u << "," << v
+                    << " inside " << dom.contains(u, v));
+      REQUIRE(e.ok);
+      CHECK((e.p - Vec3(u, v, u * v)).norm() < tol);
+      CHECK((e.du - Vec3(1, 0, v)).norm() < tol);
+      CHECK((e.dv - Vec3(0, 1, u)).norm() < tol);
+      CHECK(e.duu.norm() < tol);
+      CHECK((e.duv - Vec3(0, 0, 1)).norm() < tol);
+      CHECK(e.dvv.norm() < tol);
+      const SurfaceEval1 e1 = s->eval1(u, v);
+      CHECK((e1.p - e.p).norm() < tol);
+      CHECK((e1.du - e.du).norm() < tol);
+      CHECK((e1.dv - e.dv).norm() < tol);
+      CHECK((s->point(u, v) - e.p).norm() < tol);
+    }
+  }
+}
+
+TEST_CASE("kernel: rational derivatives satisfy the sphere identities exactly") {
+  // On |S|^2 = R^2: S.Su = S.Sv = 0 and Su.Su + S.Suu = Su.Sv + S.Suv = Sv.Sv + S.Svv = 0.
+  // These hold only if the quotient rule is right to second order.
+  const double R = 20.0;
+  auto s = NurbsSurface::create(sphere_patch(R, -1.2, 1.5, 0.3, 5.9));
+  REQUIRE(s.ok());
+  REQUIRE(s->rational());
+  Rng rng(3);
+  const auto& d = s->domain();
+  for (int k = 0; k < 2000; ++k) {
+    const double u = rng.uniform(d.u0, d.u1), v = rng.uniform(d.v0, d.v1);
+    const SurfaceEval2 e = s->eval2(u, v);
+    const double sp = e.du.norm() + e.dv.norm();
+    CHECK(std::abs(e.p.norm() - R) < kRoundoffRel * R);
+    CHECK(std::abs(e.p.dot(e.du)) < kRoundoffRel * R * sp);
+    CHECK(std::abs(e.p.dot(e.dv)) < kRoundoffRel * R * sp);
+    const double sc = R * (e.duu.norm() + e.duv.norm() + e.dvv.norm()) + sp * sp;
+    CHECK(std::abs(e.du.dot(e.du) + e.p.dot(e.duu)) < kRoundoffRel * sc);
+    CHECK(std::abs(e.du.dot(e.dv) + e.p.dot(e.duv)) < kRoundoffRel * sc);
+    CHECK(std::abs(e.dv.dot(e.dv) + e.p.dot(e.dvv)) < kRoundoffRel * sc);
+  }
+}
+
+TEST_CASE("kernel: the normal at a pole is the limit, flagged degenerate, never NaN") {
+  const double R = 20.0;
+  auto s = NurbsSurface::create(sphere_octant(R));
+  REQUIRE(s.ok());
+  const auto& d = s->domain();
+  // u = d.u0 is the pole (0, 0, R) for every v.
+  for (double v : {d.v0, 0.5 * (d.v0 + d.v1), d.v1}) {
+    const SurfaceEval1 e = s->eval1(d.u0, v);
+    CHECK((e.p - Vec3(0, 0, R)).norm() < kRoundoffRel * R);
+    const SurfaceNormal n = s->normal(d.u0, v);
+    CHECK(n.ok);
+    CHECK(n.degenerate);
+    CHECK(n.n.allFinite());
+    CHECK((n.n - Vec3::UnitZ()).norm() < 1e-12);
+  }
+  // Away from the pole: not degenerate, radial and outward.
+  const SurfaceNormal n = s->normal(0.4, 0.7);
+  CHECK_FALSE(n.degenerate);
+  CHECK((n.n - s->point(0.4, 0.7) / R).norm() < 1e-12);
+  // A hemisphere's pole is in the interior of the v range, still a limit.
+  auto h = NurbsSurface::create(sphere_patch(1.0, 0.0, 1.5707963267948966, 0.0, 6.283185307179586));
+  REQUIRE(h.ok());
+  const SurfaceNormal hn = h->normal(h->domain().u0, 2.0);
+  CHECK(hn.degenerate);
+  CHECK((hn.n - Vec3::UnitZ()).norm() < 1e-12);
+}
+
+TEST_CASE("kernel: an extended rational surface reports where it is undefined, no NaN") {
+  // Middle weight 3 (a hyperbolic arc in u): the weight of the extended end spans,
+  // 1 + 4 t (1 - t), reaches zero past the domain.
+  NurbsSurfaceData d;
+  d.degree_u = 2;
+  d.degree_v = 1;
+  d.count_u = 3;
+  d.count_v = 2;
+  d.knots_u = {0, 0, 0, 1, 1, 1};
+  d.knots_v = {0, 0, 1, 1};
+  d.poles = {Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(1, 0, 1),
+             Vec3(1, 1, 1), Vec3(2, 0, 0), Vec3(2, 1, 0)};
+  d.weights = {1, 1, 3, 3, 1, 1};
+  auto s = NurbsSurface::create(d);
+  REQUIRE(s.ok());
+  int undefined = 0;
+  for (double u = -5.0; u <= 6.0; u += 0.001) {
+    const SurfaceEval2 e = s->eval2(u, 0.5);
+    const SurfaceEval1 e1 = s->eval1(u, 0.5);
+    CHECK(e.p.allFinite());
+    CHECK(e.du.allFinite());
+    CHECK(e.duu.allFinite());
+    CHECK(e1.p.allFinite());
+    CHECK(s->point(u, 0.5).allFinite());
+    CHECK(s->normal(u, 0.5).n.allFinite());
+    if (!e.ok) ++undefined;
+    if (u >= 0.0 && u <= 1.0) CHECK(e.ok);
+  }
+  CHECK(undefined > 0);
+}
+
+TEST_CASE("kernel: rounding covers the spacing of the parameters' doubles, and no more") {
+  // A 4 mm cylinder strip of radius 33 whose axial parameter runs over [1e5, 1e5 + 1] (a CAD
+  // export's parameter from a distant origin): the doubles near u = 1e5 are 1.46e-11 apart,
+  // so the surface is known only at points 4 x 1.46e-11 mm apart along the axis. rounding()
+  // must cover half that spacing; the same strip on [0, 1] has only the sums' rounding.
+  const double far = 1e5, width = 72.0 / 33;
+  NurbsSurfaceData strip = cylinder_patch(33, 0.0, width, 0.0, 4.0);  // u axial, v around
+  auto near = NurbsSurface::create(strip);
+  for (double& k : strip.knots_u) k += far;
+  auto at_far = NurbsSurface::create(strip);
+  REQUIRE(near.ok());
+  REQUIRE(at_far.ok());
+  const double spacing = std::nextafter(far + 1.0, 2 * far) - (far + 1.0);  // 1.46e-11
+  const double speed = at_far->eval1(far + 0.5, 0.5).du.norm();             // |Su| = 4 mm
+  CHECK(std::abs(speed - 4.0) < 1e-9);
+  CHECK(at_far->rounding() >= 0.5 * spacing * speed);
+  // Not absurd: within a few hundred ulps of the parameter's spacing and of the strip's size.
+  const double size = at_far->control_bbox().diagonal();
+  const double eps = std::numeric_limits<double>::epsilon();
+  CHECK(at_far->rounding() < 100 * spacing + 100 * eps * size);
+  // On [0, 1] the spacing near the parameters is below the sums' rounding: a few ulps of the
+  // size.
+  CHECK(near->rounding() < 100 * eps * size);
+  CHECK(near->rounding() > 0.0);
+}

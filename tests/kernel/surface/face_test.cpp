@@ -1,0 +1,112 @@
+#include "surface/face.hpp"
+#include "geometry/analytic_surfaces.hpp"
+
+#include <catch2/catch.hpp>
+
+#include "test_util.hpp"
+
+#include <cmath>
+
+using namespace plyfit;
+using plyfit::test::Rng;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+std::vector<Vec2> circle_poly(const Vec2& c, double r, int n, bool cw) {
+  std::vector<Vec2> p;
+  for (int k = 0; k < n; ++k) {
+    const double a = 2 * kPi * k / n * (cw ? -1 : 1);
+    p.emplace_back(c.x() + r * std::cos(a), c.y() + r * std::sin(a));
+  }
+  return p;
+}
+}  // namespace
+
+TEST_CASE("kernel: contains() is even-odd over the trim loops") {
+  FaceData fd;
+  fd.surface = plane_patch(Vec3::Zero(), Vec3(10, 0, 0), Vec3(0, 10, 0));
+  // Outer loop (0.1..0.9)^2 and a square hole (0.4..0.6)^2, in uv of the unit domain.
+  fd.loops.push_back({{Vec2(0.1, 0.1), Vec2(0.9, 0.1), Vec2(0.9, 0.9), Vec2(0.1, 0.9)}});
+  fd.loops.push_back({{Vec2(0.4, 0.4), Vec2(0.4, 0.6), Vec2(0.6, 0.6), Vec2(0.6, 0.4)}});
+  auto f = Face::create(fd);
+  REQUIRE(f.ok());
+  CHECK(f->trimmed());
+  Rng rng(1);
+  for (int k = 0; k < 5000; ++k) {
+    const Vec2 uv(rng.uniform(-0.2, 1.2), rng.uniform(-0.2, 1.2));
+    const bool in_outer = uv.x() > 0.1 && uv.x() < 0.9 && uv.y() > 0.1 && uv.y() < 0.9;
+    const bool in_hole = uv.x() > 0.4 && uv.x() < 0.6 && uv.y() > 0.4 && uv.y() < 0.6;
+    CHECK(f->contains(uv) == (in_outer && !in_hole));
+  }
+  // At the height of loop vertices the half-open rule counts each crossing once.
+  for (double v : {0.4, 0.6}) {
+    CHECK(f->contains(Vec2(0.2, v)));
+    CHECK(f->contains(Vec2(0.8, v)));
+    CHECK_FALSE(f->contains(Vec2(0.05, v)));
+  }
+  // Area of the trimmed region: 100 * (0.64 - 0.04).
+  CHECK(f->area() == Approx(60.0).epsilon(2e-2));
+}
+
+TEST_CASE("kernel: a circular hole with many vertices") {
+  FaceData fd;
+  fd.surface = plane_patch(Vec3::Zero(), Vec3(1, 0, 0), Vec3(0, 1, 0));
+  fd.loops.push_back({{Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}});
+  fd.loops.push_back({circle_poly(Vec2(0.5, 0.5), 0.25, 4000, true)});
+  auto f = Face::create(fd);
+  REQUIRE(f.ok());
+  Rng rng(2);
+  for (int k = 0; k < 20000; ++k) {
+    const Vec2 uv(rng.uniform(0.01, 0.99), rng.uniform(0.01, 0.99));
+    const double r = (uv - Vec2(0.5, 0.5)).norm();
+    if (std::abs(r - 0.25) < 1e-6) continue;  // the polygon is within 1e-7 of the circle
+    CHECK(f->contains(uv) == (r > 0.25));
+  }
+}
+
+TEST_CASE("kernel: closed seams wrap parameters and differences") {
+  FaceData fd;
+  fd.surface = cylinder_patch(5.0, 0.0, 2 * kPi, 0.0, 10.0);
+  fd.closed_v = true;  // v runs around the axis
+  auto f = Face::create(fd);
+  REQUIRE(f.ok());
+  const auto& d = f->domain();
+  const double P = d.width_v();
+  CHECK(f->contains(Vec2(0.5 * (d.u0 + d.u1), d.v1 + 0.1 * P)));
+  CHECK(f->wrap(Vec2(0.3, d.v0 - 0.25 * P)).y() == Approx(d.v0 + 0.75 * P));
+  CHECK(f->delta(Vec2(0.3, d.v1 - 0.01 * P), Vec2(0.3, d.v0 + 0.01 * P)).y() == Approx(0.02 * P));
+  // Evaluation across the seam continues the surface.
+  const Vec3 a = f->eval1(Vec2(0.5, d.v1 + 0.1 * P)).p;
+  const Vec3 b = f->eval1(Vec2(0.5, d.v0 + 0.1 * P)).p;
+  CHECK((a - b).norm() < 1e-12 * 5);
+}
+
+TEST_CASE("kernel: projection finds the nearest point of the face") {
+  const double R = 20.0;
+  FaceData fd;
+  fd.surface = sphere_octant(R);
+  auto f = Face::create(fd);
+  REQUIRE(f.ok());
+  // The octant's area is 4 pi R^2 / 8.
+  CHECK(f->area() == Approx(kPi * R * R / 2).epsilon(1e-9));
+  // Points off the sphere inside the octant's cone project radially.
+  Rng rng(4);
+  for (int k = 0; k < 50; ++k) {
+    const Vec3 dir =
+        Vec3(rng.uniform(0.05, 1), rng.uniform(0.05, 1), rng.uniform(0.05, 1)).normalized();
+    const double r = rng.uniform(0.3 * R, 2 * R);
+    const Projection pr = f->project(r * dir);
+    REQUIRE(pr.ok);
+    CHECK((pr.point - R * dir).norm() < 1e-9 * R);
+    CHECK(pr.distance == Approx(std::abs(r - R)).margin(1e-9 * R));
+  }
+  // The paper's Table 1 (b) start point (R/2, 0, R/2) lies off the sphere: it moves to
+  // (R, 0, R) / sqrt(2), on the octant's y = 0 edge.
+  const Projection pb = f->project(Vec3(R / 2, 0, R / 2));
+  REQUIRE(pb.ok);
+  CHECK((pb.point - Vec3(R, 0, R) / std::sqrt(2.0)).norm() < 1e-9 * R);
+  // The pole projects to itself.
+  const Projection pp = f->project(Vec3(0, 0, R));
+  CHECK(pp.distance < 1e-9 * R);
+}

@@ -1,0 +1,46 @@
+// plyfit info on the real CAD files of the corpus: the text listing, --json, reader warnings.
+
+#include <nlohmann/json.hpp>
+
+#include <catch2/catch.hpp>
+
+#include "corpus.hpp"
+#include "occt/info_checks.hpp"
+
+using namespace plyfit;
+using namespace plyfit::test;
+
+TEST_CASE("importers: plyfit info lists the faces of a real file") {
+  TempDir dir("cli_info_corpus");
+  const std::string path = shared_cad("occ22470.igs");
+  const Run r = run_plyfit("info '" + path + "'", dir);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.err.empty());
+  // Header, one line per face, the summary and the warnings line.
+  CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 2 + 18 + 2);
+  CHECK(r.out.find("summary: 18 faces (bspline 18), 14 rational, 18 trimmed") != std::string::npos);
+  CHECK(r.out.find("unit: millimetre") != std::string::npos);
+  CHECK(r.out.find("schema: IGES 5.3") != std::string::npos);
+  // Nothing from OpenCASCADE's own printers.
+  CHECK(r.out.find("***") == std::string::npos);
+  // Reader messages appear summarised after the summary line.
+  const Run w = run_plyfit("info '" + shared_cad("trj7_c2-td-203.stp") + "'", dir);
+  REQUIRE(w.code == 0);
+  CHECK(w.out.find("\nwarning: load: 12 fails") != std::string::npos);
+  CHECK(w.err.empty());
+}
+
+TEST_CASE("importers: plyfit info --json on a real file matches the library's listing") {
+  TempDir dir("cli_json_corpus");
+  const auto j = check_info_json(shared_cad("bug27693_cornetta-step.stp"), dir);
+  CHECK(j["summary"]["kinds"]["bspline"] == 74);
+  CHECK(j["summary"]["kinds"]["plane"] == 36);
+  CHECK(j["unit"] == "millimetre");
+  CHECK(j["schema"] == "AUTOMOTIVE_DESIGN");
+  CHECK(j["format"] == "step");
+  // Reader warnings reach the JSON too.
+  const Run w = run_plyfit("info --json '" + shared_cad("trj7_c2-td-203.stp") + "'", dir);
+  REQUIRE(w.code == 0);
+  CHECK_FALSE(nlohmann::json::parse(w.out)["warnings"].empty());
+}

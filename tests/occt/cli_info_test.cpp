@@ -1,0 +1,80 @@
+// plyfit info, run as a program on plyfit's own sample molds: the text listing, --json,
+// --format and the exit codes (the same on the CAD corpus in cli_info_corpus_test.cpp).
+
+#include <nlohmann/json.hpp>
+
+#include <catch2/catch.hpp>
+
+#include "occt/info_checks.hpp"
+
+using namespace plyfit;
+using namespace plyfit::test;
+
+TEST_CASE("importers: plyfit info lists the faces of a file") {
+  TempDir dir("cli_info");
+  const std::string path = sample_mold("tube-window.step");
+  const Run r = run_plyfit("info '" + path + "'", dir);
+  INFO(r.out << r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.err.empty());
+  // Header, one line per face, the summary and the warnings line.
+  CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 2 + 1 + 2);
+  CHECK(r.out.find("summary: 1 faces (bspline 1), 1 rational, 1 trimmed (1 with holes)") !=
+        std::string::npos);
+  CHECK(r.out.find("'tube-window'") != std::string::npos);
+  CHECK(r.out.find("unit: millimetre") != std::string::npos);
+  CHECK(r.out.find("schema: AUTOMOTIVE_DESIGN") != std::string::npos);
+  // Nothing from OpenCASCADE's own printers.
+  CHECK(r.out.find("***") == std::string::npos);
+  // Reader messages appear summarised after the summary line: OpenCASCADE's STEP reader makes
+  // the closed B-spline of the tube periodic, and says so.
+  CHECK(r.out.find("\nwarning: transfer: 1 warning (1x 'Surface forced to be periodic')") !=
+        std::string::npos);
+}
+
+TEST_CASE("importers: plyfit info --json parses and matches the library's listing") {
+  TempDir dir("cli_json");
+  for (const std::string name : {"dish.igs", "plate-hole.step", "tube-window.igs"}) {
+    INFO(name);
+    const auto j = check_info_json(sample_mold(name), dir);
+    CHECK(j["summary"]["kinds"]["bspline"] == 1);
+    CHECK(j["faces"][0]["trimmed"] == true);
+    CHECK(j["faces"][0]["holes"] == 1);
+    CHECK(j["unit"].get<std::string>().rfind("millimetre", 0) == 0);
+    CHECK(j["format"] == (is_iges(name) ? "iges" : "step"));
+    CHECK(j["schema"].get<std::string>().rfind(is_iges(name) ? "IGES 5.3" : "AUTOMOTIVE_DESIGN",
+                                               0) == 0);
+  }
+  // Reader warnings reach the JSON too.
+  const Run w = run_plyfit("info --json '" + sample_mold("tube-window.step") + "'", dir);
+  REQUIRE(w.code == 0);
+  CHECK_FALSE(nlohmann::json::parse(w.out)["warnings"].empty());
+}
+
+TEST_CASE("importers: plyfit info exit codes: 1 for a bad file, 2 for a bad command line") {
+  TempDir dir("cli_codes");
+  const std::string step = sample_mold("plate-hole.step");
+  Run r = run_plyfit("info '" + dir.file("missing.step") + "'", dir);
+  CHECK(r.code == 1);
+  CHECK(r.err == "plyfit: error: " + dir.file("missing.step") + ": no such file\n");
+  r = run_plyfit("info", dir);
+  CHECK(r.code == 2);
+  r = run_plyfit("info --no-such-option '" + step + "'", dir);
+  CHECK(r.code == 2);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  r = run_plyfit("info '" + step + "' extra_argument", dir);
+  CHECK(r.code == 2);
+  // --format overrides the extension.
+  write_bytes(dir.file("model.dat"), read_bytes(step));
+  r = run_plyfit("info '" + dir.file("model.dat") + "'", dir);
+  CHECK(r.code == 1);
+  CHECK(r.err.find("supported: step, stp, iges, igs") != std::string::npos);
+  r = run_plyfit("info --format step '" + dir.file("model.dat") + "'", dir);
+  CHECK(r.code == 0);
+  r = run_plyfit("info --format iges '" + dir.file("model.dat") + "'", dir);
+  CHECK(r.code == 1);
+  CHECK(r.err.find("looks like STEP") != std::string::npos);
+  r = run_plyfit("info --help", dir);
+  CHECK(r.code == 0);
+  CHECK(r.out.find("--json") != std::string::npos);
+}

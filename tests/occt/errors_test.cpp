@@ -1,0 +1,128 @@
+// Expected failures of the importers (error_checks.hpp) on plyfit's own sample molds: missing,
+// empty, truncated, corrupted and mislabelled files, files with no faces, bad face indices,
+// the time limit, and the registry's extension handling. The same checks run on the CAD
+// corpus in errors_corpus_test.cpp.
+
+#include <plyfit/exporters/messages.hpp>
+#include <plyfit/importers/importers.hpp>
+
+#include <BRepBuilderAPI_MakeEdge.hxx>
+#include <IGESControl_Controller.hxx>
+#include <IGESControl_Writer.hxx>
+#include <STEPControl_Controller.hxx>
+#include <STEPControl_Writer.hxx>
+
+#include <catch2/catch.hpp>
+
+#include "occt/error_checks.hpp"
+
+using namespace plyfit;
+using namespace plyfit::test;
+
+TEST_CASE("importers: missing, empty and unreadable files are errors naming the file") {
+  TempDir dir("errors_basic");
+  const std::string missing = dir.file("nope.step");
+  auto r = importers::open_mold(missing);
+  REQUIRE_FALSE(r.ok());
+  check_error(r.error(), missing);
+  CHECK(exporters::describe(r.error()).find("no such file") != std::string::npos);
+
+  std::filesystem::create_directories(dir.file("folder.igs"));
+  r = importers::open_mold(dir.file("folder.igs"));
+  REQUIRE_FALSE(r.ok());
+  CHECK(exporters::describe(r.error()).find("not a regular file") != std::string::npos);
+
+  write_bytes(dir.file("empty.stp"), "");
+  r = importers::open_mold(dir.file("empty.stp"));
+  REQUIRE_FALSE(r.ok());
+  check_error(r.error(), dir.file("empty.stp"));
+  CHECK(exporters::describe(r.error()).find("empty") != std::string::npos);
+}
+
+TEST_CASE("importers: the registry picks importers by extension or --format") {
+  CHECK(importers::find_importer("STEP") != nullptr);
+  CHECK(importers::find_importer("stp")->key == "step");
+  CHECK(importers::find_importer("IGS")->key == "iges");
+  CHECK(importers::find_importer("dxf") == nullptr);
+  CHECK(importers::supported_extensions() == "step, stp, iges, igs");
+  TempDir dir("registry");
+  const std::string bytes = read_bytes(sample_mold("plate-hole.step"));
+  write_bytes(dir.file("UPPER.STP"), bytes);
+  CHECK(importers::open_mold(dir.file("UPPER.STP")).ok());
+  write_bytes(dir.file("model.dat"), bytes);
+  auto r = importers::open_mold(dir.file("model.dat"));
+  REQUIRE_FALSE(r.ok());
+  check_error(r.error(), dir.file("model.dat"));
+  CHECK(exporters::describe(r.error()).find("step, stp, iges, igs") != std::string::npos);
+  importers::ImportOptions o;
+  o.format = "stp";
+  CHECK(importers::open_mold(dir.file("model.dat"), o).ok());
+  o.format = "iges";  // a STEP file read as IGES
+  r = importers::open_mold(dir.file("model.dat"), o);
+  REQUIRE_FALSE(r.ok());
+  CHECK(exporters::describe(r.error()).find("looks like STEP") != std::string::npos);
+  o.format = "obj";
+  r = importers::open_mold(dir.file("model.dat"), o);
+  REQUIRE_FALSE(r.ok());
+  CHECK(exporters::describe(r.error()).find("unknown format 'obj'") != std::string::npos);
+}
+
+TEST_CASE("importers: an IGES file renamed .step (and STEP renamed .igs) is rejected clearly") {
+  TempDir dir("renamed");
+  check_renamed(sample_mold("dish.step"), sample_mold("dish.igs"), dir);
+}
+
+TEST_CASE("importers: truncated and corrupted copies give errors, not crashes or hangs") {
+  TempDir dir("corrupt");
+  check_corrupted(sample_mold("dish.step"), sample_mold("plate-hole.igs"), dir, 21);
+  check_corrupted(sample_mold("tube-window.step"), sample_mold("tube-window.igs"), dir, 41);
+}
+
+TEST_CASE("importers: the plyfit binary survives every corrupted copy within the time limit",
+          "[slow]") {
+  TempDir dir("corrupt_bin");
+  for (const auto& p : corrupted_copies(sample_mold("plate-hole.step"), "stp", dir, 31))
+    binary_rejects(p, dir);
+  for (const auto& p : corrupted_copies(sample_mold("dish.igs"), "igs", dir, 32))
+    binary_rejects(p, dir);
+}
+
+TEST_CASE("importers: a file without faces, a bad face index and a time limit are errors") {
+  TempDir dir("nofaces");
+  Message::DefaultMessenger()->ChangePrinters().Clear();
+  const TopoDS_Edge edge = BRepBuilderAPI_MakeEdge(gp_Pnt(0, 0, 0), gp_Pnt(10, 0, 0)).Edge();
+  {
+    STEPControl_Controller::Init();
+    STEPControl_Writer w;
+    REQUIRE(w.Transfer(edge, STEPControl_AsIs) == IFSelect_RetDone);
+    REQUIRE(w.Write(dir.file("edge.step").c_str()) == IFSelect_RetDone);
+    IGESControl_Controller::Init();
+    IGESControl_Writer wi("MM", 1);
+    REQUIRE(wi.AddShape(edge));
+    wi.ComputeModel();
+    REQUIRE(wi.Write(dir.file("edge.igs").c_str()));
+  }
+  for (const std::string name : {"edge.step", "edge.igs"}) {
+    auto r = importers::open_mold(dir.file(name));
+    REQUIRE_FALSE(r.ok());
+    check_error(r.error(), dir.file(name));
+    CHECK(exporters::describe(r.error()).find("no faces") != std::string::npos);
+  }
+
+  for (const std::string name : {"plate-hole.step", "dish.igs"})
+    check_bad_index_and_time_limit(sample_mold(name), 1);
+}
+
+TEST_CASE("importers: a fault inside the reader is a one-line error naming the file") {
+  TempDir dir("reader_fault");
+  const std::string path = sample_mold("dish.step");
+  // A segmentation fault, and a stack overflow (a recursion that does not end), inside the read.
+  for (const std::string fault : {"segv", "stack"}) {
+    const Run r = run_plyfit("info '" + path + "'", dir, "PLYFIT_DEBUG_READER_FAULT=" + fault);
+    INFO(fault << ": exit " << r.code << ", stderr: " << r.err);
+    CHECK(r.code == 1);
+    CHECK(r.err.rfind("plyfit: error: ", 0) == 0);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(r.err.find(path) != std::string::npos);
+  }
+}

@@ -1,0 +1,41 @@
+#pragma once
+// plyfit info run as a program, checked against the library's listing of the same file (used
+// on the sample molds and on the CAD corpus).
+
+#include <plyfit/importers/importers.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include <catch2/catch.hpp>
+
+#include "occt/occt_reference.hpp"
+
+namespace plyfit::test {
+
+/// Runs `plyfit info --json PATH` and checks that every face entry matches the library's
+/// listing; returns the parsed output.
+inline nlohmann::json check_info_json(const std::string& path, const TempDir& dir) {
+  const Run r = run_plyfit("info --json '" + path + "'", dir);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(r.out);
+  auto file = importers::open_mold(path);
+  REQUIRE(file.ok());
+  const Mold& m = (*file)->mold();
+  REQUIRE(j["faces"].size() == m.faces.size());
+  for (size_t i = 0; i < m.faces.size(); ++i) {
+    const auto& jf = j["faces"][i];
+    CHECK(jf["index"] == static_cast<int>(i));
+    CHECK(jf["kind"] == m.faces[i].kind);
+    CHECK(jf["trimmed"] == m.faces[i].trimmed);
+    CHECK(jf["holes"] == m.faces[i].holes);
+    CHECK(jf["degree"][0] == m.faces[i].degree_u);
+    CHECK(jf["poles"][1] == m.faces[i].poles_v);
+    CHECK(jf["area_mm2"].get<double>() == Approx(m.faces[i].area).epsilon(kRoundoffRel));
+    CHECK(jf["bbox_mm"]["max"][2].get<double>() ==
+          Approx(m.faces[i].bbox.max.z()).epsilon(kRoundoffRel));
+  }
+  return j;
+}
+
+}  // namespace plyfit::test
