@@ -49,6 +49,7 @@ nlohmann::json to_json(const Mold& m) {
                {"holes", f.holes},
                {"reversed", f.reversed},
                {"area_mm2", f.area}};
+    if (!f.area_measured) jf["area_mm2"] = nullptr;
     if (f.bbox.empty)
       jf["bbox_mm"] = nullptr;
     else
@@ -102,7 +103,7 @@ void print_listing(const Mold& m, std::ostream& os) {
        << pad(has_net ? std::to_string(f.degree_u) + "x" + std::to_string(f.degree_v) : "-", 8)
        << pad(has_net ? std::to_string(f.poles_u) + "x" + std::to_string(f.poles_v) : "-", 10)
        << pad(f.rational ? "yes" : "no", 10) << pad(trim, 13) << pad(f.reversed ? "yes" : "no", 10)
-       << pad(format("%.6g", f.area), 14)
+       << pad(f.area_measured ? format("%.6g", f.area) : "invalid", 14)
        << (f.bbox.empty ? "-" : point(f.bbox.min) + " .. " + point(f.bbox.max)) << "\n";
   }
   const Summary s = summarise(m);

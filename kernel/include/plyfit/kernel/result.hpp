@@ -54,6 +54,19 @@ namespace plyfit {
   X(PlyAngleRange, ply_angle_range)                                                         \
   /* kernel: geometry (NURBS), surface (faces, shells), molds, search */                    \
   /* importers and the OpenCASCADE module */                                                \
+  X(FileNotReadable, file_not_readable)                                                     \
+  X(FileNumberNotFinite, file_number_not_finite)                                            \
+  X(FileNumberTooLarge, file_number_too_large)                                              \
+  X(StepWordForNumber, step_word_for_number)                                                \
+  X(StepNestingTooDeep, step_nesting_too_deep)                                              \
+  X(StepReferenceCycle, step_reference_cycle)                                               \
+  X(StepReferencesTooDeep, step_references_too_deep)                                        \
+  X(FaceGeometryNotFinite, face_geometry_not_finite)                                        \
+  X(FaceGeometryTooLarge, face_geometry_too_large)                                          \
+  X(FaceWeightNotPositive, face_weight_not_positive)                                        \
+  X(FaceToleranceInvalid, face_tolerance_invalid)                                           \
+  X(FaceScaleInvalid, face_scale_invalid)                                                   \
+  X(FaceAreaNotMeasured, face_area_not_measured)                                            \
   /* exporters */                                                                           \
   /* cli */                                                                                 \
   X(UnknownCommand, unknown_command)                                                        \
