@@ -123,7 +123,7 @@ nlohmann::json inputs_json(const ExportContext& ctx) {
   in["max_iterations"] = ctx.run.max_iterations;
   in["guess"] = ctx.run.guess;
   in["max_nodes"] = ctx.run.max_nodes;
-  in["warn_angle_deg"] = ctx.options.warn_shear * kRadToDeg;
+  in["warn_angle_deg"] = ctx.run.warn_angle_deg;  // as given: not through radians and back
   in["ply_name"] = ctx.run.ply_name;
   in["ply_angle_deg"] = ctx.options.ply_angle_deg;
   in["material"] = ctx.run.material;
@@ -158,6 +158,7 @@ nlohmann::json mold_json(const ExportContext& ctx) {
                      {"kind", fi.kind},
                      {"area", m.faces[k].area},
                      {"nodes_mapped", m.faces[k].mapped},
+                     {"rounding", ctx.surface.face_rounding(static_cast<std::int32_t>(k))},
                      {"covered_area", m.faces[k].covered_area}});
   }
   return {{"unit", unit_name(ctx.run.mold_unit)},
@@ -167,23 +168,26 @@ nlohmann::json mold_json(const ExportContext& ctx) {
           {"warnings", warning_texts(ctx.run.warnings)}};
 }
 
-// Node counts by status, with the reasons of the failed and conflicting ones.
+// Node counts by status, with the reasons of the failed, conflicting and shear-limit ones.
 nlohmann::json nodes_json(const DrapeMetrics& m) {
   nlohmann::json nodes = {{"mapped", m.nodes.mapped},           {"auxiliary", m.nodes.auxiliary},
                           {"outside", m.nodes.outside},         {"off_ply", m.nodes.off_ply},
                           {"shear_limit", m.nodes.shear_limit}, {"overlap", m.nodes.overlap},
                           {"failed", m.nodes.failed},           {"conflict", m.nodes.conflict},
                           {"path_end", m.nodes.path_end},       {"with_angle", m.angles}};
-  for (const auto& [key, reasons] : {std::pair{"failed_reasons", &m.nodes.failed_reasons},
-                                     std::pair{"conflict_reasons", &m.nodes.conflict_reasons}}) {
+  for (const auto& [key, reasons] :
+       {std::pair{"failed_reasons", &m.nodes.failed_reasons},
+        std::pair{"conflict_reasons", &m.nodes.conflict_reasons},
+        std::pair{"shear_limit_reasons", &m.nodes.shear_limit_reasons}}) {
     nodes[key] = nlohmann::json::object();
     for (const auto& [why, count] : *reasons) nodes[key][why] = count;
   }
   return nodes;
 }
 
-// Thread angles, shear, the paper's metrics (eq. 12), residuals and solver effort.
-void add_metrics(nlohmann::json& j, const DrapeMetrics& m) {
+// Thread angles, shear, the paper's metrics (eq. 12), residuals (the Newton floor also relative
+// to the spacing `d`) and solver effort.
+void add_metrics(nlohmann::json& j, const DrapeMetrics& m, double d) {
   j["area_mesh_points"] = m.area_mesh_points;
   j["flat_area"] = m.flat_area;
   j["surface_area"] = m.surface_area;
@@ -200,10 +204,17 @@ void add_metrics(nlohmann::json& j, const DrapeMetrics& m) {
                         {"gamma_min_deg", m.paper.gamma_min * kRadToDeg},
                         {"gamma_max_deg", m.paper.gamma_max * kRadToDeg},
                         {"shear_max_deg", m.paper.shear_max * kRadToDeg},
-                        {"with_angle", m.paper.angles}};
+                        {"with_angle", m.paper.angles},
+                        {"oriented_gamma_min", m.paper.oriented_gamma_min},
+                        {"oriented_gamma_max", m.paper.oriented_gamma_max},
+                        {"oriented_gamma_min_deg", m.paper.oriented_gamma_min * kRadToDeg},
+                        {"oriented_gamma_max_deg", m.paper.oriented_gamma_max * kRadToDeg}};
   j["residual"] = {{"edge_length_max_rel", m.edge_length_max_rel},
                    {"surface_distance_max", m.surface_distance_max},
-                   {"base_plane_max_rel", m.base_plane_max_rel}};
+                   {"base_plane_max_rel", m.base_plane_max_rel},
+                   {"solve_max_rel", m.solve_residual_max_rel},
+                   {"newton_floor", m.newton_floor},
+                   {"newton_floor_rel", d > 0.0 ? m.newton_floor / d : 0.0}};
   j["solver"] = {{"solves", m.solves},
                  {"mean_iterations", m.solves ? double(m.iterations) / m.solves : 0.0},
                  {"mean_evaluations", m.solves ? double(m.evaluations) / m.solves : 0.0}};
@@ -248,7 +259,7 @@ std::string report_json(const ExportContext& ctx) {
                 {"moved", r.start_moved}};
   j["base_tangent"] = vec(r.base_tangent);
   j["nodes"] = nodes_json(r.metrics);
-  add_metrics(j, r.metrics);
+  add_metrics(j, r.metrics, std::min(ctx.problem.ply.d_weft, ctx.problem.ply.d_warp));
   if (ctx.flat) add_flat_outline(j, *ctx.flat);
   j["memory_bytes_per_node"] = r.bytes_per_node();
   j["timing_ms"] = {

@@ -190,6 +190,7 @@ Result<Shell> Shell::create(ShellData data, const Tolerances& tol) {
     box.add(f->bbox().min);
     box.add(f->bbox().max);
     sh.area_ += f->area();
+    sh.rounding_ = std::max(sh.rounding_, f->rounding());
   }
   sh.size_ = std::max(box.diagonal(), 1e-300);
   sh.bbox_ = box;
