@@ -46,6 +46,12 @@ namespace plyfit {
   X(TooManySweeps, too_many_sweeps)                                                         \
   X(SweepsSameSide, sweeps_same_side)                                                       \
   X(Start2dOffPly, start2d_off_ply)                                                         \
+  /* kernel: ply definition (seed, rosette, ply angle) */                                   \
+  X(SeedNotFinite, seed_not_finite)                                                         \
+  X(SeedOffMold, seed_off_mold)                                                             \
+  X(RosetteZero, rosette_zero)                                                              \
+  X(RosetteAlongNormal, rosette_along_normal)                                               \
+  X(PlyAngleRange, ply_angle_range)                                                         \
   /* kernel: geometry (NURBS), surface (faces, shells), molds, search */                    \
   /* importers and the OpenCASCADE module */                                                \
   /* exporters */                                                                           \
