@@ -68,6 +68,18 @@ namespace plyfit {
   X(FaceScaleInvalid, face_scale_invalid)                                                   \
   X(FaceAreaNotMeasured, face_area_not_measured)                                            \
   /* exporters */                                                                           \
+  X(FileNotCreated, file_not_created)                                                       \
+  X(FileAlreadyClosed, file_already_closed)                                                 \
+  X(FileWriteFailed, file_write_failed)                                                     \
+  X(FileNotRenamed, file_not_renamed)                                                       \
+  X(OutputFolderNotCreated, output_folder_not_created)                                      \
+  X(UnknownOutput, unknown_output)                                                          \
+  X(CurveRational, curve_rational)                                                          \
+  X(CurveInvalid, curve_invalid)                                                            \
+  X(CurveSetNotBuilt, curve_set_not_built)                                                  \
+  X(ThreadCurveNotBuilt, thread_curve_not_built)                                            \
+  X(BoundaryLoopTooSmall, boundary_loop_too_small)                                          \
+  X(MoldWriterOtherBuild, mold_writer_other_build)                                          \
   /* cli */                                                                                 \
   X(UnknownCommand, unknown_command)                                                        \
   X(UnknownOption, unknown_option)                                                          \
