@@ -23,7 +23,6 @@ namespace {
 namespace po = boost::program_options;
 namespace fs = std::filesystem;
 
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 /// Two figures closer than this (relative to the larger) tie: both are marked best. Counts
 /// tie only when equal.
 constexpr double kTieRel = 1e-9;

@@ -29,7 +29,6 @@ namespace {
 namespace po = boost::program_options;
 namespace fs = std::filesystem;
 
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 /// Largest drape budget accepted.
 constexpr int kMaxEvaluations = 1'000'000;
 

@@ -19,8 +19,6 @@ std::string note_of(const Evaluation& e) {
 
 namespace {
 
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
-
 template <typename... Args>
 std::string fmt(const char* format, Args... args) {
   const int n = std::snprintf(nullptr, 0, format, args...);

@@ -20,8 +20,6 @@ namespace plyfit::exporters {
 
 namespace {
 
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
-
 nlohmann::json vec(const Vec2& v) {
   return nlohmann::json::array({v.x(), v.y()});
 }

@@ -24,8 +24,8 @@ struct Box2 {
   Vec2 size() const { return hi - lo; }
 };
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kRadToDeg = 180.0 / kPi;
+using plyfit::kPi;
+using plyfit::kRadToDeg;
 
 /// Shortest decimal text (fixed notation, no exponent) that reads back as exactly `x`.
 std::string exact_text(double x);

@@ -81,7 +81,7 @@ TEST_CASE("cli: compare marks the best sphere-octant scene per criterion, as the
     std::function<double(const json&)> value;
     bool larger;
   };
-  const double deg = 180.0 / 3.14159265358979323846;
+  const double deg = kRadToDeg;
   auto at = [](const char* p) { return [p](const json& g) { return g[p].get<double>(); }; };
   auto in_deg = [&](const char* p) {
     return [p, deg](const json& g) { return g[p].get<double>() * deg; };

@@ -61,7 +61,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // A node lies on its STEP curve within this fraction of the face size (bounding-box
 // diagonal): OpenCASCADE writes reals with 12 significant digits, so a pole moves by about
 // 1e-12 of the coordinates; the brief asks for 1e-9.
@@ -615,7 +614,7 @@ TEST_CASE(
         CHECK(std::isnan(s));
       } else {
         ++angles;
-        CHECK(std::abs(g - n.thread_angle * 180.0 / kPi) <= test::kRoundoffRel * 180.0);
+        CHECK(std::abs(g - n.thread_angle * kRadToDeg) <= test::kRoundoffRel * 180.0);
         CHECK(g >= 0.0);
         CHECK(g <= 180.0);
         CHECK(std::abs(s - std::abs(90.0 - g)) <= test::kRoundoffRel * 180.0);
@@ -663,7 +662,7 @@ TEST_CASE(
       if (shear < 0) {
         CHECK(std::isnan(cs));
       } else {
-        CHECK(std::abs(cs - shear * 180.0 / kPi) <= test::kRoundoffRel * 180.0);
+        CHECK(std::abs(cs - shear * kRadToDeg) <= test::kRoundoffRel * 180.0);
       }
     }
   }

@@ -53,7 +53,7 @@ inline NurbsSurfaceData roof(double s) {
 /// 90 degrees). The outer row has radius `size`. `transpose`: u and v swap roles (the collapsed
 /// edge is v = 0); `at_end`: the rows are reversed (the collapsed edge is u = 1, or v = 1).
 inline NurbsSurfaceData quarter_dome(double size, double h, bool transpose, bool at_end) {
-  constexpr double kQuarter = 1.5707963267948966;
+  constexpr double kQuarter = kPi / 2;
   NurbsSurfaceData d;
   d.degree_u = d.degree_v = 3;
   d.count_u = d.count_v = 4;
