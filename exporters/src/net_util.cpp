@@ -1,6 +1,7 @@
 #include "net_util.hpp"
 
 #include <plyfit/kernel/drape.hpp>
+#include <plyfit/kernel/polygon2d.hpp>
 
 #include <algorithm>
 #include <array>
@@ -54,17 +55,8 @@ std::vector<NetCell> mapped_cells(const DrapeResult& r) {
 }
 
 bool inside_outline(const std::vector<OutlineLoop>& loops, const Vec2& p) {
-  bool in = false;
-  for (const auto& l : loops) {
-    const std::size_t n = l.points.size();
-    for (std::size_t k = 0, m = n - 1; k < n; m = k++) {
-      const Vec2& a = l.points[k];
-      const Vec2& b = l.points[m];
-      if ((a.y() > p.y()) != (b.y() > p.y()) &&
-          p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
-        in = !in;
-    }
-  }
+  bool in = false;  // even-odd over all loops
+  for (const auto& l : loops) in = in != inside_polygon(l.points, p);
   return in;
 }
 

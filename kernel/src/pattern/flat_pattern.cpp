@@ -6,6 +6,8 @@
 
 #include "geometry/segment_index.hpp"
 
+#include <plyfit/kernel/polygon2d.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -18,7 +20,6 @@ namespace plyfit {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Bisection steps for a boundary crossing along a cell edge (2^-60 of the edge), used where
 // the segment intersections disagree with contains() (a node on the boundary itself).
 constexpr int kCrossingBisections = 60;
@@ -44,10 +45,6 @@ constexpr int kPieceMaxDepth = 40;
 // both sides at kDirectionProbe times their (u, v) length.
 constexpr int kDirectionVotes = 9;
 constexpr double kDirectionProbe = 1e-3;
-
-Vec2 perp(const Vec2& d) {
-  return Vec2(-d.y(), d.x());
-}
 
 // A vertex of the outline polygons: a node, an edge crossing or a boundary vertex.
 struct Vertex {
@@ -1061,7 +1058,7 @@ class Builder {
       for (int lv : path[k]) {
         const SurfaceLocation& at =
             boundary_[static_cast<std::size_t>(bl)].points[static_cast<std::size_t>(lv)];
-        if (!in_polygon(cw, chart_point(chart, at, loop_point(bl, lv)))) {
+        if (!inside_polygon(cw, chart_point(chart, at, loop_point(bl, lv)))) {
           bijective = false;
           pair[k] = -1;
           path[k].clear();
@@ -1156,19 +1153,6 @@ class Builder {
       s = dir > 0 ? -1.0 : 2.0;  // any crossing on the new segment is beyond
     }
     return -1;
-  }
-
-  // True when p lies inside polygon `poly` (even-odd rule).
-  static bool in_polygon(const std::vector<Vec2>& poly, const Vec2& p) {
-    bool in = false;
-    for (std::size_t k = 0, n = poly.size(); k < n; ++k) {
-      const Vec2& a = poly[k];
-      const Vec2& b = poly[(k + 1) % n];
-      if ((a.y() > p.y()) != (b.y() > p.y()) &&
-          p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
-        in = !in;
-    }
-    return in;
   }
 
   // Loop vertex of loop l at the same point as vertex v across a seam, from which a segment
