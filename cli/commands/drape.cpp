@@ -174,7 +174,8 @@ int run_drape(const std::vector<std::string>& args_in) {
             << out->shear_max_deg << " deg; " << static_cast<long>(out->total_ms) << " ms -> "
             << job->outdir << "\n";
   if (!quiet)
-    for (const auto& w : out->warnings) std::cerr << "plyfit: warning: " << w << "\n";
+    for (const auto* list : {&out->mold_warnings, &out->warnings})
+      for (const auto& w : *list) std::cerr << "plyfit: warning: " << w << "\n";
   return finish(kExitOk, *out);
 }
 

@@ -556,7 +556,8 @@ std::string dump_scene(const DrapeJob& job) {
   v["curve-degree"] = {std::to_string(job.curve_degree)};
   v["view"] = {fmt(job.view)};
   v["dxf-threads"] = {job.dxf_threads ? "true" : "false"};
-  if (job.min_width) v["min-width"] = {fmt(*job.min_width)};
+  // The effective value: the one given, or the default the flat pattern takes.
+  v["min-width"] = {fmt(FlatPatternOptions{job.min_width}.width_for(p.ply))};
   std::ostringstream os;
   os << "# plyfit scene (plyfit drape --dump-scene)\n";
   std::string section;
@@ -688,6 +689,7 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   run.tolerance_rel = job.tolerance_rel;
   run.max_iterations = job.max_iterations;
   run.lock_angle_deg = job.lock_angle_deg;
+  run.warn_angle_deg = job.warn_angle_deg;
   run.guess = to_string(job.drape.guess);
   run.max_nodes = job.drape.max_nodes;
   run.ply_name = job.ply_name;
@@ -737,6 +739,7 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   out.flat_outline_area = flat.cut_area;
   out.outline_coverage = out.face_area > 0 ? outline_surface_area(*res, flat) / out.face_area : 0.0;
   out.warnings = res->warnings;
+  out.mold_warnings = run.warnings;
   for (const auto& k : job.outputs)
     if (const auto* e = exporters::find_exporter(k))
       for (const auto& f : e->files) out.files.push_back(f);

@@ -106,6 +106,9 @@ struct JobOutcome {
   /// The share of the surface the flat pattern's outline covers (outline_coverage.hpp).
   double outline_coverage = 0.0;
   std::vector<std::string> warnings;  ///< the drape's (why partial, and notes)
+  /// The mold's (reading and sewing it: report.json's mold.warnings, e.g. faces that share
+  /// no edge form separate shells).
+  std::vector<std::string> mold_warnings;
 };
 
 /// Imports the surface a job drapes: a built-in mold (one face, or a built-in shell), one face

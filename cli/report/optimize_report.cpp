@@ -83,10 +83,10 @@ std::vector<std::string> drape_cells(const Evaluation& e) {
 }
 
 const std::vector<std::string>& drape_header() {
-  static const std::vector<std::string> h = {"drape",        "seed x, y, z (mm)", "angle (deg)",
-                                             "energy",       "max shear (deg)",
-                                             "flat area",  // mm^2
-                                             "coverage (%)", "cells (%)",         "mapped"};
+  static const std::vector<std::string> h = {
+      "drape",        "seed x, y, z (mm)", "angle (deg)", "path (deg)", "energy", "max shear (deg)",
+      "flat area",  // mm^2
+      "coverage (%)", "cells (%)",         "mapped"};
   return h;
 }
 

@@ -102,7 +102,7 @@ std::string report_json(const ExportContext& ctx) {
   in["max_iterations"] = ctx.run.max_iterations;
   in["guess"] = ctx.run.guess;
   in["max_nodes"] = ctx.run.max_nodes;
-  in["warn_angle_deg"] = ctx.options.warn_shear * kRadToDeg;
+  in["warn_angle_deg"] = ctx.run.warn_angle_deg;  // as given: not through radians and back
   in["ply_name"] = ctx.run.ply_name;
   in["ply_angle_deg"] = ctx.options.ply_angle_deg;
   in["material"] = ctx.run.material;
@@ -134,6 +134,7 @@ std::string report_json(const ExportContext& ctx) {
                      {"kind", fi.kind},
                      {"area", m.faces[k].area},
                      {"nodes_mapped", m.faces[k].mapped},
+                     {"rounding", ctx.surface.face_rounding(static_cast<std::int32_t>(k))},
                      {"covered_area", m.faces[k].covered_area}});
   }
   j["mold"] = {{"unit", unit_name(ctx.run.mold_unit)},
@@ -151,8 +152,10 @@ std::string report_json(const ExportContext& ctx) {
                 {"shear_limit", m.nodes.shear_limit}, {"overlap", m.nodes.overlap},
                 {"failed", m.nodes.failed},           {"conflict", m.nodes.conflict},
                 {"path_end", m.nodes.path_end},       {"with_angle", m.angles}};
-  for (const auto& [key, reasons] : {std::pair{"failed_reasons", &m.nodes.failed_reasons},
-                                     std::pair{"conflict_reasons", &m.nodes.conflict_reasons}}) {
+  for (const auto& [key, reasons] :
+       {std::pair{"failed_reasons", &m.nodes.failed_reasons},
+        std::pair{"conflict_reasons", &m.nodes.conflict_reasons},
+        std::pair{"shear_limit_reasons", &m.nodes.shear_limit_reasons}}) {
     j["nodes"][key] = nlohmann::json::object();
     for (const auto& [why, count] : *reasons) j["nodes"][key][why] = count;
   }
@@ -172,10 +175,18 @@ std::string report_json(const ExportContext& ctx) {
                         {"gamma_min_deg", m.paper.gamma_min * kRadToDeg},
                         {"gamma_max_deg", m.paper.gamma_max * kRadToDeg},
                         {"shear_max_deg", m.paper.shear_max * kRadToDeg},
-                        {"with_angle", m.paper.angles}};
+                        {"with_angle", m.paper.angles},
+                        {"oriented_gamma_min", m.paper.oriented_gamma_min},
+                        {"oriented_gamma_max", m.paper.oriented_gamma_max},
+                        {"oriented_gamma_min_deg", m.paper.oriented_gamma_min * kRadToDeg},
+                        {"oriented_gamma_max_deg", m.paper.oriented_gamma_max * kRadToDeg}};
+  const double d = std::min(p.ply.d_weft, p.ply.d_warp);
   j["residual"] = {{"edge_length_max_rel", m.edge_length_max_rel},
                    {"surface_distance_max", m.surface_distance_max},
-                   {"base_plane_max_rel", m.base_plane_max_rel}};
+                   {"base_plane_max_rel", m.base_plane_max_rel},
+                   {"solve_max_rel", m.solve_residual_max_rel},
+                   {"newton_floor", m.newton_floor},
+                   {"newton_floor_rel", d > 0.0 ? m.newton_floor / d : 0.0}};
   j["solver"] = {{"solves", m.solves},
                  {"mean_iterations", m.solves ? double(m.iterations) / m.solves : 0.0},
                  {"mean_evaluations", m.solves ? double(m.evaluations) / m.solves : 0.0}};

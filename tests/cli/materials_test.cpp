@@ -188,3 +188,30 @@ TEST_CASE(
   CHECK(source_file("docs/scene-files.md").find("```ini\n" + sample + "```\n") !=
         std::string::npos);
 }
+
+TEST_CASE("cli: report.json echoes the angles as given, not through radians and back") {
+  // 30 and 15 degrees become 29.999999999999996 and 14.999999999999998 through radians.
+  Scratch tmp("materials_echo");
+  for (const auto& [flags, warn] : std::vector<std::pair<std::string, double>>{
+           {"--warn-angle 30", 30.0}, {"--material cpd-example", 15.0}}) {
+    INFO(flags);
+    const CliRun r = plyfit_run(
+        "drape " + kFlags + " " + flags + " --outputs json -o '" + tmp.file("o") + "'", tmp);
+    REQUIRE(r.code == 0);
+    const json j = json::parse(slurp(tmp.file("o") + "/report.json"));
+    CHECK(j["inputs"]["warn_angle_deg"].get<double>() == warn);
+  }
+}
+
+TEST_CASE("cli: --dump-scene writes the effective min-width") {
+  // Not given: the default the flat pattern takes, half the larger spacing.
+  Scratch tmp("materials_min_width");
+  const CliRun d = plyfit_run("drape " + kFlags + " --dump-scene", tmp);
+  REQUIRE(d.code == 0);
+  const std::string spacing = dumped(d.out, "spacing");
+  REQUIRE(spacing != "<absent>");
+  CHECK(std::stod(dumped(d.out, "min-width")) == 0.5 * std::stod(spacing));
+  const CliRun g = plyfit_run("drape " + kFlags + " --min-width 0.25 --dump-scene", tmp);
+  REQUIRE(g.code == 0);
+  CHECK(dumped(g.out, "min-width") == "0.25");
+}

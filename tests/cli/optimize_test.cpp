@@ -261,6 +261,16 @@ TEST_CASE("optimize: the same input gives the same output, whatever -j") {
     CHECK(slurp(dir + "/best-energy.ini") == slurp(s.file("j1") + "/best-energy.ini"));
     CHECK(slurp(dir + "/best-area.ini") == slurp(s.file("j1") + "/best-area.ini"));
   }
+  // Every column has its heading: the header names as many columns as a drape's row has
+  // (the row's seed holds two ", " separators), and the path column is named.
+  for (const auto& line : split_lines(outs[0])) {
+    if (line.find("seed x, y, z (mm)") == std::string::npos) continue;
+    const auto angle = line.find("angle (deg)"), path = line.find("path (deg)");
+    CHECK(angle != std::string::npos);
+    CHECK(path != std::string::npos);
+    CHECK(angle < path);
+    CHECK(path < line.find("energy"));
+  }
   CHECK(results[0]["drapes"].get<int>() > 30);
   CHECK(results[1] == results[0]);
   CHECK(results[2] == results[0]);

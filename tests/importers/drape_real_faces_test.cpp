@@ -372,3 +372,38 @@ TEST_CASE("drape: a base path whose plane nearly touches the face ahead ends the
     }
   }
 }
+
+TEST_CASE(
+    "drape: the exhaust's cylinder and B-spline faces drape to their edges, no stop unnamed") {
+  // bm2_ec_exhaust-A.stp from the start `plyfit info --face N` suggests, at about
+  // sqrt(area) / 40, no lock. Face 44, a cylinder whose axial parameter runs around 1e5 mm,
+  // mapped 0 % with 60 nodes failed ("the residual stopped decreasing" at 1e-11 mm: the
+  // doubles near 1e5 are 1.5e-11 apart). Faces 36 and 38, B-splines whose trims follow the
+  // domain's edges, stopped 24 and 26 nodes at the shear limit with a shear of 1e-10 degrees:
+  // past the edge the extended surface holds no solution, Newton stalled there, and the
+  // search round the spheres' circle took the other branch (the cell's own corner) as the
+  // node. Past the edge the node is outside; nothing is failed or stopped at a shear limit.
+  const Case cases[] = {
+      {"bm2_ec_exhaust-A.stp", 44, 5.84, Vec3(-708.499938, 381.299973, -104.499992),
+       Vec3(1, -1.29453547e-16, 0), Vec2(1, 0), Vec2(0, 1), Vec3(1, -1.29453547e-16, 0), true},
+      {"bm2_ec_exhaust-A.stp", 36, 5.94, Vec3(-1078.49991, 381.285999, -92.5000012),
+       Vec3(-1, 0, -3.89112998e-08), Vec2(1, 0), Vec2(0, 1), Vec3(-1, 0, -3.89112998e-08), true},
+      {"bm2_ec_exhaust-A.stp", 38, 5.95, Vec3(-1078.49991, 381.300002, -172.499985),
+       Vec3(-1, 0, 3.8912224e-08), Vec2(1, 0), Vec2(0, 1), Vec3(-1, 0, 3.8912224e-08), true},
+  };
+  for (const Case& c : cases) {
+    INFO("face " << c.face);
+    const Face f = load(c);
+    auto r = drape(f, problem(c));
+    REQUIRE(r.ok());
+    const auto& n = r->metrics.nodes;
+    INFO("mapped " << n.mapped << ", failed " << n.failed << ", shear limit " << n.shear_limit);
+    CHECK(n.failed == 0);
+    CHECK(n.shear_limit == 0);
+    CHECK(n.conflict == 0);
+    // The cylinder closes on itself: the cloth comes round onto its own start (overlap).
+    CHECK(r->metrics.coverage > 0.9);
+    CHECK(r->metrics.solve_residual_max_rel * c.d <= r->metrics.newton_floor);
+    CHECK(r->metrics.edge_length_max_rel < 1e-9);
+  }
+}

@@ -3,7 +3,9 @@
 
 #include <plyfit/kernel/nurbs.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace plyfit::support {
 
@@ -69,6 +71,79 @@ inline NurbsSurfaceData quarter_dome(double size, double h, bool transpose, bool
           Vec3(rho * std::cos(t), rho * std::sin(t), z);
     }
   }
+  return d;
+}
+
+/// The surface with its u degree raised to `pu` and its v degree to `pv` (exact: the Bezier
+/// degree elevation of the homogeneous poles). `s` must be one Bezier span in each direction
+/// (clamped knots, no interior knot), as sphere_patch and cylinder_patch give for sweeps of
+/// at most 90 degrees.
+inline NurbsSurfaceData elevate_bezier(const NurbsSurfaceData& s, int pu, int pv) {
+  auto binomial = [](int n, int k) {
+    double b = 1.0;
+    for (int i = 1; i <= k; ++i) b = b * (n - k + i) / i;
+    return b;
+  };
+  // Homogeneous poles (w x, w y, w z, w), one row per i.
+  using H = Eigen::Vector4d;
+  std::vector<std::vector<H>> h(static_cast<std::size_t>(s.count_u));
+  for (int i = 0; i < s.count_u; ++i)
+    for (int j = 0; j < s.count_v; ++j) {
+      const double w = s.weight(i, j);
+      h[i].push_back(H(w * s.pole(i, j).x(), w * s.pole(i, j).y(), w * s.pole(i, j).z(), w));
+    }
+  // Degree p to p + t of one Bezier row of poles.
+  auto elevate = [&](const std::vector<H>& row, int t) {
+    const int p = static_cast<int>(row.size()) - 1;
+    std::vector<H> out(static_cast<std::size_t>(p + t + 1), H::Zero());
+    for (int i = 0; i <= p + t; ++i)
+      for (int j = std::max(0, i - t); j <= std::min(p, i); ++j)
+        out[i] += binomial(p, j) * binomial(t, i - j) / binomial(p + t, i) * row[j];
+    return out;
+  };
+  for (auto& row : h) row = elevate(row, pv - s.degree_v);  // along v
+  std::vector<std::vector<H>> g(h[0].size());
+  for (std::size_t j = 0; j < h[0].size(); ++j) {  // along u, column by column
+    std::vector<H> col;
+    for (const auto& row : h) col.push_back(row[j]);
+    g[j] = elevate(col, pu - s.degree_u);
+  }
+  NurbsSurfaceData d;
+  d.degree_u = pu;
+  d.degree_v = pv;
+  d.count_u = pu + 1;
+  d.count_v = pv + 1;
+  const double u0 = s.knots_u.front(), u1 = s.knots_u.back();
+  const double v0 = s.knots_v.front(), v1 = s.knots_v.back();
+  d.knots_u.assign(static_cast<std::size_t>(pu + 1), u0);
+  d.knots_u.insert(d.knots_u.end(), static_cast<std::size_t>(pu + 1), u1);
+  d.knots_v.assign(static_cast<std::size_t>(pv + 1), v0);
+  d.knots_v.insert(d.knots_v.end(), static_cast<std::size_t>(pv + 1), v1);
+  for (int i = 0; i < d.count_u; ++i)
+    for (int j = 0; j < d.count_v; ++j) {
+      const H& q = g[j][i];
+      d.poles.emplace_back(q.x() / q.w(), q.y() / q.w(), q.z() / q.w());
+      d.weights.push_back(q.w());
+    }
+  return d;
+}
+
+/// The same surface with its knots mapped affinely onto [u0, u1] x [v0, v1] (a CAD export's
+/// parameters: angles in radians, lengths from a distant origin).
+inline NurbsSurfaceData remap_knots(NurbsSurfaceData d, double u0, double u1, double v0,
+                                    double v1) {
+  auto remap = [](std::vector<double>& k, double a, double b) {
+    const double k0 = k.front(), k1 = k.back();
+    for (double& x : k) x = x == k1 ? b : a + (x - k0) / (k1 - k0) * (b - a);
+  };
+  remap(d.knots_u, u0, u1);
+  remap(d.knots_v, v0, v1);
+  return d;
+}
+
+/// The same surface moved by `offset`.
+inline NurbsSurfaceData translated(NurbsSurfaceData d, const Vec3& offset) {
+  for (Vec3& p : d.poles) p += offset;
   return d;
 }
 

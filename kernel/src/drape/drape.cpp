@@ -118,6 +118,63 @@ void judge_drape(const DrapeSurface& s, const DrapeProblem& pb, const Tolerances
                              "side (the start on the face's edge?)");
 }
 
+// Length of the surface's free boundary: its loops' segments in 3D, each followed in its
+// face's parameters by up to kBoundaryPieces chords (a domain rectangle's side can be a whole
+// circle), kBoundaryChords chords per loop at least; collapsed edges, seams and junctions left
+// out.
+constexpr int kBoundaryPieces = 16;
+constexpr std::size_t kBoundaryChords = 256;
+double boundary_length(const DrapeSurface& s) {
+  double len = 0.0;
+  for (const BoundaryLoop& l : s.boundary()) {
+    const std::size_t n = std::min(l.points.size(), l.kinds.size());
+    const int pieces = static_cast<int>(
+        std::clamp<std::size_t>(kBoundaryChords / std::max<std::size_t>(n, 1), 1, kBoundaryPieces));
+    for (std::size_t k = 0; k < n; ++k) {
+      const SurfaceLocation& a = l.points[k];
+      const SurfaceLocation& b = l.points[(k + 1) % l.points.size()];
+      if (l.kinds[k] != BoundaryLoop::kEdge || a.face != b.face) continue;
+      Vec3 prev = Vec3::Zero();
+      for (int i = 0; i <= pieces; ++i) {
+        const SurfaceEval1 e = s.eval1(a.with_uv(a.uv + (b.uv - a.uv) * (double(i) / pieces)));
+        if (!e.ok) break;
+        if (i > 0) len += (e.p - prev).norm();
+        prev = e.p;
+      }
+    }
+  }
+  return len;
+}
+
+// A drape that ends without stopping early may still leave part of the surface uncovered: a
+// lock, the fold guards, or sweeps that cannot reach round a concave outline (the paper's
+// uncalculated regions, Fig. 3). The mapped cells always miss a band along the boundary, at
+// most a cell's diagonal wide (cells that cross it are not counted); more uncovered area than
+// that band is worth a warning, with the stops inside the surface that bound the cloth.
+void warn_uncovered(const DrapeSurface& s, DrapeResult& res) {
+  const DrapeMetrics& m = res.metrics;
+  const PlySpec& spec = res.ply->spec();
+  const double band = std::hypot(spec.d_weft, spec.d_warp) * boundary_length(s);
+  const double uncovered = s.area() * (1.0 - std::min(m.coverage, 1.0));
+  if (!(uncovered > band) || spec.rect) return;  // a ply rectangle covers what it covers
+  const NodeCounts& c = m.nodes;
+  std::string stops;
+  auto add = [&](std::uint64_t count, const char* what) {
+    if (count) stops += (stops.empty() ? "" : ", ") + std::to_string(count) + " " + what;
+  };
+  add(c.shear_limit, "at the shear limit");
+  add(c.overlap, "overlapping");
+  add(c.failed, "failed");
+  add(c.conflict, "in conflict");
+  add(c.path_end, "past the base path's end");
+  res.warnings.push_back(
+      "the mapped cells cover " + std::to_string(static_cast<int>(std::lround(100 * m.coverage))) +
+      "% of the surface, less than the cells along its boundary explain: " +
+      (stops.empty() ? std::string("the sweeps do not reach the rest (another start, base path "
+                                   "or sweep may)")
+                     : "the cloth stops inside it (" + stops + ")"));
+}
+
 // A warning for each end of the base path (one for a path of one point) where the base
 // plane's section turned back or ended within one link (NodeStatus::kPathEnd): where, and the angle
 // between the base plane and the tangent plane at the path's last point there.
@@ -209,7 +266,7 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
       expected_nodes(s, *mply, res.start_point, res.base_normal, pb.sweeps, opt.max_nodes));
   detail::Scanner scanner(s, *mply, opt, res);
   scanner.run(t3);
-  detail::compute_metrics(s, res);
+  detail::compute_metrics(s, opt.tol, res);
   res.metrics.nodes.off_ply += scanner.path_off_ply();
   if (scanner.cancelled()) {
     res.partial = true;
@@ -261,6 +318,7 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
         "(a slit in the flat pattern)");
   }
   judge_drape(s, pb, opt.tol, !scanner.cancelled() && !scanner.truncated(), res);
+  if (!res.partial) warn_uncovered(s, res);
   res.drape_ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return res;

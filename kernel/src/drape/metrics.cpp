@@ -4,6 +4,7 @@
 #include "drape/metrics.hpp"
 
 #include "drape/net_links.hpp"
+#include "drape/solvers/solvers.hpp"
 #include "pattern/mapped_cells.hpp"
 
 #include <algorithm>
@@ -49,35 +50,47 @@ void thread_angles(DrapeResult& res) {
 }
 
 // The paper's thread angles (eq. 12, as Table 2 reports them): at each mapped node solved from
-// a weft and a warp neighbour, the angle between its links to those two, each taken along +x or
-// +y; min, max, sum of cos^2 and the largest shear. cos^2 needs no trigonometry, and the angle
-// falls as its cosine rises, so only the two extreme nodes' angles are evaluated (atan2, which
-// stays accurate near 0 and pi where acos of the cosine would not).
+// a weft and a warp neighbour, the angle between its links to those two as they point (from
+// the node to each); and, beside them, the same angle with each link taken along +x or +y
+// (oriented: pi minus the paper's at a node solved from its +x and -y neighbours, or -x and
+// +y). Min and max of both, the sum of cos^2 and the largest shear (the same for both: cos^2
+// and |pi/2 - gamma| do not change under gamma -> pi - gamma). The angle falls as its cosine
+// rises, so only the extreme nodes' angles are evaluated (atan2, which stays accurate near 0
+// and pi where acos of the cosine would not).
 void paper_angles(const DrapeResult& res, DrapeMetrics::PaperFigures& pf) {
-  Vec3 lo_f = Vec3::Zero(), lo_p = lo_f, hi_f = lo_f,
-       hi_p = lo_f;  // links of the nodes with the largest / smallest cosine
-  double c_max = 0.0, c_min = 0.0;
+  struct Extremes {
+    Vec3 lo_a = Vec3::Zero(), lo_b = Vec3::Zero(), hi_a = Vec3::Zero(), hi_b = Vec3::Zero();
+    double c_max = 0.0, c_min = 0.0;  // cosines of the smallest and largest angle
+    void add(const Vec3& a, const Vec3& b, double c, bool first) {
+      if (first || c > c_max) c_max = c, lo_a = a, lo_b = b;
+      if (first || c < c_min) c_min = c, hi_a = a, hi_b = b;
+    }
+    static double angle(const Vec3& a, const Vec3& b) {
+      return std::atan2(a.cross(b).norm(), a.dot(b));
+    }
+  } as_pointed, oriented;
   for (const DrapeNode& n : res.nodes) {
     if (!n.mapped() || n.id.is_path_only() || !n.has(DrapeNode::kSolvedTwo)) continue;
-    const ThreadDir dw = n.has(DrapeNode::kFromPlusX) ? ThreadDir::kPlusX : ThreadDir::kMinusX;
-    const ThreadDir dv = n.has(DrapeNode::kFromPlusY) ? ThreadDir::kPlusY : ThreadDir::kMinusY;
-    const DrapeNode* a = res.neighbour(n, dw);
-    const DrapeNode* b = res.neighbour(n, dv);
+    const bool plus_x = n.has(DrapeNode::kFromPlusX), plus_y = n.has(DrapeNode::kFromPlusY);
+    const DrapeNode* a = res.neighbour(n, plus_x ? ThreadDir::kPlusX : ThreadDir::kMinusX);
+    const DrapeNode* b = res.neighbour(n, plus_y ? ThreadDir::kPlusY : ThreadDir::kMinusY);
     if (!a || !b || !a->mapped() || !b->mapped()) continue;
-    const Vec3 wf = dw == ThreadDir::kPlusX ? Vec3(a->point - n.point) : Vec3(n.point - a->point);
-    const Vec3 wp = dv == ThreadDir::kPlusY ? Vec3(b->point - n.point) : Vec3(n.point - b->point);
+    const Vec3 wf = a->point - n.point, wp = b->point - n.point;  // x1 - x, x2 - x (eq. 12)
     const double ff = wf.squaredNorm(), pp = wp.squaredNorm();
     if (!(ff > 0.0) || !(pp > 0.0)) continue;
     const double dot = wf.dot(wp);
     const double c = dot / std::sqrt(ff * pp);
-    if (!pf.angles || c > c_max) c_max = c, lo_f = wf, lo_p = wp;
-    if (!pf.angles || c < c_min) c_min = c, hi_f = wf, hi_p = wp;
+    const double sign = (plus_x == plus_y) ? 1.0 : -1.0;  // one link turned: pi - gamma
+    as_pointed.add(wf, wp, c, pf.angles == 0);
+    oriented.add(wf, sign * wp, sign * c, pf.angles == 0);
     pf.energy += dot * dot / (ff * pp);
     ++pf.angles;
   }
   if (!pf.angles) return;
-  pf.gamma_min = std::atan2(lo_f.cross(lo_p).norm(), lo_f.dot(lo_p));
-  pf.gamma_max = std::atan2(hi_f.cross(hi_p).norm(), hi_f.dot(hi_p));
+  pf.gamma_min = Extremes::angle(as_pointed.lo_a, as_pointed.lo_b);
+  pf.gamma_max = Extremes::angle(as_pointed.hi_a, as_pointed.hi_b);
+  pf.oriented_gamma_min = Extremes::angle(oriented.lo_a, oriented.lo_b);
+  pf.oriented_gamma_max = Extremes::angle(oriented.hi_a, oriented.hi_b);
   pf.shear_max = std::max(std::abs(kHalfPi - pf.gamma_min), std::abs(pf.gamma_max - kHalfPi));
 }
 
@@ -107,7 +120,7 @@ void cell_areas(DrapeResult& res) {
 
 }  // namespace
 
-void compute_metrics(const DrapeSurface& s, DrapeResult& res) {
+void compute_metrics(const DrapeSurface& s, const Tolerances& tol, DrapeResult& res) {
   DrapeMetrics& m = res.metrics;
   m.faces.assign(static_cast<std::size_t>(std::max(s.face_count(), 1)), {});
   for (std::size_t k = 0; k < m.faces.size(); ++k)
@@ -120,6 +133,8 @@ void compute_metrics(const DrapeSurface& s, DrapeResult& res) {
       ++m.nodes.failed_reasons[text];
     else if (res.nodes[k].status == NodeStatus::kConflict)
       ++m.nodes.conflict_reasons[text];
+    else if (res.nodes[k].status == NodeStatus::kShearLimit)
+      ++m.nodes.shear_limit_reasons[text];
   }
   bool first = true;
   for (const DrapeNode& n : res.nodes) {
@@ -186,6 +201,9 @@ void compute_metrics(const DrapeSurface& s, DrapeResult& res) {
                                       std::abs(res.base_normal.dot(n.point - res.start_point)) / d);
   }
   if (!std::isfinite(m.surface_distance_max)) m.surface_distance_max = 1e300;
+  const BBox3 box = s.bbox();
+  const Vec3 far = box.min.cwiseAbs().cwiseMax(box.max.cwiseAbs());
+  m.newton_floor = residual_floor(s, tol, far, d);
 }
 
 }  // namespace plyfit::detail

@@ -6,7 +6,7 @@
 namespace plyfit::detail {
 
 /// Fills res.metrics (node counts, thread angles, energy, the paper's thread angles and energy,
-/// areas, residual checks) and the nodes' thread angles.
-void compute_metrics(const DrapeSurface& s, DrapeResult& res);
+/// areas, residual checks, the floor of the solvers' tolerance) and the nodes' thread angles.
+void compute_metrics(const DrapeSurface& s, const Tolerances& tol, DrapeResult& res);
 
 }  // namespace plyfit::detail

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <type_traits>
 #include <utility>
 
@@ -58,7 +59,50 @@ Result<NurbsSurface> NurbsSurface::create(NurbsSurfaceData data, const Tolerance
   s.degenerate_rel_ = tol.degenerate_rel;
   s.min_weight_ *= tol.extension_min_weight_rel;
   s.build_bezier();
+  s.rounding_ = s.estimate_rounding();
   return s;
+}
+
+namespace {
+
+// Parameters where the surface's speeds are sampled for rounding(): the distinct knots of the
+// domain and their spans' middles, at most kRoundingSamples (evenly picked among them), and
+// the margin on the largest speed sampled (peaks between samples).
+constexpr int kRoundingSamples = 33;
+constexpr double kSpeedSampleMargin = 2.0;
+
+std::vector<double> rounding_samples(const std::vector<double>& knots, double lo, double hi) {
+  std::vector<double> t;
+  for (std::size_t k = 0; k + 1 < knots.size(); ++k) {
+    if (knots[k] < lo || knots[k + 1] > hi || !(knots[k] < knots[k + 1])) continue;
+    if (t.empty()) t.push_back(knots[k]);
+    t.push_back(0.5 * (knots[k] + knots[k + 1]));
+    t.push_back(knots[k + 1]);
+  }
+  if (t.size() <= static_cast<std::size_t>(kRoundingSamples)) return t;
+  std::vector<double> picked;
+  for (int k = 0; k < kRoundingSamples; ++k)
+    picked.push_back(t[(t.size() - 1) * static_cast<std::size_t>(k) / (kRoundingSamples - 1)]);
+  return picked;
+}
+
+}  // namespace
+
+double NurbsSurface::estimate_rounding() const {
+  constexpr double kEps = std::numeric_limits<double>::epsilon();
+  const auto& d = data_;
+  // The parameters' spacing in 3D, |u| |Su| + |v| |Sv|, taken where it is largest.
+  double lattice = 0.0;
+  for (const double u : rounding_samples(d.knots_u, domain_.u0, domain_.u1))
+    for (const double v : rounding_samples(d.knots_v, domain_.v0, domain_.v1)) {
+      const SurfaceEval1 e = eval1(u, v);
+      if (e.ok) lattice = std::max(lattice, std::abs(u) * e.du.norm() + std::abs(v) * e.dv.norm());
+    }
+  // The sums: every term w N (P - origin) is rounded to a few ulps of its size, and their sum
+  // over the denominator's (all weights and basis values positive) is a mean of |P - origin|,
+  // at most the control net's extent.
+  const double sums = (d.degree_u + d.degree_v) * bbox_.diagonal();
+  return kEps * (sums + kSpeedSampleMargin * lattice);
 }
 
 namespace {

@@ -1399,7 +1399,7 @@ FlatPattern flat_pattern(const DrapeSurface& surface, const DrapeResult& result,
   if (!result.ply || result.nodes.empty()) return {};
   FlatPattern fp = Builder(surface, result).run();
   const PlySpec& spec = result.ply->spec();
-  fp.min_width = options.min_width.value_or(0.5 * std::max(spec.d_weft, spec.d_warp));
+  fp.min_width = options.width_for(spec);
   OutlineCleanupResult cut = outline_cleanup(fp.outline, {fp.min_width});
   fp.cut = std::move(cut.loops);
   for (const auto& l : fp.cut) {

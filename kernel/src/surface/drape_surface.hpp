@@ -84,6 +84,11 @@ class DrapeSurface {
   virtual BBox3 bbox() const = 0;
   /// Area of face k (0 <= k < face_count()).
   virtual double face_area(std::int32_t k) const = 0;
+  /// What double rounding makes a point of face k uncertain by, model units
+  /// (NurbsSurface::rounding).
+  virtual double face_rounding(std::int32_t k) const = 0;
+  /// The largest face_rounding of the surface's faces: the solvers' floor for eq. (9).
+  virtual double rounding() const = 0;
   /// The location of point p, which a solve reached at `at` off at's face, on the surface
   /// where it holds p within `reach` (3D): on at's face itself when `at` lies past one of its
   /// poles (the surface extended past a collapsed edge, as a sphere's, continues it across

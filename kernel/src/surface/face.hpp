@@ -110,6 +110,8 @@ class Face final : public DrapeSurface {
   double area() const override { return area_; }
   bool closes_on_itself() const override { return closed_u_ || closed_v_; }
   double face_area(std::int32_t) const override { return area_; }
+  double face_rounding(std::int32_t) const override { return surface_->rounding(); }
+  double rounding() const override { return surface_->rounding(); }
   std::int32_t face_count() const override { return 1; }
   std::vector<BoundaryLoop> boundary() const override;
   SurfaceLocation settle(const SurfaceLocation& at, const Vec3& p, double reach) const override;

@@ -27,6 +27,9 @@ std::int32_t MoldSurface::face_count() const {
 double MoldSurface::face_area(std::int32_t k) const {
   return surface_->face_area(k);
 }
+double MoldSurface::face_rounding(std::int32_t k) const {
+  return surface_->face_rounding(k);
+}
 double MoldSurface::area() const {
   return surface_->area();
 }

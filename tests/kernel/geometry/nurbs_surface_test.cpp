@@ -281,3 +281,29 @@ TEST_CASE("kernel: an extended rational surface reports where it is undefined, n
   }
   CHECK(undefined > 0);
 }
+
+TEST_CASE("kernel: rounding covers the spacing of the parameters' doubles, and no more") {
+  // A 4 mm cylinder strip of radius 33 whose axial parameter runs over [1e5, 1e5 + 1] (a CAD
+  // export's parameter from a distant origin): the doubles near u = 1e5 are 1.46e-11 apart,
+  // so the surface is known only at points 4 x 1.46e-11 mm apart along the axis. rounding()
+  // must cover half that spacing; the same strip on [0, 1] has only the sums' rounding.
+  const double far = 1e5, width = 72.0 / 33;
+  NurbsSurfaceData strip = cylinder_patch(33, 0.0, width, 0.0, 4.0);  // u axial, v around
+  auto near = NurbsSurface::create(strip);
+  for (double& k : strip.knots_u) k += far;
+  auto at_far = NurbsSurface::create(strip);
+  REQUIRE(near.ok());
+  REQUIRE(at_far.ok());
+  const double spacing = std::nextafter(far + 1.0, 2 * far) - (far + 1.0);  // 1.46e-11
+  const double speed = at_far->eval1(far + 0.5, 0.5).du.norm();             // |Su| = 4 mm
+  CHECK(std::abs(speed - 4.0) < 1e-9);
+  CHECK(at_far->rounding() >= 0.5 * spacing * speed);
+  // Not absurd: within a few hundred ulps of the parameter's spacing and of the strip's size.
+  const double size = at_far->control_bbox().diagonal();
+  const double eps = std::numeric_limits<double>::epsilon();
+  CHECK(at_far->rounding() < 100 * spacing + 100 * eps * size);
+  // On [0, 1] the spacing near the parameters is below the sums' rounding: a few ulps of the
+  // size.
+  CHECK(near->rounding() < 100 * eps * size);
+  CHECK(near->rounding() > 0.0);
+}

@@ -30,6 +30,7 @@ struct RunInfo {
   double tolerance_rel = 0;  ///< Newton tolerance relative to d
   int max_iterations = 0;
   double lock_angle_deg = 90;
+  double warn_angle_deg = 0;    ///< as given (or the material's), echoed in report.json
   std::string guess = "paper";  ///< initial-guess rule of the two-sphere solver
   std::uint64_t max_nodes = 0;  ///< node cap
   std::string ply_name;         ///< for labels

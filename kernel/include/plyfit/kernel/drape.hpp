@@ -27,9 +27,11 @@ enum class NodeStatus : std::uint8_t {
   kOutside,     ///< its solution lies outside the face (domain or trims)
   kOffPly,      ///< beyond the ply rectangle: no cloth there
   kShearLimit,  ///< the thread angle would pass the lock angle (eq. 12) or come within
-                ///< Tolerances::fold_angle of 0 or pi, or its cell would fold (the net around
-                ///< it is sheared flat), or the node has one mapped neighbour and a locked one
-                ///< (its thread would fold past it)
+                ///< Tolerances::fold_angle of 0 or pi, or no point fits its links (the cell is
+                ///< sheared so flat they pass below the face), or its cell would fold (the net
+                ///< around it is sheared flat), or the node has one mapped neighbour and a
+                ///< stopped one (its thread would fold past it): ShearStop says which, and
+                ///< NodeCounts::shear_limit_reasons counts them
   kFailed,      ///< the solver found no solution (see the solver's reason)
   kOverlap,     ///< the cloth would lie on cloth already laid: the base path or the surface
                 ///< closes on itself (a closed plane section, a seam crossed all round), a
@@ -168,8 +170,9 @@ struct DrapeResult {
   std::vector<DrapeNode> nodes;          ///< every node reached, in resolution order
   std::shared_ptr<NodeIndex> index;      ///< NodeId -> position in `nodes` (kernel internal)
   std::vector<std::uint32_t> base_path;  ///< base-path nodes in order, mapped or kInHole
-  /// Why each failed or conflict node (kFailed, kConflict: its status tells which) was not
-  /// mapped: (index in `nodes`, the reason), in resolution order.
+  /// Why each failed, conflict or shear-limit node (kFailed, kConflict, kShearLimit: its
+  /// status tells which) was not mapped: (index in `nodes`, the reason; for kShearLimit the
+  /// code of its ShearStop), in resolution order.
   std::vector<std::pair<std::uint32_t, const char*>> failures;
   std::shared_ptr<const Ply> ply;
   DrapeMetrics metrics;

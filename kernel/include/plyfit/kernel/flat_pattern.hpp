@@ -5,6 +5,7 @@
 #include <plyfit/kernel/drape.hpp>
 #include <plyfit/kernel/mold.hpp>
 
+#include <algorithm>
 #include <optional>
 #include <vector>
 
@@ -50,6 +51,10 @@ struct FlatPatternOptions {
   /// Minimum width of cloth and of gaps in the cut outline (model units); 0 makes the cut
   /// outline the exact one; empty: half the net spacing (the larger of d_weft, d_warp).
   std::optional<double> min_width;
+  /// The minimum width used for a ply of `spec`: min_width, or its default.
+  double width_for(const PlySpec& spec) const {
+    return min_width.value_or(0.5 * std::max(spec.d_weft, spec.d_warp));
+  }
 };
 
 /// Computes the flat pattern of a drape on `surface`.

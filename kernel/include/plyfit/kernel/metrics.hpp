@@ -22,6 +22,10 @@ struct NodeCounts {
   /// The failed nodes counted by the solver's reason (SolveResult::reason, e.g. "no convergence
   /// within the iteration cap"); the counts add up to `failed`.
   std::map<std::string, std::uint64_t> failed_reasons;
+  /// The shear-limit nodes counted by the guard that stopped them (to_string(ShearStop):
+  /// "lock", "fold_angle", "flat_cell", "cell_folds", "behind_stop"); the counts add up to
+  /// `shear_limit`.
+  std::map<std::string, std::uint64_t> shear_limit_reasons;
   /// The conflict nodes counted by their reason ("the fronts disagree: a third link is off",
   /// "the fronts disagree: the thread between them would stretch"); the counts add up to
   /// `conflict`.
@@ -38,16 +42,21 @@ struct DrapeMetrics {
   double gamma_min = 0.0, gamma_max = 0.0;  ///< thread angles, radians (0 if none)
   double shear_energy = 0.0;                ///< sum of cos^2(gamma) over mapped regular nodes
   std::uint64_t angles = 0;                 ///< nodes with a thread angle
-  /// The paper's own thread angles (eq. 12, §7.1): at each mapped node solved from a weft and
-  /// a warp neighbour (DrapeNode::kSolvedTwo), the angle at the node between its links to those
-  /// two, one-sided, each link taken along +x or +y (a node solved from its -x and +y
-  /// neighbours has the angle pi minus that between the links, so that both definitions
-  /// measure one gamma). Nodes solved from one neighbour, or on the base path, have none.
+  /// The paper's own thread angles (eq. 12, §7.1, Table 2): at each mapped node solved from a
+  /// weft and a warp neighbour (DrapeNode::kSolvedTwo), the angle at the node between its
+  /// links to those two, as they point (x1 - x and x2 - x of eq. 12): a node solved from its
+  /// +x and -y neighbours (a sweep along (-1, 1), the paper's case (c)) has pi minus the angle
+  /// a node solved from its -x and -y ones has on the same cell. Beside them the same angles
+  /// oriented, each link taken along +x or +y (one gamma for both kinds of node: the thread
+  /// angle of our own figures). Nodes solved from one neighbour, or on the base path, have
+  /// none.
   struct PaperFigures {
-    double gamma_min = 0.0, gamma_max = 0.0;  ///< radians (0 if no node has the angle)
-    double energy = 0.0;                      ///< sum of cos^2(gamma) over those nodes (eq. 14)
-    double shear_max = 0.0;                   ///< largest |pi/2 - gamma| (radians)
-    std::uint64_t angles = 0;                 ///< nodes with the angle
+    double gamma_min = 0.0, gamma_max = 0.0;  ///< radians, as eq. (12) (0 if no node has it)
+    double oriented_gamma_min = 0.0;          ///< radians, links along +x and +y
+    double oriented_gamma_max = 0.0;
+    double energy = 0.0;       ///< sum of cos^2(gamma) over those nodes (eq. 14; either angle)
+    double shear_max = 0.0;    ///< largest |pi/2 - gamma| (radians; either angle)
+    std::uint64_t angles = 0;  ///< nodes with the angle
   };
   PaperFigures paper;
   /// max | |p_a - p_b| - rest | / d over links between mapped nodes.
@@ -62,6 +71,11 @@ struct DrapeMetrics {
   /// (links closed by no solve, where a node had more known neighbours than a solver uses,
   /// show in edge_length_max_rel, not here).
   double solve_residual_max_rel = 0.0;
+  /// The floor of eq. (9)'s tolerance on this surface (residual_floor at its bounding box's
+  /// farthest corner, with a sphere of radius d; model units): what the surface's evaluation
+  /// and the coordinates' rounding leave of the residual. Solves stop at the larger of it and
+  /// Tolerances::newton_residual_rel * d.
+  double newton_floor = 0.0;
 
   // Figures derived from the above, owned here so that writers and commands do not compute
   // them again.

@@ -142,6 +142,9 @@ class MoldSurface {
   std::int32_t face_count() const;
   /// Area of face k.
   double face_area(std::int32_t k) const;
+  /// What double rounding makes a point of face k uncertain by (mm): the floor of the solvers'
+  /// residual on it.
+  double face_rounding(std::int32_t k) const;
   /// Area of the surface (its faces' areas summed), mm^2.
   double area() const;
   /// Characteristic size (bounding-box diagonal), mm.

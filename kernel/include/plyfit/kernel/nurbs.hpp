@@ -86,12 +86,22 @@ class NurbsSurface {
   /// width), used to scale parameter-space tolerances.
   double speed_u() const { return speed_u_; }
   double speed_v() const { return speed_v_; }
+  /// What double rounding makes a point S(u, v) of the domain uncertain by (model units): the
+  /// sums over the span's poles, relative to its first pole ((p + q) roundings of a weighted
+  /// mean of the poles' offsets, at most the control net's extent), and the spacing of the
+  /// doubles near (u, v) themselves, eps (|u| |Su| + |v| |Sv|): the surface is only known at
+  /// representable parameters (u in radians around 4.7 steps by 9e-16 rad; a length parameter
+  /// of 1e5 mm by 1.5e-11 mm). That spacing is taken where it is largest among the knots and
+  /// the span middles, doubled for the peaks between them. Coordinates far from the origin add
+  /// their own ulps where the point is used (see residual_tolerance in the solvers).
+  double rounding() const { return rounding_; }
 
  private:
   NurbsSurface() = default;
   template <int ND, bool Rational>
   void eval_homogeneous(double u, double v, double out[][4], double origin[3]) const;
   void build_bezier();
+  double estimate_rounding() const;
 
   NurbsSurfaceData data_;
   std::vector<double> hpoles_;  // poles and weights (x, y, z, w), stride 4
@@ -100,6 +110,7 @@ class NurbsSurface {
   int first_span_u_ = 0, last_span_u_ = 0, first_span_v_ = 0, last_span_v_ = 0;
   double speed_u_ = 1.0, speed_v_ = 1.0;
   double min_weight_ = 1.0;
+  double rounding_ = 0.0;
   double degenerate_rel_ = 1e-8;
   // Bezier form of every knot-span pair, for the degrees with fixed-degree kernels (1..3 x
   // 1..3, 4 x 4, 5 x 5), built by create() and read-only after (thread-safe): per span pair

@@ -98,6 +98,7 @@ SolveResult Scanner::solve_two(const DrapeNode& q, const DrapeNode& a, ThreadDir
     };
     if (folded()) {
       r.status = SolveStatus::kShearLimit;
+      r.shear_stop = ShearStop::kCellFolds;
       r.reason = "the cell would fold (the cloth is sheared flat)";
     }
   }

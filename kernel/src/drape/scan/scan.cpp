@@ -115,6 +115,7 @@ void Scanner::resolve(std::uint32_t idx, const SolveResult& r) {
       break;
     case SolveStatus::kShearLimit:
       n.status = NodeStatus::kShearLimit;
+      res_.failures.emplace_back(idx, to_string(shear_stop(r)));
       break;
     case SolveStatus::kFailed:
       // The base path ends where its plane's section turns back (path_end).
@@ -135,6 +136,15 @@ void Scanner::resolve(std::uint32_t idx, const SolveResult& r) {
       res_.failures.emplace_back(idx, r.reason);
       break;
   }
+}
+
+// The guard that stopped a node at the shear limit: an angle past gamma_min is the lock's
+// where it passes the lock angle, else the fold angle's (Tolerances::fold_angle).
+ShearStop Scanner::shear_stop(const SolveResult& r) const {
+  if (r.shear_stop != ShearStop::kLock) return r.shear_stop;
+  const double lock = res_.gamma_min_limit;
+  const bool past_lock = lock > 0.0 && (r.thread_angle < lock || r.thread_angle > kPi - lock);
+  return past_lock ? ShearStop::kLock : ShearStop::kFoldAngle;
 }
 
 // True if node k (just mapped) lies on cloth already laid: a recorded node within
@@ -326,6 +336,7 @@ void Scanner::step(std::uint32_t qi) {
         (r.thread_angle < st_.gamma_min || r.thread_angle > kPi - st_.gamma_min) &&
         s_.in_hole(r.at)) {
       r.status = SolveStatus::kShearLimit;
+      r.shear_stop = ShearStop::kLock;
       r.reason = "thread angle beyond the shear limit (under a hole of the face)";
     }
     // Links to further known neighbours (fronts that met around a hole in the net) are
@@ -345,6 +356,7 @@ void Scanner::step(std::uint32_t qi) {
     }
   } else if (nk == 1 && behind_lock(qn)) {
     r.status = SolveStatus::kShearLimit;
+    r.shear_stop = ShearStop::kBehindStop;
     r.reason = "behind the shear limit";
   } else if (nk == 1) {
     r = solve_one(qn, *known[0].n, known[0].dir, res_.rest_length(qn, known[0].dir));

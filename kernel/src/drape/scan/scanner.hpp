@@ -119,6 +119,7 @@ class Scanner {
     if (speculating_ && k < cp_.nodes) undo_.emplace_back(k, res_.nodes[k]);
   }
   bool folds_back(std::uint32_t k) const;
+  ShearStop shear_stop(const SolveResult& r) const;
   bool behind_lock(const DrapeNode& q) const;
   void scan();
 

@@ -126,6 +126,18 @@ struct Ctx {
   }
 };
 
+// A Newton solve that ends unconverged (for `why`) at `at`: failed, or left the face where
+// that iterate lies past its face's domain edge (the surface extended past a free edge, where
+// the residual has no zero near the face: the cloth leaves the face there).
+void stop_unconverged(Ctx& c, const SurfaceLocation& at, const Vec3& p, double r, const char* why) {
+  c.res.at = c.s.wrap(at);
+  c.res.point = p;
+  c.res.residual = r;
+  const bool past_edge = !c.s.domain(c.res.at).contains(c.res.at.uv.x(), c.res.at.uv.y());
+  c.res.status = past_edge ? SolveStatus::kLeftFace : SolveStatus::kFailed;
+  c.res.reason = past_edge ? "iterate" : why;
+}
+
 // Newton-Raphson on (u, v) for the residual functor resid(e, f, J) (f in model units).
 // Returns true on convergence (|f1| + |f2| < eps); fills ctx.res with the point, counts and,
 // on failure, status and reason.
@@ -163,11 +175,7 @@ bool newton(Ctx& c, SurfaceLocation at, Resid&& resid) {
     }
     if (it >= max_it) {
       c.res.iterations += it;
-      c.res.status = SolveStatus::kFailed;
-      c.res.reason = "no convergence within the iteration cap";
-      c.res.at = c.s.wrap(at);
-      c.res.point = e.p;
-      c.res.residual = r;
+      stop_unconverged(c, at, e.p, r, "no convergence within the iteration cap");
       return false;
     }
     // Newton step, or Levenberg-Marquardt where the Jacobian is (nearly) singular. Both are
@@ -253,11 +261,7 @@ bool newton(Ctx& c, SurfaceLocation at, Resid&& resid) {
     }
     if (!accepted) {
       c.res.iterations += it + 1;
-      c.res.status = SolveStatus::kFailed;
-      c.res.reason = "no intersection (the residual stopped decreasing)";
-      c.res.at = c.s.wrap(at);
-      c.res.point = e.p;
-      c.res.residual = r;
+      stop_unconverged(c, at, e.p, r, "no intersection (the residual stopped decreasing)");
       return false;
     }
   }
@@ -266,14 +270,12 @@ bool newton(Ctx& c, SurfaceLocation at, Resid&& resid) {
   return false;
 }
 
-// Tolerance of eq. (9): relative to d, floored at the rounding level of the residual. That
-// level is set by the coordinates involved and by the surface's own evaluation, whose
-// rounding grows with the size of the control net it sums over (a point at the origin of a
-// 40 mm saddle is still evaluated to a few ulps of 40 mm): the face size counts too.
+// Tolerance of eq. (9): relative to d, floored at the rounding level of the residual
+// (residual_floor).
 double residual_tolerance(const DrapeSurface& s, const SolverSettings& st, const Vec3& where,
                           double radius) {
   return std::max(st.tol.newton_residual_rel * st.spacing,
-                  st.tol.roundoff_rel * (where.cwiseAbs().maxCoeff() + s.size() + radius));
+                  residual_floor(s, st.tol, where, radius));
 }
 
 // A solve that converged off its face: solved again from the location where the surface
@@ -297,9 +299,11 @@ void settle(Ctx& c, Resid&& resid) {
 }
 
 // Finishes a converged solve (settled already, see settle()): in-face test (one contains()
-// query). A solution a hair past a domain edge (a path along the edge, or a pole reached from
-// the extension beyond it) is on the face if the same point is reached with the parameters
-// clamped to the domain.
+// query). A solution a hair past a domain edge (a path along the edge, a node on it, or a
+// pole reached from the extension beyond it) is on the face if the same point with the
+// parameters clamped to the domain is a solution too: within eq. (9)'s tolerance of the
+// point found, or the same parameters (Tolerances::param_rel: a node on the edge, found a
+// rounding past it, where the rounding of the net it is solved from has carried it).
 void classify_converged(Ctx& c) {
   if (c.s.contains(c.res.at)) {
     c.res.status = SolveStatus::kConverged;
@@ -312,7 +316,10 @@ void classify_converged(Ctx& c) {
   if (clamped != c.res.at && c.s.contains(clamped)) {
     const SurfaceEval1 e = c.s.eval1(clamped);
     ++c.res.evaluations;
-    if (e.ok && (e.p - c.res.point).norm() < c.eps) {
+    const Vec2 moved = (clamped.uv - uv).cwiseAbs();
+    const bool same = moved.x() <= c.st.tol.param_rel * d.width_u() &&
+                      moved.y() <= c.st.tol.param_rel * d.width_v();
+    if (e.ok && (same || (e.p - c.res.point).norm() < c.eps)) {
       c.res.at = clamped;
       c.res.point = e.p;
       c.res.status = SolveStatus::kConverged;
@@ -394,6 +401,34 @@ const char* to_string(SolveStatus s) {
       return "failed";
   }
   return "failed";
+}
+
+// The rounding level of a residual is set by the coordinates involved, the face's size (a
+// point at the origin of a 40 mm saddle is still evaluated to a few ulps of 40 mm) and the
+// surface's own evaluation rounding (the sums over its poles, and the spacing of the doubles
+// near its parameters, which on a cylinder whose v runs from 1e5 mm leaves no point closer
+// than 1.5e-11 mm to the solution).
+double residual_floor(const DrapeSurface& s, const Tolerances& tol, const Vec3& where,
+                      double radius) {
+  return tol.roundoff_rel * (where.cwiseAbs().maxCoeff() + s.size() + radius) + s.rounding();
+}
+
+const char* to_string(ShearStop s) {
+  switch (s) {
+    case ShearStop::kNone:
+      return "none";
+    case ShearStop::kLock:
+      return "lock";
+    case ShearStop::kFoldAngle:
+      return "fold_angle";
+    case ShearStop::kFlatCell:
+      return "flat_cell";
+    case ShearStop::kCellFolds:
+      return "cell_folds";
+    case ShearStop::kBehindStop:
+      return "behind_stop";
+  }
+  return "none";
 }
 
 Vec3 rotate_about(const Vec3& v, const Vec3& axis, double angle) {
@@ -888,6 +923,7 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
     // The thread angle would have to pass pi: beyond any gamma_max (eq. 12).
     if (st.gamma_min > 0.0) {
       c.res.status = SolveStatus::kShearLimit;
+      c.res.shear_stop = ShearStop::kLock;
       c.res.thread_angle = kPi;
       c.res.reason = "thread angle beyond the shear limit (the spheres do not meet)";
     }
@@ -957,16 +993,23 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
     if (c.res.status == SolveStatus::kConverged && st.gamma_min > 0.0 &&
         (c.res.thread_angle < st.gamma_min || c.res.thread_angle > kPi - st.gamma_min)) {
       c.res.status = SolveStatus::kShearLimit;
+      c.res.shear_stop = ShearStop::kLock;
       c.res.reason = "thread angle beyond the shear limit";
     }
   };
-  // Newton from g; true when it converged on the requested branch (c.res classified).
+  // Newton from g; true when it converged on the requested branch (c.res classified). An
+  // attempt that left the face is kept: if no attempt finds the node on the face, it is
+  // outside (a later attempt may find only the other branch, which lies on the face).
+  std::optional<SolveResult> left;
   auto attempt = [&](const SurfaceLocation& g) {
     setup_margins(c, step.a_at, g);
     const double mb = c.scaled_norm(step.b_at, s.delta(step.b_at, g));
     c.margin = std::max(c.margin, st.tol.extension_steps * mb);
     c.max_step = std::max(c.max_step, kStepCapSteps * mb);
-    if (!newton(c, g, resid)) return false;
+    if (!newton(c, g, resid)) {
+      if (c.res.status == SolveStatus::kLeftFace && !left) left = c.res;
+      return false;
+    }
     settle(c, resid);
     if (!on_branch(c.res.point, face_normal(s, c.res.at, c.last), c.res.at)) {
       c.res.status = SolveStatus::kFailed;
@@ -1052,7 +1095,11 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
       Vec2 r;
       Eigen::Matrix2d J;
       resid(ef, r, J);
-      if (!(r.cwiseAbs().sum() < c.eps)) return false;
+      // The point itself, on the requested branch only: the circle is searched all round,
+      // and past a face's edge Newton from the other branch's crossing fails (left the face)
+      // where that point still fits both links.
+      if (!(r.cwiseAbs().sum() < c.eps) || !on_branch(ef.p, face_normal(s, f.at, ef), f.at))
+        return false;
       c.res.at = f.at;
       c.res.point = ef.p;
       c.res.residual = r.cwiseAbs().sum();
@@ -1130,6 +1177,13 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
   //    side of the line a-b, crosses the surface where its signed distance to it changes
   //    sign: found by bisection on the circle's angle.
   if (c.res.status != SolveStatus::kLeftFace && attempt_circle()) return c.res;
+  if (c.res.status == SolveStatus::kFailed && left) {
+    const int iterations = c.res.iterations, evaluations = c.res.evaluations;
+    c.res = *left;
+    c.res.iterations = iterations;
+    c.res.evaluations = evaluations;
+    return c.res;
+  }
   // No point of the face fits both links when the spheres' circle of intersection (centre m,
   // radius h) passes the face at a distance: every point of the circle lies within h of m,
   // so a face whose nearest point to m is further than h from it misses the circle. With
@@ -1152,6 +1206,7 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
       c.res.reason = "no point of the face fits both links (they would pass below the face)";
       if (st.gamma_min > 0.0) {
         c.res.status = SolveStatus::kShearLimit;
+        c.res.shear_stop = ShearStop::kFlatCell;
         c.res.thread_angle =
             std::acos(std::clamp((ra * ra + rb * rb - L * L) / (2 * ra * rb), -1.0, 1.0));
         c.res.reason =
@@ -1168,6 +1223,7 @@ SolveResult solve_two_spheres(const DrapeSurface& s, const TwoSphereStep& step,
     const double g = std::atan2(pa.cross(pb).norm(), pa.dot(pb));
     if (pa.norm() > 0 && pb.norm() > 0 && (g < st.gamma_min || g > kPi - st.gamma_min)) {
       c.res.status = SolveStatus::kShearLimit;
+      c.res.shear_stop = ShearStop::kLock;
       c.res.thread_angle = g;
       c.res.reason = "thread angle beyond the shear limit (near-tangent spheres)";
     }

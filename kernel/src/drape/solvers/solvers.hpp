@@ -30,6 +30,29 @@ enum class SolveStatus : std::uint8_t {
 /// Name of a status ("converged", "left_face", "shear_limit", "failed").
 const char* to_string(SolveStatus s);
 
+/// Which guard stopped a node at the shear limit (SolveStatus::kShearLimit,
+/// NodeStatus::kShearLimit).
+enum class ShearStop : std::uint8_t {
+  kNone,
+  /// Eq. (12): the thread angle at the node (SolveResult::thread_angle) passes gamma_min or
+  /// pi - gamma_min; the drape tells a lock angle (kLock) from Tolerances::fold_angle
+  /// (kFoldAngle) by that angle.
+  kLock,
+  kFoldAngle,
+  /// No point of the face fits both links: the spheres' circle passes the face at a distance
+  /// (the cell is sheared so flat that its links, chords, pass below the curved face).
+  kFlatCell,
+  /// The cell would fold: the node lies on the same side of the line between its two
+  /// neighbours as the cell's fourth corner (the net around it is sheared past flat).
+  kCellFolds,
+  /// The node has one mapped neighbour and one stopped at the shear limit: its thread,
+  /// continued straight past the stopped node, would fold over the cells left open.
+  kBehindStop,
+};
+/// Reason code of a stop: "lock", "fold_angle", "flat_cell", "cell_folds", "behind_stop"
+/// ("none" for kNone).
+const char* to_string(ShearStop s);
+
 /// Result of a mapping solve.
 struct SolveResult {
   SolveStatus status = SolveStatus::kFailed;
@@ -55,6 +78,9 @@ struct SolveResult {
   bool section_ends = false;
   /// Thread angle at the new node for the two-sphere solver (radians), else 0.
   double thread_angle = 0.0;
+  /// For kShearLimit: the guard that stopped the node (kLock for any angle past gamma_min:
+  /// the solvers know only SolverSettings::gamma_min; the drape sorts lock from fold angle).
+  ShearStop shear_stop = ShearStop::kNone;
   const char* reason = "";  ///< why, for kFailed (and for kLeftFace: "outside" or "iterate")
 };
 
@@ -64,6 +90,14 @@ struct SolverSettings {
   double gamma_min = 0.0;  ///< minimum thread angle, radians (eq. 12); 0 disables the test
   Tolerances tol;
 };
+
+/// The floor of eq. (9)'s tolerance for a solve near `where` with a sphere of `radius` (model
+/// units): the rounding of the residual, Tolerances::roundoff_rel times the coordinates, the
+/// surface's size and the radius, plus the surface's own evaluation rounding
+/// (DrapeSurface::rounding). The solvers stop at max(newton_residual_rel * d, this): below it
+/// the residual is rounding, and the node is solved.
+double residual_floor(const DrapeSurface& surface, const Tolerances& tol, const Vec3& where,
+                      double radius);
 
 /// Solver 1 (eqs. 1-9): the next base-path point, on the base plane through `from` with
 /// normal `plane_normal`, at distance `distance` from `from`, going forward along `forward`

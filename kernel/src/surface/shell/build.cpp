@@ -153,13 +153,14 @@ void Shell::build_topology(const std::vector<std::vector<TrimLoop>>& loops) {
   }
 }
 
-// The shell's box, size and area: its faces'.
+// The shell's box, size, area and rounding: its faces'.
 void Shell::measure() {
   BBox3 box;
   for (const auto& f : faces_) {
     box.add(f->bbox().min);
     box.add(f->bbox().max);
     area_ += f->area();
+    rounding_ = std::max(rounding_, f->rounding());
   }
   size_ = std::max(box.diagonal(), detail::kDivisionFloor);
   bbox_ = box;

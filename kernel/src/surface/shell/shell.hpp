@@ -84,6 +84,8 @@ class Shell final : public DrapeSurface {
   std::vector<BoundaryLoop> boundary() const override { return boundary_; }
   BBox3 bbox() const override { return bbox_; }
   double face_area(std::int32_t k) const override { return face(k).area(); }
+  double face_rounding(std::int32_t k) const override { return face(k).rounding(); }
+  double rounding() const override { return rounding_; }
   SurfaceLocation settle(const SurfaceLocation& at, const Vec3& p, double reach) const override;
   /// In a hole of the location's face that no neighbour face's sewing gap covers.
   bool in_hole(const SurfaceLocation& at) const override {
@@ -152,7 +154,7 @@ class Shell final : public DrapeSurface {
   };
   std::vector<std::vector<Neighbour>> neighbours_;
   Tolerances tol_;
-  double gap_ = 0.0, size_ = 1.0, area_ = 0.0;
+  double gap_ = 0.0, size_ = 1.0, area_ = 0.0, rounding_ = 0.0;
   BBox3 bbox_;
   int euler_ = 1;
   bool closes_ = false;
