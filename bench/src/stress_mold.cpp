@@ -9,6 +9,8 @@
 #include "bench.hpp"
 #include "tables.hpp"
 
+#include <plyfit/kernel/types.hpp>
+
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>

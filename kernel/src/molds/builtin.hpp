@@ -48,6 +48,14 @@ inline double radians(double deg) {
   return deg * kPi / 180.0;
 }
 
+/// The descriptions of a list of built-ins (MoldEntry or ShellEntry), in its order.
+template <class Entry>
+std::vector<BuiltinInfo> infos_of(const std::vector<Entry>& entries) {
+  std::vector<BuiltinInfo> out;
+  for (const Entry& e : entries) out.push_back(e.info);
+  return out;
+}
+
 /// The corners of the surface's parameter domain, counter-clockwise in (u, v) from (u0, v0).
 std::array<Vec2, 4> domain_corners(const NurbsSurfaceData& surface);
 

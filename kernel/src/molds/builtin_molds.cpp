@@ -406,11 +406,7 @@ const std::vector<MoldEntry>& mold_entries() {
 }  // namespace
 
 const std::vector<BuiltinInfo>& builtin_molds() {
-  static const std::vector<BuiltinInfo> list = [] {
-    std::vector<BuiltinInfo> out;
-    for (const MoldEntry& e : mold_entries()) out.push_back(e.info);
-    return out;
-  }();
+  static const std::vector<BuiltinInfo> list = detail::infos_of(mold_entries());
   return list;
 }
 

@@ -134,11 +134,7 @@ const std::vector<ShellEntry>& shell_entries() {
 }  // namespace
 
 const std::vector<BuiltinInfo>& builtin_shells() {
-  static const std::vector<BuiltinInfo> list = [] {
-    std::vector<BuiltinInfo> out;
-    for (const ShellEntry& e : shell_entries()) out.push_back(e.info);
-    return out;
-  }();
+  static const std::vector<BuiltinInfo> list = detail::infos_of(shell_entries());
   return list;
 }
 
