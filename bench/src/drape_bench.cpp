@@ -26,7 +26,6 @@ namespace plyfit::bench {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // The report's faces.
 constexpr double kSphereRadius = 20.0;
 constexpr const char* kTrimmedFile = "occ22470.igs";
@@ -378,7 +377,7 @@ ConvergenceReport convergence_report() {
   };
 
   {  // Cylinder at 45 degrees: max shear.
-    const double R = 10, H = 40, alpha = 120 * kPi / 180;
+    const double R = 10, H = 40, alpha = 120 * kDegToRad;
     auto f = builtin_face("cylinder", {{"R", R}, {"H", H}, {"angle", 120}});
     if (!f) {
       print_error("convergence", f.error());
@@ -494,7 +493,7 @@ Result<std::vector<HardCase>> hard_cases() {
                    {}});
     // The paper's case (c) with a lock angle of 30 degrees: the shear limit is reached.
     DrapeOptions lock;
-    lock.lock_angle = 30 * kPi / 180;
+    lock.lock_angle = 30 * kDegToRad;
     out.push_back({"near the shear limit (octant, case (c), lock angle 30 deg), d 0.5", *f,
                    problem(0.5, Vec2(15, 0), Vec2(1, 1), {Vec2(-1, 1)}, Vec3(0, 0, 20), Y, {Y}),
                    lock});
@@ -617,7 +616,7 @@ Table hard_case_table(int runs, bool* ok) {
            fmt("%llu / %llu / %llu", (unsigned long long)m.failed, (unsigned long long)m.conflict,
                (unsigned long long)m.overlap),
            fmt("%.1e", r.metrics.solve_residual_max_rel), fmt("%.1e", e.link_rel),
-           fmt("%.1e", e.base_plane_rel), fmt("%.2f", e.max_shear * 180 / kPi),
+           fmt("%.1e", e.base_plane_rel), fmt("%.2f", e.max_shear * kRadToDeg),
            fmt("%.2f", *tm * 1e3)});
     std::fprintf(stderr, "hard: %s: %.2f ms\n", c.name.c_str(), *tm * 1e3);
   }

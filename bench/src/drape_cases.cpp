@@ -14,7 +14,6 @@
 namespace plyfit::bench {
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 // Samples per direction when looking for the middle of a face.
 constexpr int kMiddleSamples = 33;
 }  // namespace

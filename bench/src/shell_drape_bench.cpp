@@ -21,8 +21,6 @@ namespace plyfit::bench {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 struct ShellCase {
   std::string name;
   std::unique_ptr<DrapeSurface> one, many;

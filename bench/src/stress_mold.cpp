@@ -9,6 +9,8 @@
 #include "bench.hpp"
 #include "tables.hpp"
 
+#include <plyfit/kernel/types.hpp>
+
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
@@ -44,7 +46,6 @@ namespace plyfit::bench {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Side of one face's square in the plane (mm) and the height of its waves.
 constexpr double kFaceSide = 100.0;
 constexpr double kWaveHeight = 12.0;

@@ -19,7 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
 const OptionTable& compare_options() {
   static const OptionTable table = {

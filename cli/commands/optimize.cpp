@@ -25,7 +25,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 /// Largest drape budget accepted.
 constexpr long kMaxEvaluations = 1'000'000;
 /// Most drapes run at a time.

@@ -23,7 +23,6 @@ namespace plyfit::cli {
 
 namespace {
 
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 // Without --warn-angle, cells are flagged at least this far (degrees) below the lock angle.
 constexpr double kWarnBelowLockDeg = 5.0;
 // Largest face index accepted (a file with more faces does not exist).

@@ -13,7 +13,6 @@ namespace plyfit::cli {
 
 namespace {
 
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
 using Clock = std::chrono::steady_clock;
 

@@ -22,8 +22,6 @@ std::string note_of(const Evaluation& e) {
 
 namespace {
 
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
-constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
 std::string vary_text(const OptimizeOptions& o) {
   std::string s;

@@ -12,8 +12,8 @@
 
 namespace plyfit::exporters::detail {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kRadToDeg = 180.0 / kPi;
+using plyfit::kPi;
+using plyfit::kRadToDeg;
 
 /// A 2D box grown point by point (empty until the first point).
 struct Box2 {

@@ -251,7 +251,6 @@ struct Segment {
 // a knot line, where a surface that is only C0 has two derivatives, and the row there must be
 // the one of the band's side (the evaluator would pick one side for both bands).
 double lobatto(int k, int n, double v0, double v1) {
-  constexpr double kPi = 3.14159265358979323846;
   const double inset =
       std::max(kBandInset * (v1 - v0),
                4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(v0), std::abs(v1)));

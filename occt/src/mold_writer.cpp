@@ -7,6 +7,7 @@
 #include <plyfit/exporters/atomic_file.hpp>
 #include <plyfit/exporters/mold_writer.hpp>
 #include <plyfit/kernel/nurbs.hpp>
+#include <plyfit/kernel/polygon2d.hpp>
 #include <plyfit/occt/module.hpp>
 
 #include <plyfit/occt/mold_writer_api.hpp>
@@ -102,17 +103,6 @@ bool fits(std::vector<Point>& points, std::vector<double>& weights, std::vector<
   return all;
 }
 
-// Twice the signed area of a closed polyline (positive: counter-clockwise).
-double signed_area2(const std::vector<Vec2>& pts) {
-  double a = 0.0;
-  for (size_t k = 0; k < pts.size(); ++k) {
-    const Vec2& p = pts[k];
-    const Vec2& q = pts[(k + 1) % pts.size()];
-    a += p.x() * q.y() - q.x() * p.y();
-  }
-  return a;
-}
-
 // True when the surface image of a degree-1 (u, v) curve is a point (within
 // kEdgeCurveTolerance): a collapsed edge at a pole. Curved trims never collapse.
 bool collapses(const NurbsCurveData2& c, const Handle(Geom_BSplineSurface) & surface) {
@@ -156,7 +146,7 @@ Result<TopoDS_Wire> make_wire(const std::vector<NurbsCurveData2>& curves,
     if (!mw.IsDone()) return Error{"the trim curves of a loop do not join end to end"};
   }
   TopoDS_Wire w = mw.Wire();
-  if ((signed_area2(polyline) > 0.0) != ccw) w.Reverse();
+  if ((signed_area(polyline) > 0.0) != ccw) w.Reverse();
   return w;
 }
 

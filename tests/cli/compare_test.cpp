@@ -7,6 +7,8 @@
 
 #include "cli/cli_util.hpp"
 
+#include <plyfit/kernel/types.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -82,7 +84,7 @@ TEST_CASE("cli: compare marks the best sphere-octant scene per criterion, as the
     std::function<double(const json&)> value;
     bool larger;
   };
-  const double deg = 180.0 / 3.14159265358979323846;
+  const double deg = plyfit::kRadToDeg;
   auto at = [](const char* p) { return [p](const json& g) { return g[p].get<double>(); }; };
   auto in_deg = [&](const char* p) {
     return [p, deg](const json& g) { return g[p].get<double>() * deg; };

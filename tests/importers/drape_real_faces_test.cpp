@@ -135,7 +135,7 @@ TEST_CASE("drape: where fronts meet around a hole in the net, no link is broken"
     const Face* f = &face;
     const DrapeProblem pb = problem(c);
     DrapeOptions opt;
-    opt.lock_angle = lock_deg * 3.14159265358979323846 / 180;
+    opt.lock_angle = lock_deg * kDegToRad;
     auto r = drape(*f, pb, opt);
     REQUIRE(r.ok());
     // Every link between two mapped crossings has the spacing's length (independently of
@@ -298,7 +298,7 @@ TEST_CASE("drape: the solver places every node of the fuzz's failed drapes, or s
     INFO(c.file << " face " << c.face << " d " << c.d << " lock " << lock_deg);
     const Face face = load(c);
     DrapeOptions opt;
-    opt.lock_angle = lock_deg * 3.14159265358979323846 / 180;
+    opt.lock_angle = lock_deg * kDegToRad;
     auto r = drape(face, problem(c), opt);
     REQUIRE(r.ok());
     int failed = 0;
@@ -347,7 +347,7 @@ TEST_CASE("drape: a base path whose plane nearly touches the face ahead ends the
     INFO(c.file << " face " << c.face << " d " << c.d);
     const Face face = load(c);
     DrapeOptions opt;
-    opt.lock_angle = lock_deg * 3.14159265358979323846 / 180;
+    opt.lock_angle = lock_deg * kDegToRad;
     auto r = drape(face, problem(c), opt);
     REQUIRE(r.ok());
     CHECK(r->metrics.nodes.failed == 0);

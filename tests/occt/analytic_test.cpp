@@ -51,7 +51,6 @@ using namespace plyfit::test;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 /// OpenCASCADE approximates offset surfaces (GeomConvert::SurfaceToBSplineSurface uses
 /// GeomConvert_ApproxSurface with a 3D tolerance of 1e-4 model units): a converted offset face
 /// is only as close as that, relative to this test's 40 mm face.

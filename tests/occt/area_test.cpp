@@ -38,7 +38,6 @@ using namespace plyfit::test;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // The accuracies the importer asks for (occt_mold.cpp): the listing, and a described face.
 constexpr double kListingRel = 1e-6;
 constexpr double kDescribedRel = 1e-9;

@@ -36,7 +36,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 // ---------------------------------------------------------------------------------------
 // VTK, read by a small parser of the legacy BINARY format (big-endian data blocks).
@@ -193,7 +192,7 @@ TEST_CASE(
         CHECK(std::isnan(s));
       } else {
         ++angles;
-        CHECK(std::abs(g - n.thread_angle * 180.0 / kPi) <= test::kRoundoffRel * 180.0);
+        CHECK(std::abs(g - n.thread_angle * kRadToDeg) <= test::kRoundoffRel * 180.0);
         CHECK(g >= 0.0);
         CHECK(g <= 180.0);
         CHECK(std::abs(s - std::abs(90.0 - g)) <= test::kRoundoffRel * 180.0);
@@ -241,7 +240,7 @@ TEST_CASE(
       if (shear < 0) {
         CHECK(std::isnan(cs));
       } else {
-        CHECK(std::abs(cs - shear * 180.0 / kPi) <= test::kRoundoffRel * 180.0);
+        CHECK(std::abs(cs - shear * kRadToDeg) <= test::kRoundoffRel * 180.0);
       }
     }
   }

@@ -471,7 +471,6 @@ TEST_CASE("occt: random B-spline surfaces match Geom_BSplineSurface") {
 }
 
 TEST_CASE("occt: analytic surfaces match Geom_BSplineSurface, poles and apexes included") {
-  constexpr double kPi = 3.14159265358979323846;
   NurbsCurveData2 profile;  // a rational quadratic arc followed by a line, as one C0 curve
   profile.degree = 2;
   profile.knots = {0, 0, 0, 1, 1, 2, 2, 2};
@@ -545,7 +544,7 @@ TEST_CASE("occt: random curves match Geom_BSplineCurve and Geom2d_BSplineCurve")
                             high_degree ? ch2 : cl2));
   }
   // The analytic arcs and an interpolating cubic.
-  for (const auto& arc : {circle_arc(5.0, 0.0, 6.283185307179586), ellipse_arc(9.0, 2.0, -1.0, 2.5),
+  for (const auto& arc : {circle_arc(5.0, 0.0, 2 * kPi), ellipse_arc(9.0, 2.0, -1.0, 2.5),
                           circle_arc(1.0, 3.0, -2.0)})
     low2.add(check_curve<2>(rng, arc, cl2));
   std::vector<Vec3> pts;

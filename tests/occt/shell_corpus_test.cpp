@@ -174,8 +174,6 @@ TEST_CASE("importers: the cornetta's 110 faces sew into one shell like the file'
 
 namespace {
 
-constexpr double kPiC = 3.14159265358979323846;
-
 Shell sewn_shell(const std::string& name) {
   auto data = importers::load_shell(shared_cad(name), {});
   REQUIRE(data.ok());
@@ -218,7 +216,7 @@ TEST_CASE("importers: a ply drapes over the deflector's 18 sewn faces, across it
   CHECK(r->metrics.nodes.conflict == 0);
   CHECK(r->metrics.nodes.overlap == 0);
   CHECK(support::seam_gaps(*r) == 0);
-  CHECK(r->metrics.crease_angle_max > 150.0 * kPiC / 180.0);
+  CHECK(r->metrics.crease_angle_max > 150.0 * kDegToRad);
   CHECK(r->metrics.edge_length_max_rel < 1e-9);
   CHECK(r->metrics.surface_distance_max < 1e-9 * sh.size());
   int faces = 0;
@@ -245,7 +243,7 @@ TEST_CASE("importers: faces that share no edge drape as the one face the start i
     REQUIRE(one.ok());
     const DrapeProblem pb = centred_problem(c.d, c.W, c.H, c.start, Vec3(1, 0, 0));
     DrapeOptions opt;
-    opt.lock_angle = c.lock_deg * kPiC / 180.0;
+    opt.lock_angle = c.lock_deg * kDegToRad;
     auto a = drape(sh, pb, opt);
     auto b = drape(*one, pb, opt);
     REQUIRE(a.ok());

@@ -38,7 +38,6 @@ using namespace plyfit::test;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr std::int32_t kFree = TrimLoop::kFreeEdge;
 
 // The plate [x0, x1] x [0, h] in z = 0 with u = x, v = y.

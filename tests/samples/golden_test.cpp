@@ -5,7 +5,11 @@
 
 #include "samples/golden_check.hpp"
 
+#include <plyfit/kernel/types.hpp>
+
 using namespace plyfit::test;
+using plyfit::kDegToRad;
+using plyfit::kPi;
 
 TEST_CASE("samples: every sample scene matches its golden report figures") {
   const auto scenes = scenes_of(false);
@@ -20,7 +24,6 @@ TEST_CASE("samples: every sample scene matches its golden report figures") {
 }
 
 TEST_CASE("samples: the goldens are plausible") {
-  const double pi = 3.14159265358979323846;
   for (const auto& scene : sample_scenes()) {
     const std::string name = scene.stem().string();
     INFO("scene " << name);
@@ -32,7 +35,7 @@ TEST_CASE("samples: the goldens are plausible") {
     CHECK(g["/coverage"].get<double>() > 0.25);
     CHECK(g["/coverage"].get<double>() <= 1.0);
     CHECK(g["/thread_angle/min"].get<double>() > 0.0);
-    CHECK(g["/thread_angle/max"].get<double>() < pi);
+    CHECK(g["/thread_angle/max"].get<double>() < kPi);
     CHECK(g["/thread_angle/min"].get<double>() <= g["/thread_angle/max"].get<double>());
   }
   auto golden = [](const std::string& name) {
@@ -40,23 +43,23 @@ TEST_CASE("samples: the goldens are plausible") {
   };
   // Table 1 (b) is symmetric about the plane x = z: gamma min + gamma max = pi.
   const json b = golden("sphere-octant-b");
-  CHECK(std::abs(b["/thread_angle/min"].get<double>() + b["/thread_angle/max"].get<double>() - pi) <
-        1e-9);
+  CHECK(std::abs(b["/thread_angle/min"].get<double>() + b["/thread_angle/max"].get<double>() -
+                 kPi) < 1e-9);
   // Table 1 (a) and (c) start at the pole: the start does not move. (b)'s start (10, 0, 10)
   // moves to the sphere: by R - |(10, 0, 10)| = 20 - 10 sqrt 2.
   CHECK(golden("sphere-octant-a")["/start/moved"].get<double>() == 0.0);
   CHECK(std::abs(b["/start/moved"].get<double>() - (20.0 - 10.0 * std::sqrt(2.0))) < 1e-12 * 20);
   // The octant's area is pi R^2 / 2.
-  CHECK(std::abs(b["/mold/face/area"].get<double>() - pi * 200.0) < 1e-9 * pi * 200.0);
+  CHECK(std::abs(b["/mold/face/area"].get<double>() - kPi * 200.0) < 1e-9 * kPi * 200.0);
   // The cylinder is developable: every thread angle is 90 degrees (to round-off).
   const json cyl = golden("cylinder-sector");
-  CHECK(std::abs(cyl["/thread_angle/min"].get<double>() - pi / 2) < 1e-9);
-  CHECK(std::abs(cyl["/thread_angle/max"].get<double>() - pi / 2) < 1e-9);
+  CHECK(std::abs(cyl["/thread_angle/min"].get<double>() - kPi / 2) < 1e-9);
+  CHECK(std::abs(cyl["/thread_angle/max"].get<double>() - kPi / 2) < 1e-9);
   CHECK(cyl["/shear_energy"].get<double>() < 1e-12);
   // The blob with a 50 degree lock angle stops some nodes at the shear limit, and no mapped
   // thread angle passes the lock: gamma in [40, 140] degrees.
   const json blob = golden("surf114-blob");
   CHECK(blob["/nodes/shear_limit"].get<int>() > 0);
-  CHECK(blob["/thread_angle/min"].get<double>() >= 40.0 * pi / 180 - 1e-12);
-  CHECK(blob["/thread_angle/max"].get<double>() <= 140.0 * pi / 180 + 1e-12);
+  CHECK(blob["/thread_angle/min"].get<double>() >= 40.0 * kDegToRad - 1e-12);
+  CHECK(blob["/thread_angle/max"].get<double>() <= 140.0 * kDegToRad + 1e-12);
 }

@@ -231,7 +231,6 @@ TEST_CASE("samples: the mold writer refuses what it cannot write, naming the fil
 TEST_CASE("samples: the face areas are the exact areas of the analytic samples") {
   // plyfit info's area (asked for 1e-6) and a draped face's (describe(), asked for 1e-9, what
   // report.json gives) against closed forms.
-  constexpr double kPi = 3.14159265358979323846;
   constexpr double kListedRel = 1e-6, kDescribedRel = 1e-9;
   const double L = std::hypot(20.0 - 10.0, 15.0);  // cone slant length (r0 20, r1 10, H 15)
   const std::vector<std::pair<std::string, double>> exact = {

@@ -11,6 +11,8 @@
 #include "pattern/cells.hpp"
 #include "pattern/flat_pattern.hpp"
 
+#include <plyfit/kernel/polygon2d.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -47,7 +49,6 @@ struct OutlineDefect {
 inline std::vector<OutlineDefect> outline_defects(const std::vector<OutlineLoop>& loops, double d,
                                                   std::size_t max = 20) {
   std::vector<OutlineDefect> out;
-  constexpr double kPi = 3.14159265358979323846;
   for (int l = 0; l < static_cast<int>(loops.size()); ++l) {
     const auto& p = loops[static_cast<std::size_t>(l)].points;
     const int n = static_cast<int>(p.size());
@@ -59,7 +60,7 @@ inline std::vector<OutlineDefect> outline_defects(const std::vector<OutlineLoop>
       const Vec2 b = p[static_cast<std::size_t>(k)];
       const Vec2 c = p[static_cast<std::size_t>((k + 1) % n)];
       const Vec2 in = b - a, o = c - b;
-      turn[static_cast<std::size_t>(k)] = std::atan2(cross2(in, o), in.dot(o)) * 180.0 / kPi;
+      turn[static_cast<std::size_t>(k)] = std::atan2(cross2(in, o), in.dot(o)) * kRadToDeg;
       if (in.norm() == 0.0 || o.norm() == 0.0 ||
           std::abs(turn[static_cast<std::size_t>(k)]) > kSpikeTurnDeg)
         out.push_back({OutlineDefect::kSpike, l, k, 0, 0, b, turn[static_cast<std::size_t>(k)]});
@@ -289,14 +290,7 @@ inline constexpr double kSpikeOnOutline = 1e-9;
 /// True when p lies inside the outline (even-odd over all loops).
 inline bool inside_outline(const std::vector<OutlineLoop>& loops, const Vec2& p) {
   bool in = false;
-  for (const auto& l : loops)
-    for (std::size_t k = 0, n = l.points.size(); k < n; ++k) {
-      const Vec2& a = l.points[k];
-      const Vec2& b = l.points[(k + 1) % n];
-      if ((a.y() > p.y()) != (b.y() > p.y()) &&
-          p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
-        in = !in;
-    }
+  for (const auto& l : loops) in = in != inside_polygon(l.points, p);
   return in;
 }
 
@@ -336,7 +330,7 @@ inline std::string spike_reason(const DrapeSurface& s, const DrapeResult& r,
   auto at = [&](int k) { return P[static_cast<std::size_t>(((k % n) + n) % n)]; };
   auto turn = [&](int k) {
     const Vec2 in = at(k) - at(k - 1), o = at(k + 1) - at(k);
-    return std::atan2(cross2(in, o), in.dot(o)) * 180.0 / 3.14159265358979323846;
+    return std::atan2(cross2(in, o), in.dot(o)) * kRadToDeg;
   };
   // The run of vertices k..q that turns back (as outline_defects finds it).
   int q = d.index;
@@ -532,7 +526,6 @@ struct RandomDrape {
 /// The next random drape on `s` from `g`, called `name` in `what`.
 inline RandomDrape random_drape(const DrapeSurface& s, const std::string& name, int k,
                                 std::mt19937& g) {
-  constexpr double kPi = 3.14159265358979323846;
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   auto unit = [&] {  // a fresh distribution each time (it keeps a spare draw)
     std::normal_distribution<double> nd;
@@ -551,7 +544,7 @@ inline RandomDrape random_drape(const DrapeSurface& s, const std::string& name, 
   const Vec3 bn = unit(), sw = unit();
   rd.d = s.size() / (15.0 + 45.0 * u01(g));
   const bool both = u01(g) < 0.5;
-  const double lock = u01(g) < 0.3 ? (20.0 + 40.0 * u01(g)) * kPi / 180.0 : 0.0;
+  const double lock = u01(g) < 0.3 ? (20.0 + 40.0 * u01(g)) * kDegToRad : 0.0;
   const DrapeCase c{"", "", rd.d, b2, w2, start, bn, sw, both, lock};
   rd.problem = c.problem();
   rd.options = c.options();

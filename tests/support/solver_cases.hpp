@@ -43,7 +43,6 @@ struct SolverCase {
 
 /// n configurations on the inner 70% of the face's domain, spacing d.
 inline std::vector<SolverCase> make_solver_cases(const Face& f, double d, int n, unsigned seed) {
-  constexpr double kPi = 3.14159265358979323846;
   std::mt19937_64 gen(seed);
   auto uni = [&](double a, double b) { return std::uniform_real_distribution<double>(a, b)(gen); };
   std::vector<SolverCase> out;

@@ -14,12 +14,9 @@ namespace plyfit {
 
 namespace {
 
-using detail::kPi;
-
 // The base plane must cut the surface at the start: the sine of the angle between the base
 // plane and the tangent plane there must exceed this.
 constexpr double kMinPlaneCutSin = 1e-3;
-constexpr double kRadToDeg = 180.0 / kPi;
 // Node-count estimate (expected_nodes): samples per cell width across the face, the grid's
 // bounds per direction, a relative margin, boundary-ring nodes per sqrt(nodes), and a floor.
 constexpr double kEstimateSamplesPerCell = 0.3;

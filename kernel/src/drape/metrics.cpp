@@ -14,7 +14,7 @@ namespace plyfit::detail {
 
 namespace {
 
-constexpr double kHalfPi = 1.5707963267948966;
+constexpr double kHalfPi = kPi / 2;
 
 double tri_area(const Vec3& a, const Vec3& b, const Vec3& c) {
   return 0.5 * (b - a).cross(c - a).norm();

@@ -18,7 +18,6 @@ Status check_sweep_direction(const Vec2& base_dir, const Vec2& sweep, std::size_
     return Error{ErrorCode::kSweepZero, "sweep2d", {which}};
   const double sn = std::abs(cross2(base_dir.normalized(), sweep.normalized()));
   if (sn >= std::sin(tol.sweep_min_angle)) return ok_status();
-  constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
   return Error{ErrorCode::kSweepAlongPath,
                "sweep2d",
                {which, std::asin(std::min(sn, 1.0)) * kRadToDeg, tol.sweep_min_angle * kRadToDeg}};

@@ -8,10 +8,6 @@ namespace plyfit {
 
 namespace {
 
-// Until types.hpp gives them (one definition for the kernel).
-constexpr double kHalfTurn = 3.14159265358979323846;
-constexpr double kDegreesPerRadian = 180.0 / kHalfTurn;
-
 /// `v` turned by `angle` about the unit axis `n` (Rodrigues), counter-clockwise seen from +n.
 Vec3 turned_about(const Vec3& v, const Vec3& n, double angle) {
   const double c = std::cos(angle), s = std::sin(angle);
@@ -51,14 +47,14 @@ Result<Vec3> rosette_zero(const Vec3& rosette, const Vec3& n, const Tolerances& 
   if (!(t.norm() >= tol.rosette_min_sin))
     return Error{ErrorCode::kRosetteAlongNormal,
                  "rosette",
-                 {std::asin(std::min(t.norm(), 1.0)) * kDegreesPerRadian}};
+                 {std::asin(std::min(t.norm(), 1.0)) * kRadToDeg}};
   return t.normalized();
 }
 
 Result<PlyFrame> ply_frame(const MoldSurface& mold, const PlyDefinition& def,
                            const Tolerances& tol) {
   if (!def.seed.allFinite()) return Error{ErrorCode::kSeedNotFinite, "seed"};
-  if (!(std::abs(def.angle) <= kHalfTurn)) return Error{ErrorCode::kPlyAngleRange, "ply-angle"};
+  if (!(std::abs(def.angle) <= kPi)) return Error{ErrorCode::kPlyAngleRange, "ply-angle"};
   const Projection pr = mold.project(def.seed);
   const double half = 0.5 * mold.size();
   if (!pr.ok || !(pr.distance <= half))
@@ -91,7 +87,7 @@ Result<DrapeProblem> ply_problem(const MoldSurface& mold, const PlyDefinition& d
 }
 
 Result<DrapeProblem> turned_problem(const MoldSurface& mold, DrapeProblem problem, double angle) {
-  if (!(std::abs(angle) <= kHalfTurn)) return Error{ErrorCode::kPlyAngleRange, "ply-angle"};
+  if (!(std::abs(angle) <= kPi)) return Error{ErrorCode::kPlyAngleRange, "ply-angle"};
   if (angle == 0.0) return problem;
   if (!problem.start.allFinite()) return Error{ErrorCode::kStartNotFinite, "start3d"};
   const Projection pr = mold.project(problem.start);

@@ -7,10 +7,12 @@ namespace plyfit {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // cos and sin of multiples of pi/2 are rounded to exact 0 and +-1, so that the poles of a
 // sphere coincide exactly and its pole is a true collapsed edge (below 1 ulp of 1).
 constexpr double kTrigSnap = 1e-15;
+// A sweep within this many quarter turns above a whole number of them needs no extra arc
+// (its rounding).
+constexpr double kQuarterTurnSlack = 1e-12;
 
 double snap(double x) {
   if (std::abs(x) < kTrigSnap) return 0.0;
@@ -28,7 +30,8 @@ struct ArcNet {
 
 ArcNet unit_arc(double t0, double t1) {
   const double sweep = t1 - t0;
-  const int narcs = std::max(1, static_cast<int>(std::ceil(std::abs(sweep) / (kPi / 2) - 1e-12)));
+  const int narcs =
+      std::max(1, static_cast<int>(std::ceil(std::abs(sweep) / (kPi / 2) - kQuarterTurnSlack)));
   const double dt = sweep / narcs;
   const double wm = std::cos(dt / 2);
   ArcNet a;
@@ -53,6 +56,8 @@ ArcNet unit_arc(double t0, double t1) {
   return a;
 }
 
+}  // namespace
+
 NurbsCurveData2 line2(const Vec2& a, const Vec2& b) {
   NurbsCurveData2 c;
   c.degree = 1;
@@ -60,8 +65,6 @@ NurbsCurveData2 line2(const Vec2& a, const Vec2& b) {
   c.poles = {a, b};
   return c;
 }
-
-}  // namespace
 
 NurbsCurveData2 circle_arc(double radius, double a0, double a1) {
   return ellipse_arc(radius, radius, a0, a1);

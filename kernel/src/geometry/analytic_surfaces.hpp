@@ -19,6 +19,9 @@ NurbsCurveData2 circle_arc(double radius, double a0, double a1);
 /// t1 of its parametrisation (a cos t, b sin t). Exact.
 NurbsCurveData2 ellipse_arc(double a, double b, double t0, double t1);
 
+/// The straight segment from a to b as a degree-1 curve (parameter 0 to 1).
+NurbsCurveData2 line2(const Vec2& a, const Vec2& b);
+
 /// Bilinear patch origin + s * u_edge + t * v_edge, s, t in [0, 1]; normal u_edge x v_edge.
 NurbsSurfaceData plane_patch(const Vec3& origin, const Vec3& u_edge, const Vec3& v_edge);
 

@@ -3,12 +3,22 @@
 // on fixed-size stack arrays so that evaluation never allocates.
 
 #include <algorithm>
+#include <vector>
 
 namespace plyfit::detail {
 
 /// Highest degree the kernel accepts (OpenCASCADE's limit).
 constexpr int kMaxDegree = 25;
 constexpr int kMaxBasis = kMaxDegree + 1;
+
+/// The distinct knot values in [a, b] (a sorted knot vector's breakpoints there): the ends of
+/// the polynomial pieces of a curve or surface over its domain.
+inline std::vector<double> breakpoints(const std::vector<double>& knots, double a, double b) {
+  std::vector<double> out;
+  for (double k : knots)
+    if (k >= a && k <= b && (out.empty() || k > out.back())) out.push_back(k);
+  return out;
+}
 
 /// Span index s in [first, last] with U[s] <= u < U[s+1]; parameters outside the domain get
 /// the first or last non-degenerate span, so evaluation there extends the end polynomials.

@@ -5,7 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string>
+#include <cstdint>
 
 namespace plyfit {
 
@@ -14,16 +14,17 @@ Result<NurbsCurve<Dim>> NurbsCurve<Dim>::create(NurbsCurveData<Dim> data) {
   const int n = static_cast<int>(data.poles.size());
   if (auto s = detail::check_knots(data.knots, n, data.degree, "curve"); !s) return s.error();
   if (!data.weights.empty() && data.weights.size() != data.poles.size())
-    return Error{"curve weight count is " + std::to_string(data.weights.size()) + ", must be " +
-                 std::to_string(n)};
+    return Error{ErrorCode::kCurveWeightCount,
+                 {},
+                 {static_cast<std::int64_t>(data.weights.size()), std::int64_t{n}}};
   NurbsCurve c;
   c.hpoles_.resize(static_cast<size_t>(n) * (Dim + 1));
   for (int k = 0; k < n; ++k) {
     if (!data.poles[k].allFinite())
-      return Error{"curve pole " + std::to_string(k) + " is not finite"};
+      return Error{ErrorCode::kCurvePoleNotFinite, {}, {std::int64_t{k}}};
     const double w = data.weights.empty() ? 1.0 : data.weights[k];
     if (!(w > 0.0 && std::isfinite(w)))
-      return Error{"curve weight " + std::to_string(k) + " is not a positive finite number"};
+      return Error{ErrorCode::kCurveWeightNotPositive, {}, {std::int64_t{k}}};
     for (int d = 0; d < Dim; ++d) c.hpoles_[k * (Dim + 1) + d] = data.poles[k][d];
     c.hpoles_[k * (Dim + 1) + Dim] = w;
   }
@@ -81,10 +82,7 @@ typename NurbsCurve<Dim>::Point NurbsCurve<Dim>::point(double t) const {
 template <int Dim>
 std::vector<typename NurbsCurve<Dim>::Point> NurbsCurve<Dim>::tessellate(double chord_tol) const {
   std::vector<Point> out;
-  // Distinct knots inside the domain split the curve into polynomial pieces.
-  std::vector<double> breaks;
-  for (double k : data_.knots)
-    if (k >= t0_ && k <= t1_ && (breaks.empty() || k > breaks.back())) breaks.push_back(k);
+  const std::vector<double> breaks = detail::breakpoints(data_.knots, t0_, t1_);
   const int kMaxDepth = 16;  // at most 2^16 chords per knot span
   struct Seg {
     double a, b;
@@ -129,8 +127,9 @@ std::vector<double> chord_params(const std::vector<Vec3>& pts, Status& st) {
   for (size_t i = 1; i < pts.size(); ++i) {
     const double d = (pts[i] - pts[i - 1]).norm();
     if (!(d > 0.0)) {
-      st = Error{"interpolation points " + std::to_string(i - 1) + " and " + std::to_string(i) +
-                 " coincide"};
+      st = Error{ErrorCode::kInterpolationPointsCoincide,
+                 {},
+                 {static_cast<std::int64_t>(i) - 1, static_cast<std::int64_t>(i)}};
       return t;
     }
     total += d;
@@ -144,7 +143,7 @@ std::vector<double> chord_params(const std::vector<Vec3>& pts, Status& st) {
 }  // namespace
 
 Result<NurbsCurve3> polyline_curve(const std::vector<Vec3>& points) {
-  if (points.size() < 2) return Error{"a polyline curve needs at least two points"};
+  if (points.size() < 2) return Error{ErrorCode::kPolylineTooFewPoints};
   Status st = ok_status();
   const auto t = chord_params(points, st);
   if (!st) return st.error();
@@ -159,7 +158,7 @@ Result<NurbsCurve3> polyline_curve(const std::vector<Vec3>& points) {
 
 Result<NurbsCurve3> interpolate_cubic(const std::vector<Vec3>& points) {
   const int n = static_cast<int>(points.size());
-  if (n < 2) return Error{"interpolation needs at least two points"};
+  if (n < 2) return Error{ErrorCode::kInterpolationTooFewPoints};
   if (n == 2) return polyline_curve(points);
   const int p = std::min(3, n - 1);
   Status st = ok_status();
@@ -190,7 +189,8 @@ Result<NurbsCurve3> interpolate_cubic(const std::vector<Vec3>& points) {
     for (int j = 0; j <= p; ++j) {
       const int c = s - p + j;
       if (std::abs(c - k) > bw) {
-        if (N[0][j] != 0.0) return Error{"interpolation matrix is not banded (internal)"};
+        if (N[0][j] != 0.0)
+          return Error{ErrorCode::kInternal, {}, {"the interpolation matrix is not banded"}};
         continue;
       }
       at(k, c) = N[0][j];
@@ -199,7 +199,7 @@ Result<NurbsCurve3> interpolate_cubic(const std::vector<Vec3>& points) {
   std::vector<Vec3> rhs = points;
   for (int k = 0; k < n; ++k) {
     const double piv = at(k, k);
-    if (!(std::abs(piv) > 0.0)) return Error{"singular interpolation matrix"};
+    if (!(std::abs(piv) > 0.0)) return Error{ErrorCode::kInterpolationSingular};
     for (int r = k + 1; r <= std::min(n - 1, k + bw); ++r) {
       const double f = at(r, k) / piv;
       if (f == 0.0) continue;

@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
-#include <string>
+#include <type_traits>
+#include <utility>
 
 namespace plyfit {
 
@@ -18,15 +20,19 @@ Result<NurbsSurface> NurbsSurface::create(NurbsSurfaceData data, const Tolerance
     return s.error();
   const size_t n = static_cast<size_t>(data.count_u) * data.count_v;
   if (data.poles.size() != n)
-    return Error{"pole count is " + std::to_string(data.poles.size()) + ", must be " +
-                 std::to_string(data.count_u) + " x " + std::to_string(data.count_v)};
+    return Error{ErrorCode::kPoleCount,
+                 {},
+                 {static_cast<std::int64_t>(data.poles.size()), std::int64_t{data.count_u},
+                  std::int64_t{data.count_v}}};
   if (!data.weights.empty() && data.weights.size() != n)
-    return Error{"weight count is " + std::to_string(data.weights.size()) + ", must be " +
-                 std::to_string(n)};
+    return Error{ErrorCode::kWeightCount,
+                 {},
+                 {static_cast<std::int64_t>(data.weights.size()), static_cast<std::int64_t>(n)}};
   for (size_t k = 0; k < n; ++k) {
-    if (!data.poles[k].allFinite()) return Error{"pole " + std::to_string(k) + " is not finite"};
+    const auto at = static_cast<std::int64_t>(k);
+    if (!data.poles[k].allFinite()) return Error{ErrorCode::kPoleNotFinite, {}, {at}};
     if (!data.weights.empty() && !(data.weights[k] > 0.0 && std::isfinite(data.weights[k])))
-      return Error{"weight " + std::to_string(k) + " is not a positive finite number"};
+      return Error{ErrorCode::kWeightNotPositive, {}, {at}};
   }
 
   NurbsSurface s;
@@ -118,9 +124,26 @@ struct EvalView {
 // Largest Bezier table a surface builds (bytes); larger surfaces sum the B-spline basis.
 constexpr std::size_t kBezierMaxBytes = std::size_t{32} << 20;
 
+// The degree pairs (p, q) with fixed-degree kernels, as keys kKeyBase p + q: the degrees CAD
+// surfaces mostly have (planes, ruled and extruded surfaces, quadrics and tori, bicubic and
+// biquintic free forms).
+constexpr int kKeyBase = 32;
+constexpr int degree_key(int p, int q) {
+  return p * kKeyBase + q;
+}
+using FixedDegrees =
+    std::integer_sequence<int, degree_key(1, 1), degree_key(1, 2), degree_key(1, 3),
+                          degree_key(2, 1), degree_key(2, 2), degree_key(2, 3), degree_key(3, 1),
+                          degree_key(3, 2), degree_key(3, 3), degree_key(4, 4), degree_key(5, 5)>;
+
+template <int... Keys>
+constexpr bool has_key(std::integer_sequence<int, Keys...>, int key) {
+  return ((key == Keys) || ...);
+}
+
 // True for the degrees with fixed-degree kernels (see eval_homogeneous).
 bool fixed_degrees(int p, int q) {
-  return (p <= 3 && q <= 3) || (p == 4 && q == 4) || (p == 5 && q == 5);
+  return has_key(FixedDegrees{}, degree_key(p, q));
 }
 
 // Bezier extraction of span s (U[s] < U[s + 1]) of a degree-p knot vector: M[k][m] with
@@ -242,11 +265,11 @@ void eval_fixed(const EvalView& s, double u, double v, double out[][4], double o
   detail::ders_basis<ND, P>(s.U, su, p, u, Nu);
   detail::ders_basis<ND, Q>(s.V, sv, q, v, Nv);
   // All four homogeneous components are summed even for a non-rational surface (whose
-  // fourth is then unused): four-wide loops vectorise; x, y, z are summed as before.
+  // fourth is then unused): four-wide loops vectorise, and x, y, z are the same sums.
   constexpr int W = 4;
   constexpr int NC = (ND + 1) * (ND + 2) / 2;
   // Sums in a local array (kept in registers: `out` may alias the poles for the compiler),
-  // copied out at the end; the arithmetic is unchanged.
+  // copied out at the end (docs/decisions/nurbs-evaluation.md).
   double acc[NC][4] = {};
   const int cv = s.count_v;
   const double* o = s.poles + 4 * (static_cast<size_t>(su - p) * cv + (sv - q));
@@ -294,6 +317,28 @@ void eval_fixed(const EvalView& s, double u, double v, double out[][4], double o
   }
 }
 
+// The kernels by degree key: the fixed-degree one of each key of FixedDegrees, the run-time
+// degree one for every other key up to the largest (a jump table, as a switch would be).
+template <int ND, bool Rational>
+using Kernel = void (*)(const EvalView&, double, double, double[][4], double[3]);
+template <int ND, bool Rational, int... Keys>
+constexpr auto kernel_table(std::integer_sequence<int, Keys...>) {
+  constexpr int kLast = std::max({Keys...});
+  std::array<Kernel<ND, Rational>, kLast + 1> table{};
+  for (auto& k : table) k = &eval_fixed<ND, Rational, 0, 0>;
+  ((table[Keys] = &eval_fixed<ND, Rational, Keys / kKeyBase, Keys % kKeyBase>), ...);
+  return table;
+}
+
+// The kernel for the degrees (p, q).
+template <int ND, bool Rational>
+Kernel<ND, Rational> kernel_for(int p, int q) {
+  static constexpr auto kTable = kernel_table<ND, Rational>(FixedDegrees{});
+  const int key = degree_key(p, q);
+  return key < static_cast<int>(kTable.size()) ? kTable[static_cast<std::size_t>(key)]
+                                               : &eval_fixed<ND, Rational, 0, 0>;
+}
+
 }  // namespace
 
 template <int ND, bool Rational>
@@ -312,35 +357,7 @@ void NurbsSurface::eval_homogeneous(double u, double v, double out[][4], double 
                    bezier_u_.data(),
                    bezier_v_.data(),
                    bezier_spans_v_};
-  // Fixed-degree kernels for the degrees CAD surfaces mostly have (planes, ruled and
-  // extruded surfaces, quadrics and tori, bicubic and biquintic free forms).
-  constexpr auto key = [](int p, int q) { return p * 32 + q; };
-  switch (key(s.p, s.q)) {
-    case key(1, 1):
-      return eval_fixed<ND, Rational, 1, 1>(s, u, v, out, origin);
-    case key(1, 2):
-      return eval_fixed<ND, Rational, 1, 2>(s, u, v, out, origin);
-    case key(1, 3):
-      return eval_fixed<ND, Rational, 1, 3>(s, u, v, out, origin);
-    case key(2, 1):
-      return eval_fixed<ND, Rational, 2, 1>(s, u, v, out, origin);
-    case key(2, 2):
-      return eval_fixed<ND, Rational, 2, 2>(s, u, v, out, origin);
-    case key(2, 3):
-      return eval_fixed<ND, Rational, 2, 3>(s, u, v, out, origin);
-    case key(3, 1):
-      return eval_fixed<ND, Rational, 3, 1>(s, u, v, out, origin);
-    case key(3, 2):
-      return eval_fixed<ND, Rational, 3, 2>(s, u, v, out, origin);
-    case key(3, 3):
-      return eval_fixed<ND, Rational, 3, 3>(s, u, v, out, origin);
-    case key(4, 4):
-      return eval_fixed<ND, Rational, 4, 4>(s, u, v, out, origin);
-    case key(5, 5):
-      return eval_fixed<ND, Rational, 5, 5>(s, u, v, out, origin);
-    default:
-      return eval_fixed<ND, Rational, 0, 0>(s, u, v, out, origin);
-  }
+  kernel_for<ND, Rational>(s.p, s.q)(s, u, v, out, origin);
 }
 
 void NurbsSurface::build_bezier() {
@@ -420,63 +437,78 @@ Vec3 NurbsSurface::point(double u, double v) const {
   return xyz(h[0]) + xyz(o);
 }
 
-SurfaceEval1 NurbsSurface::eval1(double u, double v) const {
-  double h[3][4], o[3];
-  SurfaceEval1 r;
-  if (!rational()) {
-    eval_homogeneous<1, false>(u, v, h, o);
-    r.p = xyz(h[0]) + xyz(o);
-    r.du = xyz(h[1]);
-    r.dv = xyz(h[2]);
-    return r;
-  }
-  eval_homogeneous<1, true>(u, v, h, o);
-  const double w = h[0][3];
-  if (!(w > min_weight_)) {
-    r.p = r.du = r.dv = Vec3::Zero();
-    r.ok = false;
-    return r;
-  }
-  const double iw = 1.0 / w;
-  const Vec3 p = xyz(h[0]) * iw;  // relative to the origin pole
-  r.du = (xyz(h[1]) - h[1][3] * p) * iw;
-  r.dv = (xyz(h[2]) - h[2][3] * p) * iw;
-  r.p = p + xyz(o);
-  return r;
-}
+namespace {
 
-SurfaceEval2 NurbsSurface::eval2(double u, double v) const {
-  double h[6][4], o[3];
-  SurfaceEval2 r;
-  if (!rational()) {
-    eval_homogeneous<2, false>(u, v, h, o);
+// r = the point and derivatives up to order ND (1: SurfaceEval1, 2: SurfaceEval2) from the
+// homogeneous sums h relative to the origin pole o; for a rational surface by the quotient rule
+// on homogeneous derivatives (The NURBS Book, A4.4), not ok (zero vectors) where the weight is
+// not above min_weight. (r by reference: returned by value, the 2nd-order one costs a copy.)
+template <int ND, bool Rational, class Eval>
+void from_homogeneous(const double h[][4], const double o[3], double min_weight, Eval& r) {
+  if constexpr (!Rational) {
     r.p = xyz(h[0]) + xyz(o);
     r.du = xyz(h[1]);
     r.dv = xyz(h[2]);
-    r.duu = xyz(h[3]);
-    r.duv = xyz(h[4]);
-    r.dvv = xyz(h[5]);
-    return r;
+    if constexpr (ND >= 2) {
+      r.duu = xyz(h[3]);
+      r.duv = xyz(h[4]);
+      r.dvv = xyz(h[5]);
+    }
+    return;
   }
-  eval_homogeneous<2, true>(u, v, h, o);
   const double w = h[0][3];
-  if (!(w > min_weight_)) {
-    r.p = r.du = r.dv = r.duu = r.duv = r.dvv = Vec3::Zero();
+  if (!(w > min_weight)) {
+    r.p = r.du = r.dv = Vec3::Zero();
+    if constexpr (ND >= 2) r.duu = r.duv = r.dvv = Vec3::Zero();
     r.ok = false;
-    return r;
+    return;
   }
-  // Quotient rule on homogeneous derivatives (The NURBS Book, A4.4), relative to the origin
-  // pole.
   const double iw = 1.0 / w;
-  const double wu = h[1][3], wv = h[2][3], wuu = h[3][3], wuv = h[4][3], wvv = h[5][3];
+  const double wu = h[1][3], wv = h[2][3];
   const Vec3 p = xyz(h[0]) * iw;
   r.du = (xyz(h[1]) - wu * p) * iw;
   r.dv = (xyz(h[2]) - wv * p) * iw;
-  r.duu = (xyz(h[3]) - 2.0 * wu * r.du - wuu * p) * iw;
-  r.duv = (xyz(h[4]) - wu * r.dv - wv * r.du - wuv * p) * iw;
-  r.dvv = (xyz(h[5]) - 2.0 * wv * r.dv - wvv * p) * iw;
+  if constexpr (ND >= 2) {
+    const double wuu = h[3][3], wuv = h[4][3], wvv = h[5][3];
+    r.duu = (xyz(h[3]) - 2.0 * wu * r.du - wuu * p) * iw;
+    r.duv = (xyz(h[4]) - wu * r.dv - wv * r.du - wuv * p) * iw;
+    r.dvv = (xyz(h[5]) - 2.0 * wv * r.dv - wvv * p) * iw;
+  }
   r.p = p + xyz(o);
+}
+
+}  // namespace
+
+namespace {
+
+// The point and derivatives up to order ND of a surface: `homogeneous(rational, h, o)` computes
+// its homogeneous sums (std::true_type for a rational surface), from_homogeneous the rest.
+template <int ND, class Eval, class Homogeneous>
+Eval evaluate(bool rational, double min_weight, const Homogeneous& homogeneous) {
+  double h[(ND + 1) * (ND + 2) / 2][4], o[3];
+  Eval r;
+  if (rational) {
+    homogeneous(std::true_type{}, h, o);
+    from_homogeneous<ND, true>(h, o, min_weight, r);
+  } else {
+    homogeneous(std::false_type{}, h, o);
+    from_homogeneous<ND, false>(h, o, min_weight, r);
+  }
   return r;
+}
+
+}  // namespace
+
+SurfaceEval1 NurbsSurface::eval1(double u, double v) const {
+  return evaluate<1, SurfaceEval1>(rational(), min_weight_, [&](auto rat, auto h, auto o) {
+    eval_homogeneous<1, decltype(rat)::value>(u, v, h, o);
+  });
+}
+
+SurfaceEval2 NurbsSurface::eval2(double u, double v) const {
+  return evaluate<2, SurfaceEval2>(rational(), min_weight_, [&](auto rat, auto h, auto o) {
+    eval_homogeneous<2, decltype(rat)::value>(u, v, h, o);
+  });
 }
 
 bool NurbsSurface::is_degenerate(const Vec3& du, const Vec3& dv) const {

@@ -4,6 +4,8 @@
 #include "pattern/outline_builder.hpp"
 #include "pattern/outline_cleanup.hpp"
 
+#include <plyfit/kernel/polygon2d.hpp>
+
 #include <algorithm>
 #include <cmath>
 

@@ -1,5 +1,7 @@
 #include "pattern/outline_cleanup.hpp"
 
+#include <plyfit/kernel/polygon2d.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -10,7 +12,6 @@ namespace plyfit {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Bisection steps that place a chord's end where the width reaches w along an edge: the
 // bracket shrinks to 2^-60 of the edge, far below rounding of the coordinates.
 constexpr int kWidthBisections = 60;
@@ -31,12 +32,6 @@ struct Loop {
     return p3.empty() ? Vec3::Zero() : p3[static_cast<std::size_t>(wrap(k))];
   }
 };
-
-double signed_area(const std::vector<Vec2>& p) {
-  double a = 0.0;
-  for (std::size_t k = 0, n = p.size(); k < n; ++k) a += cross2(p[k], p[(k + 1) % n]);
-  return 0.5 * a;
-}
 
 // Signed turn at vertex k (degrees, + left, 0 straight on, +-180 back).
 double turn_deg(const Loop& l, Index k) {

@@ -10,7 +10,6 @@ namespace plyfit::detail {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 
 // The directed edges of the union of `polys` and the `extra` edges, with their counts:
 // edges shared by two polygons (in opposite directions) cancel. Ordered: deterministic

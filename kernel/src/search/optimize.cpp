@@ -16,9 +16,6 @@ namespace plyfit {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kRadToDeg = 180.0 / kPi;
-
 /// Two ply angles closer than this (radians) are one lattice angle (rounding of the
 /// directions' atan2).
 constexpr double kAngleSame = 1e-12;

@@ -76,9 +76,20 @@ class Face final : public DrapeSurface {
   Projection project_from(const Vec3& p, const Vec2& seed, bool on_face) const;
 
   // DrapeSurface (face 0 only).
-  SurfaceEval1 eval1(const SurfaceLocation& at) const override;
-  SurfaceEval2 eval2(const SurfaceLocation& at) const override;
-  SurfaceNormal normal(const SurfaceLocation& at) const override;
+  SurfaceEval1 eval1(const SurfaceLocation& at) const override {
+    const Vec2 w = wrap(at.uv);
+    return surface_->eval1(w.x(), w.y());
+  }
+  SurfaceEval2 eval2(const SurfaceLocation& at) const override {
+    const Vec2 w = wrap(at.uv);
+    return surface_->eval2(w.x(), w.y());
+  }
+  SurfaceNormal normal(const SurfaceLocation& at) const override {
+    const Vec2 w = wrap(at.uv);
+    SurfaceNormal n = surface_->normal(w.x(), w.y());
+    if (reversed_) n.n = -n.n;
+    return n;
+  }
   double orientation(const SurfaceLocation&) const override { return orientation(); }
   bool degenerate(const SurfaceLocation&, const SurfaceEval1& e) const override {
     return degenerate(e);
@@ -113,6 +124,8 @@ class Face final : public DrapeSurface {
   bool inside_trims(const Vec2& uv) const;
   bool inside_trims_fast(const Vec2& uv) const;  // cells_ first, then inside_trims
   void build_slabs();
+  // The bounding box and size from samples on the face, and the area (given_area if > 0).
+  Status measure(double given_area);
   double compute_area() const;
 
   std::shared_ptr<const NurbsSurface> surface_;

@@ -1,7 +1,7 @@
 // Poles of a drape surface and the location of points near them (see poles.hpp).
 #include "surface/poles.hpp"
 
-#include <Eigen/LU>
+#include "geometry/numeric.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -118,11 +118,7 @@ std::optional<SurfaceLocation> locate_through_pole(const DrapeSurface& s, const 
     const Vec3 r = ev.p - p;
     const double rn = r.norm();
     if (rn == 0.0) break;
-    Eigen::Matrix2d G;
-    G << ev.du.dot(ev.du), ev.du.dot(ev.dv), ev.du.dot(ev.dv), ev.dv.dot(ev.dv);
-    G(0, 0) = G(0, 0) * (1.0 + kNormalRegRel) + 1e-300;
-    G(1, 1) = G(1, 1) * (1.0 + kNormalRegRel) + 1e-300;
-    Vec2 dx = -(G.inverse() * Vec2(ev.du.dot(r), ev.dv.dot(r)));
+    Vec2 dx = -regularised_solve(metric(ev), metric_rhs(ev, r), kNormalRegRel);
     if (!dx.allFinite()) break;
     bool taken = false;
     for (int h = 0; h <= tol.line_search_max_halvings; ++h, dx *= 0.5) {

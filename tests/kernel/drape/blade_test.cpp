@@ -53,7 +53,7 @@ TEST_CASE("blade: a bicubic of 242 x 13 poles, knots clustered at both ends, x =
   // Twisted: the chord line at the root and at the tip differ by the twist (45 degrees).
   auto pitch = [&](double u) {
     const Vec3 d = f.eval1(Vec2(u, 1.0)).p - f.eval1(Vec2(u, 0.0)).p;
-    return std::atan2(d.z(), d.y()) * 180.0 / 3.14159265358979323846;
+    return std::atan2(d.z(), d.y()) * kRadToDeg;
   };
   CHECK(pitch(0.0) - pitch(1.0) == Approx(45.0).margin(0.5));
 }

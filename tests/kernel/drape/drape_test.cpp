@@ -22,7 +22,6 @@ using namespace plyfit;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Accuracy the drape promises at its default tolerance (issue 4 / issue 3).
 constexpr double kLinkRel = 1e-10;     // link length error / d
 constexpr double kRightAngle = 1e-12;  // thread angles on a plane
@@ -62,7 +61,7 @@ using support::problem;
 TEST_CASE("drape: on a plane the net is the ply itself, at any base-path angle") {
   const Face f = builtin("plane");  // [0, 100]^2
   for (double deg : {0.0, 30.0, 45.0}) {
-    const double a = deg * kPi / 180;
+    const double a = deg * kDegToRad;
     const Vec2 b2(std::cos(a), std::sin(a)), w2(-std::sin(a), std::cos(a));
     const Vec3 n3(-std::sin(a), std::cos(a), 0);
     const Vec2 s2(0.3, 0.7);
@@ -291,12 +290,12 @@ TEST_CASE("drape: a lock angle stops the cloth at the shear limit and behind it,
                                   Vec3(0, 1, 0), {Vec3(0, 1, 0)});
   const DrapeResult free = run(f, pb);
   REQUIRE(free.metrics.nodes.shear_limit == 0);
-  REQUIRE(max_shear(free) > 70 * kPi / 180);
+  REQUIRE(max_shear(free) > 70 * kDegToRad);
   std::uint64_t prev = 0;
   for (double deg : {20.0, 30.0, 45.0, 60.0, 90.0}) {
     INFO("lock angle " << deg);
     DrapeOptions opt;
-    opt.lock_angle = deg * kPi / 180;
+    opt.lock_angle = deg * kDegToRad;
     const DrapeResult r = run(f, pb, opt);
     CHECK(r.metrics.nodes.failed == 0);
     CHECK(r.metrics.nodes.conflict == 0);
@@ -546,7 +545,7 @@ TEST_CASE("drape: a pole start is robust to the last digit of the poles") {
 
 TEST_CASE("drape: the paper's thread angle (eq. 12) is a right angle on a plane, as ours") {
   const Face f = builtin("plane");  // [0, 100]^2
-  const double a = 30 * kPi / 180;
+  const double a = 30 * kDegToRad;
   const Vec2 b2(std::cos(a), std::sin(a)), w2(-std::sin(a), std::cos(a));
   const Vec3 n3(-std::sin(a), std::cos(a), 0);
   const DrapeResult r =
@@ -668,12 +667,12 @@ TEST_CASE("drape: a lock angle bounds the paper's thread angle, the one eq. (12)
   for (double deg : {20.0, 30.0, 45.0}) {
     INFO("lock angle " << deg);
     DrapeOptions opt;
-    opt.lock_angle = deg * kPi / 180;
+    opt.lock_angle = deg * kDegToRad;
     const DrapeResult r = run(f, pb, opt);
     REQUIRE(r.metrics.nodes.shear_limit > 0);
     CHECK(r.metrics.paper.shear_max <= opt.lock_angle);
     // The lock is reached: a node next to a locked one sheared within 5 degrees of it.
-    CHECK(r.metrics.paper.shear_max > opt.lock_angle - 5 * kPi / 180);
+    CHECK(r.metrics.paper.shear_max > opt.lock_angle - 5 * kDegToRad);
   }
 }
 
@@ -741,7 +740,7 @@ TEST_CASE("drape: a sweep within a degree of the base path or the normal is an e
                                   Vec3(0, 1, 0), {Vec3(0, 1, 0)});
   // The base path runs along -X at the pole (the 2D base direction +x maps to it); the normal
   // is +Z. t = tan(0.5 degrees), tan(2 degrees).
-  const double t05 = std::tan(0.5 * kPi / 180), t2 = std::tan(2 * kPi / 180);
+  const double t05 = std::tan(0.5 * kDegToRad), t2 = std::tan(2 * kDegToRad);
   auto bad = ok;
   bad.ply.sweeps = {Vec2(1, t05)};  // 2D: half a degree off the base path
   CHECK(drape(f, bad).error().code == ErrorCode::kSweepAlongPath);
@@ -905,7 +904,7 @@ TEST_CASE("drape: a cell sheared nearly flat across two faces of sphere-8 is map
   CHECK((c->point - (c_is_s1 ? s1 : s2)).norm() < 1e-8 * d);
   CHECK((q->point - (c_is_s1 ? s2 : s1)).norm() < 1e-8 * d);
   CHECK(std::acos((pa - q->point).normalized().dot((pb - q->point).normalized())) >
-        169.0 * kPi / 180);
+        169.0 * kDegToRad);
 }
 
 TEST_CASE("drape: a base plane nearly tangent to the face ends the path: partial, not failed") {
@@ -921,7 +920,7 @@ TEST_CASE("drape: a base plane nearly tangent to the face ends the path: partial
   const Vec3 P(c45, 0, c45), n = P.normalized();
   for (const double theta_deg : {1.0, 10.0}) {
     INFO("theta " << theta_deg << " deg");
-    const double th = theta_deg * kPi / 180;
+    const double th = theta_deg * kDegToRad;
     const Vec3 pn = std::cos(th) * n + std::sin(th) * Vec3(0, 1, 0);  // tilted towards +y
     const Vec3 t3 = n.cross(pn).normalized(), across = n.cross(t3);
     const DrapeProblem pb = problem(0.05, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)}, P, pn,

@@ -23,7 +23,6 @@ using plyfit::support::problem;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // The drape's overlap criterion (scanner.hpp), restated: a node within this fraction of d
 // (3D) of another at least kSeparation d away from it on the ply lies on cloth already laid.
 constexpr double kNearRel = 0.5;

@@ -11,7 +11,6 @@
 using namespace plyfit;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kDeg = kPi / 180.0;
 
 MoldSurface builtin(const std::string& name, const std::map<std::string, double>& params) {

@@ -19,7 +19,6 @@ using plyfit::test::Rng;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Constraint accuracy the solvers promise at convergence, relative to d (issue 3).
 constexpr double kConstraintRel = 1e-10;
 
@@ -77,7 +76,7 @@ TEST_CASE("solvers: exact answers on a plane") {
   }
   SECTION("plane and sphere at any angle") {
     for (double deg : {0.0, 30.0, 45.0, 135.0, 270.0}) {
-      const double t = deg * kPi / 180;
+      const double t = deg * kDegToRad;
       const Vec3 dir(std::cos(t), std::sin(t), 0);
       const SolveResult r = solve_plane_sphere(f, {o.point, o.at.uv, 2.0, dir}, st);
       REQUIRE(r.status == SolveStatus::kConverged);
@@ -162,7 +161,7 @@ TEST_CASE("solvers: near the shear limit, converge or say so, never a wrong poin
     }
     if (gap < 0) CHECK(r.status == SolveStatus::kFailed);
     // With a lock angle the thread angle near pi is caught as the shear limit.
-    st.gamma_min = 10.0 * kPi / 180;
+    st.gamma_min = 10.0 * kDegToRad;
     const SolveResult q = solve_two_spheres(f, s, st);
     if (gap <= 1e-3) CHECK(q.status != SolveStatus::kConverged);
     if (gap == 1e-3) CHECK(q.status == SolveStatus::kShearLimit);  // 174.9 degrees
@@ -487,7 +486,7 @@ TEST_CASE("solvers: a cell sheared nearly flat across two faces of sphere-8 is s
   auto side = [&](const Vec3& p) { return (p / R).dot((b - a).cross(p - a)); };
   const Vec3 corner = side(s1) > 0 ? s1 : s2, want = side(s1) > 0 ? s2 : s1;
   const double gamma = std::acos((a - want).normalized().dot((b - want).normalized()));
-  REQUIRE(gamma > 169.0 * kPi / 180);  // sheared by more than 79 degrees
+  REQUIRE(gamma > 169.0 * kDegToRad);  // sheared by more than 79 degrees
   TwoSphereStep st;
   st.a = a;
   st.b = b;
@@ -605,7 +604,7 @@ TEST_CASE("solvers: a step longer than the face's plane section ends the path, n
   // 0.3 has (a point of that circle).
   const Face f = make_face(sphere_patch(1.0, 0.0, kPi / 2, -kPi, kPi));
   const double c45 = std::cos(kPi / 4);
-  const Vec3 p(c45, 0, c45), m(std::cos(25 * kPi / 180), 0, std::sin(25 * kPi / 180));
+  const Vec3 p(c45, 0, c45), m(std::cos(25 * kDegToRad), 0, std::sin(25 * kDegToRad));
   const Projection at = f.project(p);
   REQUIRE((at.point - p).norm() < 1e-12);
   SolverSettings st;
@@ -613,7 +612,7 @@ TEST_CASE("solvers: a step longer than the face's plane section ends the path, n
   for (const double rho : {0.3, 1.0}) {
     const SolveResult r = solve_base_path(f, {p, at.at, m, Vec3(0, 1, 0), rho}, st);
     INFO("rho " << rho << ": " << to_string(r.status) << " " << r.reason);
-    if (rho < 2 * std::sin(20 * kPi / 180)) {
+    if (rho < 2 * std::sin(20 * kDegToRad)) {
       REQUIRE(r.status == SolveStatus::kConverged);
       CHECK(std::abs((r.point - p).dot(m)) < kConstraintRel);
       CHECK(sphere_error(r.point, p, rho) < kConstraintRel);
@@ -641,7 +640,7 @@ TEST_CASE("solvers: a base plane nearly tangent to a sphere: its small section c
   const Projection p0 = f.project(x0);
   REQUIRE(p0.distance < 1e-12);
   for (const double theta_deg : {1.0, 4.0, 10.0, 25.0}) {
-    const double theta = theta_deg * kPi / 180.0;
+    const double theta = theta_deg * kDegToRad;
     const Vec3 pn(std::cos(theta), 0, std::sin(theta));
     const Vec3 fwd(0, 1, 0);  // the section's tangent at x0 is along y
     const double rs = R * std::sin(theta);

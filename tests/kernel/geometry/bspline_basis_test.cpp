@@ -58,23 +58,24 @@ void check_same_bits(Rng& rng) {
   }
 }
 
+// check_same_bits at degree P for the derivative orders the kernels call it with (the point
+// alone only up to cubic).
+template <int P>
+void check_degree(Rng& rng) {
+  if constexpr (P <= 3) check_same_bits<0, P>(rng);
+  check_same_bits<1, P>(rng);
+  check_same_bits<2, P>(rng);
+}
+
 }  // namespace
 
 TEST_CASE("kernel: fixed-degree basis routines give the same bits as the generic one") {
   Rng rng(31);
-  check_same_bits<0, 1>(rng);
-  check_same_bits<1, 1>(rng);
-  check_same_bits<2, 1>(rng);
-  check_same_bits<0, 2>(rng);
-  check_same_bits<1, 2>(rng);
-  check_same_bits<2, 2>(rng);
-  check_same_bits<0, 3>(rng);
-  check_same_bits<1, 3>(rng);
-  check_same_bits<2, 3>(rng);
-  check_same_bits<1, 4>(rng);
-  check_same_bits<2, 4>(rng);
-  check_same_bits<1, 5>(rng);
-  check_same_bits<2, 5>(rng);
+  check_degree<1>(rng);
+  check_degree<2>(rng);
+  check_degree<3>(rng);
+  check_degree<4>(rng);
+  check_degree<5>(rng);
 }
 
 TEST_CASE("kernel: the first-derivative basis matches the general A2.3 recurrence") {

@@ -1,4 +1,3 @@
-#include <plyfit/exporters/messages.hpp>
 #include <plyfit/kernel/nurbs.hpp>
 #include "geometry/analytic_surfaces.hpp"
 
@@ -7,34 +6,57 @@
 #include "test_util.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
 
 using namespace plyfit;
 using plyfit::test::kRoundoffRel;
 using plyfit::test::Rng;
 
-TEST_CASE("kernel: curve validation names the problem") {
+TEST_CASE("geometry: curve validation names the problem by its code") {
   NurbsCurveData3 d;
   d.degree = 2;
   d.poles = {Vec3(0, 0, 0), Vec3(1, 1, 0), Vec3(2, 0, 0)};
   d.knots = {0, 0, 0, 1, 1, 1};
   REQUIRE(NurbsCurve3::create(d).ok());
+  auto code_of = [](const NurbsCurveData3& bad) {
+    auto r = NurbsCurve3::create(bad);
+    REQUIRE_FALSE(r.ok());
+    return r.error();
+  };
   auto bad = d;
   bad.knots = {0, 0, 1, 1, 1};
-  auto r = NurbsCurve3::create(bad);
-  REQUIRE_FALSE(r.ok());
-  CHECK_THAT(exporters::describe(r.error()), Catch::Contains("knot count"));
+  const Error e = code_of(bad);
+  CHECK(e.code == ErrorCode::kKnotCount);
+  CHECK(e.values ==
+        std::vector<MessageValue>{std::string("curve"), std::int64_t{5}, std::int64_t{6}});
   bad = d;
   bad.weights = {1, 0, 1};
-  REQUIRE_FALSE(NurbsCurve3::create(bad).ok());
+  CHECK(code_of(bad).code == ErrorCode::kCurveWeightNotPositive);
+  bad = d;
+  bad.weights = {1, 1};
+  CHECK(code_of(bad).code == ErrorCode::kCurveWeightCount);
+  bad = d;
+  bad.poles[1].x() = NAN;
+  CHECK(code_of(bad).code == ErrorCode::kCurvePoleNotFinite);
   bad = d;
   bad.knots = {0, 0, 0, 0, 1, 1};
-  REQUIRE_FALSE(NurbsCurve3::create(bad).ok());
+  CHECK(code_of(bad).code == ErrorCode::kKnotMultiplicity);
+}
+
+TEST_CASE("geometry: interpolation refuses too few points and coinciding ones") {
+  CHECK(polyline_curve({Vec3::Zero()}).error().code == ErrorCode::kPolylineTooFewPoints);
+  CHECK(interpolate_cubic({Vec3::Zero()}).error().code == ErrorCode::kInterpolationTooFewPoints);
+  const auto r = interpolate_cubic({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 0, 0), Vec3(2, 1, 0)});
+  REQUIRE_FALSE(r.ok());
+  CHECK(r.error().code == ErrorCode::kInterpolationPointsCoincide);
+  CHECK(r.error().values == std::vector<MessageValue>{std::int64_t{1}, std::int64_t{2}});
 }
 
 TEST_CASE("kernel: circle arcs are exact, with exact derivatives") {
   const double R = 3.5;
-  for (auto [a0, a1] :
-       {std::pair{0.0, 1.0}, std::pair{2.0, -1.5}, std::pair{0.0, 6.283185307179586}}) {
+  for (auto [a0, a1] : {std::pair{0.0, 1.0}, std::pair{2.0, -1.5}, std::pair{0.0, 2 * kPi}}) {
     auto c = NurbsCurve2::create(circle_arc(R, a0, a1));
     REQUIRE(c.ok());
     CHECK((c->point(c->t0()) - Vec2(R * std::cos(a0), R * std::sin(a0))).norm() < kRoundoffRel * R);

@@ -7,7 +7,10 @@
 #include "test_util.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <string>
+#include <vector>
 
 using namespace plyfit;
 using plyfit::test::kRoundoffRel;
@@ -52,53 +55,98 @@ std::vector<double> greville(const std::vector<double>& k, int count, int degree
 
 }  // namespace
 
-TEST_CASE("kernel: validation rejects malformed surfaces with a clear message") {
+// The error of NurbsSurface::create(bad): its code and values.
+Error surface_error(const NurbsSurfaceData& bad) {
+  auto r = NurbsSurface::create(bad);
+  REQUIRE_FALSE(r.ok());
+  return r.error();
+}
+
+TEST_CASE("geometry: validation rejects malformed surfaces, naming the problem by its code") {
   NurbsSurfaceData good = plane_patch(Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY());
   REQUIRE(NurbsSurface::create(good).ok());
+  using V = std::vector<MessageValue>;
 
   auto bad = good;
   bad.knots_u.pop_back();
-  auto r = NurbsSurface::create(bad);
-  REQUIRE_FALSE(r.ok());
-  CHECK_THAT(exporters::describe(r.error()), Catch::Contains("knot count in u"));
+  Error e = surface_error(bad);
+  CHECK(e.code == ErrorCode::kKnotCount);
+  CHECK(e.values == V{std::string("u"), std::int64_t{3}, std::int64_t{4}});
 
   bad = good;
   bad.knots_v = {0, 1, 0.5, 1};
-  r = NurbsSurface::create(bad);
-  REQUIRE_FALSE(r.ok());
-  CHECK_THAT(exporters::describe(r.error()), Catch::Contains("decrease"));
+  e = surface_error(bad);
+  CHECK(e.code == ErrorCode::kKnotsDecrease);
+  CHECK(e.values == V{std::string("v"), std::int64_t{2}});
 
   bad = good;
   bad.knots_u = {0, 0, 0, 1};  // multiplicity 3 > degree + 1 = 2
-  r = NurbsSurface::create(bad);
-  REQUIRE_FALSE(r.ok());
-  CHECK_THAT(exporters::describe(r.error()), Catch::Contains("multiplicity"));
+  e = surface_error(bad);
+  CHECK(e.code == ErrorCode::kKnotMultiplicity);
+  CHECK(e.values == V{std::string("u"), std::int64_t{2}});
+
+  bad = good;
+  bad.knots_u[1] = INFINITY;
+  CHECK(surface_error(bad).code == ErrorCode::kKnotNotFinite);
 
   bad = good;
   bad.poles[2].y() = std::numeric_limits<double>::quiet_NaN();
-  r = NurbsSurface::create(bad);
-  REQUIRE_FALSE(r.ok());
-  CHECK_THAT(exporters::describe(r.error()), Catch::Contains("not finite"));
+  e = surface_error(bad);
+  CHECK(e.code == ErrorCode::kPoleNotFinite);
+  CHECK(e.values == V{std::int64_t{2}});
 
   bad = good;
   bad.weights = {1, 1, -0.5, 1};
-  r = NurbsSurface::create(bad);
-  REQUIRE_FALSE(r.ok());
-  CHECK_THAT(exporters::describe(r.error()), Catch::Contains("positive"));
+  e = surface_error(bad);
+  CHECK(e.code == ErrorCode::kWeightNotPositive);
+  CHECK(e.values == V{std::int64_t{2}});
 
   bad = good;
   bad.weights = {1, 1, 1};
-  REQUIRE_FALSE(NurbsSurface::create(bad).ok());
+  e = surface_error(bad);
+  CHECK(e.code == ErrorCode::kWeightCount);
+  CHECK(e.values == V{std::int64_t{3}, std::int64_t{4}});
+
+  bad = good;
+  bad.poles.pop_back();
+  CHECK(surface_error(bad).code == ErrorCode::kPoleCount);
 
   bad = good;
   bad.degree_u = 26;
-  REQUIRE_FALSE(NurbsSurface::create(bad).ok());
+  e = surface_error(bad);
+  CHECK(e.code == ErrorCode::kDegreeRange);
+  CHECK(e.values == V{std::string("u"), std::int64_t{26}, std::int64_t{25}});
 
   bad = good;
-  bad.knots_u = {1, 1, 1, 1};
-  bad.knots_u = {0, 1, 1, 1};  // domain [1, 1] is empty
-  r = NurbsSurface::create(bad);
-  REQUIRE_FALSE(r.ok());
+  bad.count_v = 1;
+  bad.poles.resize(2);
+  e = surface_error(bad);
+  CHECK(e.code == ErrorCode::kTooFewPoles);
+  CHECK(e.values == V{std::string("v"), std::int64_t{2}, std::int64_t{1}});
+
+  bad = good;
+  bad.knots_u = {0, 1, 1, 2};  // domain [1, 1] is empty
+  e = surface_error(bad);
+  CHECK(e.code == ErrorCode::kEmptyDomain);
+  CHECK(e.values == V{std::string("u")});
+}
+
+TEST_CASE("geometry: the errors' texts name the direction, the index and the counts") {
+  auto text = [](ErrorCode c, std::vector<MessageValue> v) {
+    return exporters::describe(Error{c, {}, std::move(v)});
+  };
+  CHECK(text(ErrorCode::kKnotCount, {std::string("u"), std::int64_t{3}, std::int64_t{4}}) ==
+        "knot count in u is 3, must be poles + degree + 1 = 4");
+  CHECK(text(ErrorCode::kDegreeRange, {std::string("v"), std::int64_t{26}, std::int64_t{25}}) ==
+        "degree in v is 26, must be 1..25");
+  CHECK(text(ErrorCode::kTooFewPoles, {std::string("curve"), std::int64_t{3}, std::int64_t{2}}) ==
+        "need at least degree + 1 = 3 poles in curve, got 2");
+  CHECK(text(ErrorCode::kPoleCount, {std::int64_t{3}, std::int64_t{2}, std::int64_t{2}}) ==
+        "pole count is 3, must be 2 x 2");
+  CHECK(text(ErrorCode::kWeightNotPositive, {std::int64_t{2}}) ==
+        "weight 2 is not a positive finite number");
+  CHECK(text(ErrorCode::kInterpolationPointsCoincide, {std::int64_t{1}, std::int64_t{2}}) ==
+        "interpolation points 1 and 2 coincide");
 }
 
 TEST_CASE("kernel: linear precision for any degree and knot vector, clamped or not") {
@@ -196,7 +244,7 @@ TEST_CASE("kernel: the normal at a pole is the limit, flagged degenerate, never 
   CHECK_FALSE(n.degenerate);
   CHECK((n.n - s->point(0.4, 0.7) / R).norm() < 1e-12);
   // A hemisphere's pole is in the interior of the v range, still a limit.
-  auto h = NurbsSurface::create(sphere_patch(1.0, 0.0, 1.5707963267948966, 0.0, 6.283185307179586));
+  auto h = NurbsSurface::create(sphere_patch(1.0, 0.0, kPi / 2, 0.0, 2 * kPi));
   REQUIRE(h.ok());
   const SurfaceNormal hn = h->normal(h->domain().u0, 2.0);
   CHECK(hn.degenerate);

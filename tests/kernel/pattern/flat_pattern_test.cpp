@@ -15,7 +15,6 @@ using namespace plyfit;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Outline area and perimeter within 0.1% of exact at a spacing of 1/50 of the part.
 constexpr double kOutlineRel = 1e-3;
 

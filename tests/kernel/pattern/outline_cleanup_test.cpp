@@ -4,6 +4,7 @@
 
 #include "pattern/outline_cleanup.hpp"
 #include <plyfit/kernel/builtin_molds.hpp>
+#include <plyfit/kernel/polygon2d.hpp>
 #include "drape/drape.hpp"
 #include "pattern/flat_pattern.hpp"
 #include "surface/shell/shell.hpp"
@@ -22,7 +23,6 @@ using namespace plyfit;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // Areas below are closed forms of exact polygons: they agree to rounding of coordinates of
 // size ~10 (a few ulps times the number of vertices).
 constexpr double kAreaTol = 1e-12;
@@ -41,12 +41,6 @@ OutlineLoop square_with(const std::vector<Vec2>& top) {
   p.insert(p.end(), top.begin(), top.end());
   p.push_back(Vec2(0, 10));
   return loop(p);
-}
-
-double signed_area(const std::vector<Vec2>& p) {
-  double a = 0.0;
-  for (std::size_t k = 0; k < p.size(); ++k) a += cross2(p[k], p[(k + 1) % p.size()]);
-  return 0.5 * a;
 }
 
 bool has_vertex(const OutlineLoop& l, const Vec2& v) {
@@ -71,7 +65,7 @@ TEST_CASE("outline cleanup: a thin outward wedge is cut where its width reaches 
   // reaches w at r = w / sin 2a, and the chord runs square to the other side, whose foot is
   // r cos 2a from the tip: the triangle cut off has area w^2 / (2 tan 2a), with w the width
   // the chord is placed at (min_width (1 + kCutChordMargin)).
-  const double a = 3.0 * kPi / 180.0, L = 5.0, w = 0.5, b = L * std::tan(a);
+  const double a = 3.0 * kDegToRad, L = 5.0, w = 0.5, b = L * std::tan(a);
   const double wc = w * (1.0 + kCutChordMargin);
   const OutlineLoop sq = square_with({Vec2(5 + b, 10), Vec2(5, 10 + L), Vec2(5 - b, 10)});
   // The exact outline has the spike the checks see (d = 2w).
@@ -112,7 +106,7 @@ TEST_CASE("outline cleanup: an inward slit and a thin notch are closed across th
     for (const Vec2& v : {Vec2(5.05, 5), Vec2(4.95, 5)}) CHECK_FALSE(has_vertex(res.loops[0], v));
   }
   SECTION("a notch of 6 degrees: the wedge of gap beyond width w is closed") {
-    const double a = 3.0 * kPi / 180.0, L = 5.0, b = L * std::tan(a);
+    const double a = 3.0 * kDegToRad, L = 5.0, b = L * std::tan(a);
     const double wc = w * (1.0 + kCutChordMargin);  // the width the chord is placed at
     const OutlineLoop sq = square_with({Vec2(5 + b, 10), Vec2(5, 10 - L), Vec2(5 - b, 10)});
     REQUIRE_FALSE(support::outline_defects({sq}, 2 * w).empty());
@@ -148,7 +142,7 @@ TEST_CASE("outline cleanup: a rectangle, a disk with a hole of radius 3w, a slow
 
 TEST_CASE("outline cleanup: a turned rectangle with many points per side stays") {
   // 100 x 80 turned by 43 degrees, 40 points per side (collinear to rounding).
-  const double c = std::cos(43.0 * kPi / 180.0), s = std::sin(43.0 * kPi / 180.0);
+  const double c = std::cos(43.0 * kDegToRad), s = std::sin(43.0 * kDegToRad);
   const Vec2 u(c, s), v(-s, c);
   std::vector<Vec2> p;
   const Vec2 corner[4] = {Vec2::Zero(), Vec2(100 * u), Vec2(100 * u + 80 * v), Vec2(80 * v)};
@@ -182,7 +176,7 @@ TEST_CASE("outline cleanup: loops narrower than w everywhere are dropped") {
 }
 
 TEST_CASE("outline cleanup: w = 0 leaves every outline as it is") {
-  const double a = 3.0 * kPi / 180.0, L = 5.0, b = L * std::tan(a);
+  const double a = 3.0 * kDegToRad, L = 5.0, b = L * std::tan(a);
   const std::vector<OutlineLoop> in{
       square_with({Vec2(5 + b, 10), Vec2(5, 10 + L), Vec2(5 - b, 10)}),
       loop({Vec2(20, 0), Vec2(20.3, 0), Vec2(20.1, 0.2)})};

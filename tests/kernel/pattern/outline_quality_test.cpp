@@ -173,7 +173,7 @@ TEST_CASE("outline checks: narrow shapes of the draped region are no defects") {
       {"cylinder: a strip between the base path and a thread ends at the lock", "cylinder", 0.24745,
        Vec2(-0.037955, 0.999279), Vec2(-0.999279, -0.037955), Vec3(6.936050, 3.461219, 6.872162),
        Vec3(-0.958010, -0.216617, -0.187868), Vec3(0.156870, 0.316674, 0.935473), false,
-       29.1 * 3.14159265358979323846 / 180.0},
+       29.1 * kDegToRad},
   };
   std::vector<SpikeCase> all(std::begin(cases), std::end(cases));
   for (const SpikeCase& c : support::explained_outline_spikes()) all.push_back(c);

@@ -6,12 +6,13 @@
 #include "test_util.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 using namespace plyfit;
 using plyfit::test::Rng;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 std::vector<Vec2> circle_poly(const Vec2& c, double r, int n, bool cw) {
   std::vector<Vec2> p;
@@ -22,6 +23,51 @@ std::vector<Vec2> circle_poly(const Vec2& c, double r, int n, bool cw) {
   return p;
 }
 }  // namespace
+
+TEST_CASE("surface: a face's loops and size are validated, errors by their codes") {
+  FaceData good;
+  good.surface = plane_patch(Vec3::Zero(), Vec3(10, 0, 0), Vec3(0, 10, 0));
+  good.loops.push_back({{Vec2(0.1, 0.1), Vec2(0.9, 0.1), Vec2(0.9, 0.9), Vec2(0.1, 0.9)}});
+  good.loops.push_back({{Vec2(0.4, 0.4), Vec2(0.4, 0.6), Vec2(0.6, 0.6), Vec2(0.6, 0.4)}});
+  REQUIRE(Face::create(good).ok());
+  using V = std::vector<MessageValue>;
+  auto refused = [](const FaceData& fd) {
+    auto f = Face::create(fd);
+    REQUIRE_FALSE(f.ok());
+    return f.error();
+  };
+  FaceData bad = good;
+  bad.loops[1].points.resize(2);
+  Error e = refused(bad);
+  CHECK(e.code == ErrorCode::kTrimLoopTooFewPoints);
+  CHECK(e.values == V{std::int64_t{1}});
+  bad = good;
+  bad.loops[0].points[2].x() = NAN;
+  e = refused(bad);
+  CHECK(e.code == ErrorCode::kTrimLoopNotFinite);
+  CHECK(e.values == V{std::int64_t{0}});
+  bad = good;
+  bad.loops[1].edges = {-1, -1};
+  e = refused(bad);
+  CHECK(e.code == ErrorCode::kTrimLoopEdgeTags);
+  CHECK(e.values == V{std::int64_t{1}, std::int64_t{2}, std::int64_t{4}});
+  // A repeated closing point is dropped with its tag: 5 points and tags make 4 segments.
+  bad = good;
+  bad.loops[0].points.push_back(bad.loops[0].points.front());
+  bad.loops[0].edges = {-1, -1, -1, -1, -1};
+  CHECK(Face::create(bad).ok());
+  // A loop around no point of the domain leaves no point on the face.
+  bad = good;
+  bad.loops = {{{Vec2(2, 2), Vec2(3, 2), Vec2(3, 3)}}};
+  CHECK(refused(bad).code == ErrorCode::kFaceEmpty);
+  bad = good;
+  bad.loops.clear();
+  bad.surface = plane_patch(Vec3(1, 2, 3), Vec3::Zero(), Vec3::Zero());
+  CHECK(refused(bad).code == ErrorCode::kFaceZeroSize);
+  bad = good;
+  bad.surface.knots_v = {0, 0.5, 0.5, 1};  // the surface's own error: an empty domain in v
+  CHECK(refused(bad).code == ErrorCode::kEmptyDomain);
+}
 
 TEST_CASE("kernel: contains() is even-odd over the trim loops") {
   FaceData fd;

@@ -1,4 +1,4 @@
-// A base path that crosses a hole in the face (issue 13 item 2): the path goes on across the
+// A base path that crosses a hole in the face: the path goes on across the
 // hole on the face's surface under it, the sweeps go on from every path node, and the flat
 // pattern is the cloth of the face without the hole, less the hole.
 #include <plyfit/kernel/builtin_molds.hpp>
@@ -24,7 +24,6 @@ using plyfit::support::problem;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kRim = 1e-9;  // nodes this close to a boundary may fall either way
 
 Face mold(const std::string& name, const std::map<std::string, double>& params) {
@@ -65,10 +64,9 @@ int slit_nodes(const DrapeResult& r, OnFace&& on_face) {
 
 }  // namespace
 
-// Issue 13 item 2. Before: the base path stopped at the hole, the path line beyond it was never
-// mapped (19 / 24 / 15 nodes at d = 2 / 1.7 / 2.5), the outline had a slit from the hole to
-// the edge and no hole loop (area 5526 at d = 2 for 5686).
-TEST_CASE("drape: a base path across a hole goes on beyond it, both sweeps from it", "[issue13]") {
+// The path line beyond the hole is mapped, and the outline has a hole loop and no slit from the
+// hole to the edge (docs/decisions/base-path-across-holes.md).
+TEST_CASE("drape: a base path across a hole goes on beyond it, both sweeps from it") {
   const Face f = plate_with_hole();
   // Spacings that put nodes on the path line inside and beyond the hole, with and without a
   // node on the hole's rim.
@@ -139,8 +137,7 @@ TEST_CASE("drape: a base path across a hole goes on beyond it, both sweeps from 
 // the hole to the far rim, both sweeps. The cloth on the holed face is the cloth of the
 // holeless face node for node (the drape goes on under the hole on the same surface); the hole
 // is cut out of the flat pattern.
-TEST_CASE("drape: the dish with a hole is draped as the dish without it, less the hole",
-          "[issue13]") {
+TEST_CASE("drape: the dish with a hole is draped as the dish without it, less the hole") {
   constexpr double kR = 30, kRho = 40, kHole = 8;
   const Face holed = mold("dish", {{"R", kR}, {"rho", kRho}, {"hole_r", kHole}});
   const Face whole = mold("dish", {{"R", kR}, {"rho", kRho}});
@@ -217,7 +214,7 @@ TEST_CASE("drape: the dish with a hole is draped as the dish without it, less th
 // into the far face from both sides and leave the path's line there unmapped: the drape says so
 // (partial, a warning naming where the path stopped) rather than passing the slit off as a
 // complete pattern.
-TEST_CASE("drape: a base path stopped at a missing face warns of the slit", "[issue13]") {
+TEST_CASE("drape: a base path stopped at a missing face warns of the slit") {
   ShellData sd;
   auto index = [](int a, int b) { return a * 3 + b; };
   std::vector<std::vector<std::int32_t>> tags(9, std::vector<std::int32_t>(4, TrimLoop::kFreeEdge));

@@ -11,6 +11,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "support/faces.hpp"
 #include "support/problems.hpp"
 #include "support/shells.hpp"
 #include "support/solver_cases.hpp"
@@ -22,29 +23,19 @@
 #include <vector>
 
 using namespace plyfit;
+using plyfit::support::make_face;
 using plyfit::support::point_at_distance;
 using plyfit::support::problem;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-// Constraint accuracy the solvers promise at convergence, relative to d (issue 3).
+// Constraint accuracy the solvers promise at convergence, relative to d.
 constexpr double kConstraintRel = 1e-10;
 // Three points of an edge closer than this (relative to the face size) are one point.
 constexpr double kCollapsedRel = 1e-12;
 // Distances of the unknown node from the pole, relative to d: at it, within rounding, and on.
 constexpr double kPoleDistances[] = {0.0, 1e-15, 1e-12, 1e-7, 1e-4, 1e-2, 0.2, 0.7};
 
-Face make_face(FaceData fd) {
-  auto f = Face::create(std::move(fd));
-  REQUIRE(f.ok());
-  return std::move(f).value();
-}
-Face make_face(NurbsSurfaceData d) {
-  FaceData fd;
-  fd.surface = std::move(d);
-  return make_face(std::move(fd));
-}
 Face builtin(const std::string& name, std::map<std::string, double> p = {}) {
   auto fd = builtin_mold(name, p);
   REQUIRE(fd.ok());
@@ -216,7 +207,7 @@ int unmapped_near_start(const DrapeResult& r, double radius, bool overlap_ok) {
 }  // namespace
 
 TEST_CASE("drape: nodes landing on or next to a pole are mapped") {
-  SECTION("the issue's hemisphere: node (1, 1) lands 5e-5 from the pole") {
+  SECTION("the unit hemisphere: node (1, 1) lands 5e-5 from the pole") {
     const Face f = builtin("hemisphere", {{"R", 1.0}});
     const double d = 0.0375;
     const DrapeResult r =
@@ -235,11 +226,11 @@ TEST_CASE("drape: nodes landing on or next to a pole are mapped") {
     REQUIRE(sh.ok());
     const Shell& sphere = sh.value();
     // Starts off the pole by (a, b) d, base planes at several azimuths: some node lands within
-    // a hair of the pole in each (found failing before).
+    // a hair of the pole in each.
     for (const Vec2& ab : {Vec2(-0.987, -0.971), Vec2(1.013, -0.638), Vec2(-0.654, -0.971),
                            Vec2(1.013, 0.029), Vec2(0.346, 1.029), Vec2(-0.32, 0.696)}) {
       for (double az : {0.0, 17.0, 90.0, 133.0, 200.0, 300.0}) {
-        const double phi = az * kPi / 180;
+        const double phi = az * kDegToRad;
         const Vec3 bn(-std::sin(phi), std::cos(phi), 0);
         const Vec3 s3(ab.x() * d, ab.y() * d, std::sqrt(R * R - ab.squaredNorm() * d * d));
         const DrapeProblem pb =

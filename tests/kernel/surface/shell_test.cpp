@@ -7,6 +7,7 @@
 #include "geometry/analytic_surfaces.hpp"
 #include "pattern/flat_pattern.hpp"
 
+#include "support/faces.hpp"
 #include "support/net_checks.hpp"
 #include "support/problems.hpp"
 #include "support/shells.hpp"
@@ -14,13 +15,14 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdint>
 #include <set>
+#include <vector>
 
 using namespace plyfit;
+using plyfit::support::make_face;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 Shell make_shell(const std::string& name, const std::map<std::string, double>& params = {}) {
   auto sh = support::make_builtin_shell(name, params);
@@ -29,10 +31,21 @@ Shell make_shell(const std::string& name, const std::map<std::string, double>& p
   return std::move(sh).value();
 }
 
-Face make_face(FaceData fd) {
-  auto f = Face::create(std::move(fd));
-  REQUIRE(f.ok());
-  return std::move(f).value();
+// Two planar faces w wide along Y, hinged along the Y axis: face 0 is -e0 + s e0 + t (0, w, 0)
+// (its side u = 1 on the axis), face 1 is s e1 + t (0, w, 0) (its side u = 0 on the axis); the
+// hinge is shared edge 0.
+Shell hinge(const Vec3& e0, const Vec3& e1, double w) {
+  ShellData sd;
+  FaceData f0, f1;
+  f0.surface = plane_patch(-e0, e0, Vec3(0, w, 0));
+  f1.surface = plane_patch(Vec3(0, 0, 0), e1, Vec3(0, w, 0));
+  f0.loops.push_back({{Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}, {-1, 0, -1, -1}});
+  f1.loops.push_back({{Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}, {-1, -1, -1, 0}});
+  sd.faces = {f0, f1};
+  sd.edge_count = 1;
+  auto sh = Shell::create(std::move(sd));
+  REQUIRE(sh.ok());
+  return std::move(sh).value();
 }
 
 // The whole sphere as one face: closed around Z, poles at both ends of u.
@@ -95,43 +108,62 @@ TEST_CASE("shell: a face given the wrong way round is turned to agree with its n
 
 TEST_CASE("shell: a crease between two faces is measured") {
   // Two planar faces meeting along the Y axis at 30 degrees.
-  ShellData sd;
-  const double a = 30.0 * kPi / 180.0;
-  FaceData f0, f1;
-  f0.surface = plane_patch(Vec3(-10, 0, 0), Vec3(10, 0, 0), Vec3(0, 10, 0));
-  f1.surface =
-      plane_patch(Vec3(0, 0, 0), Vec3(10 * std::cos(a), 0, -10 * std::sin(a)), Vec3(0, 10, 0));
-  f0.loops.push_back({{Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}, {-1, 0, -1, -1}});
-  f1.loops.push_back({{Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}, {-1, -1, -1, 0}});
-  sd.faces = {f0, f1};
-  sd.edge_count = 1;
-  auto sh = Shell::create(std::move(sd));
-  REQUIRE(sh.ok());
-  CHECK(sh->crease_angle(0) == Approx(a).epsilon(1e-12));
-  CHECK(sh->crease_angle(0, 1) == Approx(a).epsilon(1e-12));
+  const double a = 30.0 * kDegToRad;
+  const Shell sh = hinge(Vec3(10, 0, 0), Vec3(10 * std::cos(a), 0, -10 * std::sin(a)), 10);
+  CHECK(sh.crease_angle(0) == Approx(a).epsilon(1e-12));
+  CHECK(sh.crease_angle(0, 1) == Approx(a).epsilon(1e-12));
 }
 
-TEST_CASE("shell: bad shells are refused with a message") {
+TEST_CASE("shell: bad shells are refused, naming the face or the edge") {
   auto data = builtin_shell("flange-fillet-wall", {});
   REQUIRE(data.ok());
+  using V = std::vector<MessageValue>;
+  auto refused = [](ShellData sd) {
+    auto sh = Shell::create(std::move(sd));
+    REQUIRE_FALSE(sh.ok());
+    return sh.error();
+  };
   SECTION("an edge used by one face") {
     data->faces[2].loops[0].edges = {-1, -1, -1, -1};
-    auto sh = Shell::create(*data);
-    REQUIRE_FALSE(sh.ok());
-    CHECK(exporters::describe(sh.error()).find("shared edge 1 is used by 1 faces") !=
-          std::string::npos);
+    const Error e = refused(*data);
+    CHECK(e.code == ErrorCode::kSharedEdgeUses);
+    CHECK(e.values == V{std::int64_t{1}, std::int64_t{1}});
   }
   SECTION("an edge index out of range") {
     data->faces[0].loops[0].edges[1] = 7;
-    auto sh = Shell::create(*data);
-    REQUIRE_FALSE(sh.ok());
-    CHECK(exporters::describe(sh.error()).find("out of range") != std::string::npos);
+    const Error e = refused(*data);
+    CHECK(e.code == ErrorCode::kSharedEdgeRange);
+    CHECK(e.face == 0);
+    CHECK(e.values == V{std::int64_t{7}});
+  }
+  SECTION("a loop with a tag too few") {
+    data->faces[1].loops[0].edges.pop_back();
+    const Error e = refused(*data);
+    CHECK(e.code == ErrorCode::kTrimLoopEdgeTags);
+    CHECK(e.face == 1);
+    CHECK(e.values == V{std::int64_t{0}, std::int64_t{3}, std::int64_t{4}});
+  }
+  SECTION("a face that does not validate, named by its index in the file") {
+    data->source_faces = {5, 6, 7};
+    data->faces[2].surface.knots_u.pop_back();
+    const Error e = refused(*data);
+    CHECK(e.code == ErrorCode::kKnotCount);
+    CHECK(e.face == 7);
   }
   SECTION("faces that are not sewn") {
     data->faces[2].surface = plane_patch(Vec3(30, 0, -10), Vec3(0, 0, -40), Vec3(0, 60, 0));
-    auto sh = Shell::create(*data);
-    REQUIRE_FALSE(sh.ok());
-    CHECK(exporters::describe(sh.error()).find("not sewn") != std::string::npos);
+    const Error e = refused(*data);
+    CHECK(e.code == ErrorCode::kShellNotSewn);
+    REQUIRE(e.values.size() == 2);
+    CHECK(std::get<double>(e.values[0]) == Approx(20.0));  // the wall moved 20 off the fillet
+  }
+  SECTION("counts that do not match") {
+    CHECK(refused(ShellData{}).code == ErrorCode::kShellNoFaces);
+    data->source_faces = {0, 1};
+    CHECK(refused(*data).code == ErrorCode::kShellFaceIndices);
+    data->source_faces.clear();
+    data->edge_count = -1;
+    CHECK(refused(*data).code == ErrorCode::kShellEdgeCountNegative);
   }
 }
 
@@ -185,7 +217,7 @@ TEST_CASE("shell: the cloth crosses a pole that four faces share") {
   // Started off the north pole of the 8-face sphere: the ply (30 x 30 on R = 20) covers the
   // pole, where the 4 northern faces meet in their collapsed edges. A sphere has no edge: every
   // node of the ply is mapped. (The sphere as one face is compared where it maps its nodes: at
-  // its own pole it stops one node, issue 13's pole case.)
+  // its own pole it stops one node.)
   const Shell eight = make_shell("sphere-8", {{"R", 20.0}});
   const Face one = one_patch_sphere(20.0);
   const Vec3 s3 = Vec3(0.3, -0.2, 1).normalized() * 20.0;
@@ -293,21 +325,12 @@ TEST_CASE("shell: the cloth crosses a crease sharper than 90 degrees (a thin fla
   // stay lines parallel to the edge (every thread angle pi/2), and along a warp thread the
   // link that spans the edge is a chord of length d: from a node at a before the edge, the
   // next lies at b = a cos(30) + sqrt(d^2 - a^2 sin^2(30)) past it, the rest at b + k d.
-  const double open = 30.0 * kPi / 180.0, d = 1.0, x0 = -9.5;
-  ShellData sd;
-  FaceData f0, f1;
-  f0.surface = plane_patch(Vec3(-20, 0, 0), Vec3(20, 0, 0), Vec3(0, 20, 0));
+  const double open = 30.0 * kDegToRad, d = 1.0, x0 = -9.5;
   const Vec3 back(-std::cos(open), 0, -std::sin(open));
-  f1.surface = plane_patch(Vec3(0, 0, 0), 20 * back, Vec3(0, 20, 0));
-  f0.loops.push_back({{Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}, {-1, 0, -1, -1}});
-  f1.loops.push_back({{Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}, {-1, -1, -1, 0}});
-  sd.faces = {f0, f1};
-  sd.edge_count = 1;
-  auto sh = Shell::create(std::move(sd));
-  REQUIRE(sh.ok());
+  const Shell sh = hinge(Vec3(20, 0, 0), 20 * back, 20);
   auto pb = support::problem(d, Vec2(0, 0), Vec2(0, 1), {Vec2(1, 0), Vec2(-1, 0)}, Vec3(x0, 10, 0),
                              Vec3(1, 0, 0), {Vec3(1, 0, 0), Vec3(-1, 0, 0)});
-  auto r = drape(*sh, pb);
+  auto r = drape(sh, pb);
   REQUIRE(r.ok());
   CHECK(r->metrics.nodes.failed == 0);
   CHECK(r->metrics.nodes.conflict == 0);

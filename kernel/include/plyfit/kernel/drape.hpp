@@ -157,7 +157,7 @@ const char* to_string(GuessRule g);
 struct DrapeOptions {
   /// Lock angle (radians): the largest shear pi/2 - gamma allowed; gamma_min = pi/2 - lock,
   /// gamma_max = pi/2 + lock (eq. 12). pi/2 (the default) disables the test.
-  double lock_angle = 1.5707963267948966;
+  double lock_angle = kPi / 2;
   GuessRule guess = GuessRule::kExtrapolated;
   Tolerances tol;
   /// Test every mapped node for landing on cloth already laid (status kOverlap). false skips

@@ -53,6 +53,59 @@ namespace plyfit {
   X(RosetteAlongNormal, rosette_along_normal)                                               \
   X(PlyAngleRange, ply_angle_range)                                                         \
   /* kernel: geometry (NURBS), surface (faces, shells), molds, search */                    \
+  /* kernel: geometry (NURBS surfaces and curves) */                                        \
+  X(DegreeRange, degree_range)                                                              \
+  X(TooFewPoles, too_few_poles)                                                             \
+  X(KnotCount, knot_count)                                                                  \
+  X(KnotNotFinite, knot_not_finite)                                                         \
+  X(KnotsDecrease, knots_decrease)                                                          \
+  X(KnotMultiplicity, knot_multiplicity)                                                    \
+  X(EmptyDomain, empty_domain)                                                              \
+  X(PoleCount, pole_count)                                                                  \
+  X(WeightCount, weight_count)                                                              \
+  X(PoleNotFinite, pole_not_finite)                                                         \
+  X(WeightNotPositive, weight_not_positive)                                                 \
+  X(CurveWeightCount, curve_weight_count)                                                   \
+  X(CurvePoleNotFinite, curve_pole_not_finite)                                              \
+  X(CurveWeightNotPositive, curve_weight_not_positive)                                      \
+  X(PolylineTooFewPoints, polyline_too_few_points)                                          \
+  X(InterpolationTooFewPoints, interpolation_too_few_points)                                \
+  X(InterpolationPointsCoincide, interpolation_points_coincide)                             \
+  X(InterpolationSingular, interpolation_singular)                                          \
+  /* kernel: surface (faces and shells) */                                                  \
+  X(TrimLoopEdgeTags, trim_loop_edge_tags)                                                  \
+  X(TrimLoopTooFewPoints, trim_loop_too_few_points)                                         \
+  X(TrimLoopNotFinite, trim_loop_not_finite)                                                \
+  X(FaceEmpty, face_empty)                                                                  \
+  X(FaceZeroSize, face_zero_size)                                                           \
+  X(ShellNoFaces, shell_no_faces)                                                           \
+  X(ShellTooManyFaces, shell_too_many_faces)                                                \
+  X(ShellFaceIndices, shell_face_indices)                                                   \
+  X(ShellEdgeCountNegative, shell_edge_count_negative)                                      \
+  X(SharedEdgeRange, shared_edge_range)                                                     \
+  X(SharedEdgeUses, shared_edge_uses)                                                       \
+  X(SharedEdgeNotEvaluated, shared_edge_not_evaluated)                                      \
+  X(ShellNotSewn, shell_not_sewn)                                                           \
+  X(ShellOrientation, shell_orientation)                                                    \
+  /* kernel: built-in molds and shells */                                                   \
+  X(UnknownBuiltin, unknown_builtin)                                                        \
+  X(BuiltinNoParameter, builtin_no_parameter)                                               \
+  X(BuiltinParameterNotFinite, builtin_parameter_not_finite)                                \
+  X(BuiltinParameterNotPositive, builtin_parameter_not_positive)                            \
+  X(BuiltinAngleRange, builtin_angle_range)                                                 \
+  X(BuiltinParameterRange, builtin_parameter_range)                                         \
+  X(BuiltinIntegerRange, builtin_integer_range)                                             \
+  X(BuiltinCylinderWindow, builtin_cylinder_window)                                         \
+  X(BuiltinConeRadii, builtin_cone_radii)                                                   \
+  X(BuiltinPlateHole, builtin_plate_hole)                                                   \
+  X(BuiltinDishHole, builtin_dish_hole)                                                     \
+  X(BuiltinTorusTube, builtin_torus_tube)                                                   \
+  X(BuiltinTorusAngles, builtin_torus_angles)                                               \
+  X(BuiltinTrimCurve, builtin_trim_curve)                                                   \
+  X(BuiltinMold, builtin_mold)                                                              \
+  X(BuiltinNameMissing, builtin_name_missing)                                               \
+  X(BuiltinParameterSyntax, builtin_parameter_syntax)                                       \
+  X(BuiltinParameterValue, builtin_parameter_value)                                         \
   /* importers and the OpenCASCADE module */                                                \
   X(FileNotReadable, file_not_readable)                                                     \
   X(FileNumberNotFinite, file_number_not_finite)                                            \

@@ -5,6 +5,8 @@
 /// problem: the spacing `d` of the ply, the size of the face, or the width of a parameter
 /// range. Algorithms multiply these by their scale; none uses a bare epsilon.
 
+#include <plyfit/kernel/types.hpp>
+
 namespace plyfit {
 
 /// Tolerances for geometry, solvers and the drape. All are dimensionless ratios unless the
@@ -22,7 +24,7 @@ struct Tolerances {
   /// onto a curve (weft and warp neighbours at one point) that satisfies every link and
   /// never leaves the face, and the two-sphere problem degenerates (its Jacobian's condition
   /// grows as 1 / sin gamma). One degree: far past any woven fabric's locking angle.
-  double fold_angle = 0.017453292519943295;
+  double fold_angle = 1.0 * kDegToRad;
   /// Iteration cap of every Newton solve.
   int newton_max_iterations = 40;
   /// Cap on step halvings in a line search.
@@ -54,7 +56,7 @@ struct Tolerances {
   /// sweep only picks a side of the path (the scan's order is the same for every direction
   /// into one side); within a degree of the path that side is a matter of the last digits
   /// given, and no drape worth making is specified that way. One degree.
-  double sweep_min_angle = 0.017453292519943295;
+  double sweep_min_angle = 1.0 * kDegToRad;
   /// A rosette (a ply's 0° direction) must keep at least this sine of its angle with the
   /// surface normal at the seed: nearer the normal, its projection onto the tangent plane (the
   /// 0° direction) turns with the last digits of the normal.

@@ -13,6 +13,11 @@ using Vec2 = Eigen::Vector2d;
 /// A 3D vector or point, in model units (millimetres unless stated otherwise).
 using Vec3 = Eigen::Vector3d;
 
+/// π, and the factors that turn degrees into radians (deg * kDegToRad) and back.
+inline constexpr double kPi = 3.14159265358979323846;
+inline constexpr double kDegToRad = kPi / 180.0;
+inline constexpr double kRadToDeg = 180.0 / kPi;
+
 /// Axis-aligned box in 3D.
 struct BBox3 {
   Vec3 min = Vec3::Constant(0.0);
@@ -46,6 +51,11 @@ struct ParamDomain {
 /// 2D cross product (z component of the 3D cross product of (a, 0) and (b, 0)).
 inline double cross2(const Vec2& a, const Vec2& b) {
   return a.x() * b.y() - a.y() * b.x();
+}
+
+/// a turned by +90 degrees (counter-clockwise).
+inline Vec2 perp(const Vec2& a) {
+  return Vec2(-a.y(), a.x());
 }
 
 /// True when every component of v is finite.

@@ -19,7 +19,6 @@
 
 namespace plyfit::detail {
 
-inline constexpr double kPi = 3.14159265358979323846;
 // The cloth overlaps itself where a new node lands within kOverlapRel * d (3D) of a mapped
 // node at least kOverlapSeparation * d away from it on the ply (2D): a closed plane
 // section, or a closed face wrapped all round.

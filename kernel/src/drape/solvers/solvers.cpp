@@ -1,5 +1,6 @@
 #include "drape/solvers/solvers.hpp"
 
+#include "geometry/numeric.hpp"
 #include "surface/poles.hpp"
 
 #include <Eigen/LU>
@@ -14,7 +15,6 @@ namespace plyfit {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 // A 2x2 Jacobian is treated as singular when |det| < kSingularRel * |col 0| * |col 1|; the
 // step is then a Levenberg-Marquardt step with damping kLmDampingRel * diag(J^T J).
 constexpr double kSingularRel = 1e-10;
@@ -93,15 +93,9 @@ Vec3 face_normal(const DrapeSurface& s, const SurfaceLocation& at, const Surface
 
 // Least-squares (u, v) direction a with J a = dir_t, scaled to |J a| = 1.
 bool metric_direction(const SurfaceEval1& e, const Vec3& dir, Vec2& a) {
-  Eigen::Matrix2d G;
-  G << e.du.dot(e.du), e.du.dot(e.dv), e.du.dot(e.dv), e.dv.dot(e.dv);
-  const Vec2 rhs(e.du.dot(dir), e.dv.dot(dir));
+  const Eigen::Matrix2d G = detail::metric(e);
   if (!(G(0, 0) > 0.0 || G(1, 1) > 0.0)) return false;
-  // Marquardt-style regularisation, relative to each diagonal entry: |Su| and |Sv| may
-  // differ by many orders of magnitude.
-  G(0, 0) = G(0, 0) * (1.0 + kSingularRel) + 1e-300;
-  G(1, 1) = G(1, 1) * (1.0 + kSingularRel) + 1e-300;
-  a = G.inverse() * rhs;
+  a = detail::regularised_solve(G, detail::metric_rhs(e, dir), kSingularRel);
   const double len = (e.du * a.x() + e.dv * a.y()).norm();
   if (!(len > 0.0) || !a.allFinite()) return false;
   a /= len;

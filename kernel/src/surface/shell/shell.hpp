@@ -23,7 +23,8 @@ namespace plyfit {
 class Shell final : public DrapeSurface {
  public:
   /// Validates every face (Face::create) and the shared edges (each used by exactly two
-  /// faces); errors name the face or edge.
+  /// faces, their two sides within the sewing gap), orients the faces consistently and finds
+  /// the free boundary; errors name the face or edge.
   static Result<Shell> create(ShellData data, const Tolerances& tol = {});
 
   /// Face k (0 <= k < face_count()).
@@ -100,7 +101,8 @@ class Shell final : public DrapeSurface {
 
  private:
   Shell();
-  struct Topology;  // per face: boundary segments, their edges, inward sides, index
+  struct Topology;       // per face: boundary segments, their edges, inward sides (topology.hpp)
+  class BoundaryTracer;  // the free boundary loops and the Euler characteristic
   struct Edge {
     // Per use (two): face, and the (u, v) points and 3D points of its polyline.
     std::int32_t face[2] = {-1, -1};
@@ -109,12 +111,35 @@ class Shell final : public DrapeSurface {
     std::vector<int> seg[2];  // per polyline segment: the face's boundary segment
     double crease = 0.0;
   };
+
+  // The steps of create() (build.cpp, orient.cpp, boundary_loops.cpp).
+  Status check_tags(const ShellData& data) const;
+  Status build_faces(ShellData& data);
+  void build_topology(const std::vector<std::vector<TrimLoop>>& loops);
+  void measure();
+  Status build_edges(std::int32_t edge_count, double& gap);
+  bool trace_use(Edge& E, int u, std::int32_t k, std::int32_t e) const;
+  Status set_gap(double measured, double tolerance);
+  Status orient();
+  double agreement(std::int32_t e) const;
+  Vec3 inward_3d(std::int32_t face, std::int32_t e, const Vec2& uv, const SurfaceEval1& ev) const;
+  void measure_creases();
+  void trace_boundary();
+  void find_neighbours();
+  void add_neighbour(std::int32_t f, std::int32_t g, const Vec2& seed);
+
+  // Moving across shared edges (locate.cpp).
   SurfaceLocation locate_from(const SurfaceLocation& from, const Vec2& uv, std::int32_t except,
                               int depth) const;
+  bool outward(std::int32_t face, int si, const Vec2& r) const;
+  int first_crossing(std::int32_t face, const Vec2& p, const Vec2& q, std::int32_t except,
+                     double& t) const;
   Vec2 delta_between_faces(const SurfaceLocation& from, const SurfaceLocation& to) const;
   bool near_shared_edge(std::int32_t face, const Vec2& uv, int* segment) const;
   SurfaceLocation cross_edge(std::int32_t face, int segment, const Vec2& x, const Vec2& rest,
                              Vec2* rest_out) const;
+  Vec3 unfold(const Vec2& df, double inward, const SurfaceEval1& ef, std::int32_t g, int gs,
+              const SurfaceEval1& eg, const Vec2& rest) const;
 
   std::vector<std::unique_ptr<Face>> faces_;
   std::vector<int> source_;

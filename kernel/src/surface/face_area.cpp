@@ -1,0 +1,190 @@
+// Sampling a face and its area by adaptive Gauss quadrature.
+#include "surface/face.hpp"
+
+#include "geometry/bspline_basis.hpp"
+#include "geometry/numeric.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace plyfit {
+
+namespace {
+// Parameter values covering [a, b]: every knot span gets at least degree + 1 points (so
+// strongly non-uniform knot vectors are sampled where the geometry is), n in all at least.
+std::vector<double> span_samples(const std::vector<double>& knots, int degree, double a, double b,
+                                 int n) {
+  const auto br = detail::breakpoints(knots, a, b);
+  const int spans = std::max(1, static_cast<int>(br.size()) - 1);
+  const int per = std::max(degree + 1, (n + spans - 1) / spans);
+  std::vector<double> out;
+  for (int i = 0; i < spans; ++i) {
+    const double lo = br.size() > 1 ? br[i] : a, hi = br.size() > 1 ? br[i + 1] : b;
+    for (int k = 0; k < per; ++k) out.push_back(lo + (hi - lo) * k / per);
+  }
+  out.push_back(b);
+  return out;
+}
+}  // namespace
+
+std::vector<std::pair<Vec2, Vec3>> sample_face(const Face& face, int n) {
+  const auto& s = face.surface();
+  const auto& d = s.domain();
+  const auto us = span_samples(s.data().knots_u, s.data().degree_u, d.u0, d.u1, n);
+  const auto vs = span_samples(s.data().knots_v, s.data().degree_v, d.v0, d.v1, n);
+  std::vector<std::pair<Vec2, Vec3>> out;
+  out.reserve(us.size() * vs.size());
+  for (double u : us) {
+    for (double v : vs) {
+      const Vec2 uv(u, v);
+      if (!face.contains(uv)) continue;
+      const SurfaceEval1 e = face.eval1(uv);
+      if (e.ok) out.emplace_back(uv, e.p);
+    }
+  }
+  return out;
+}
+
+namespace {
+
+// Face::compute_area: relative tolerance of the adaptive quadrature, the depth of cell
+// splitting and a cap on surface evaluations (trims make the integrand jump, where splitting
+// converges only to first order).
+constexpr double kAreaRel = 1e-10;
+constexpr int kAreaMaxDepth = 12;
+constexpr long kAreaMaxEvaluations = 4'000'000;
+// Starting cells: each direction gets at least about kAreaStartPoints Gauss points in all
+// (kAreaStartSplitsMax splits of a knot span at most), kAreaTrimmedSplits times more on a
+// trimmed face.
+constexpr int kAreaStartPoints = 64;
+constexpr int kAreaStartSplitsMax = 16;
+constexpr int kAreaTrimmedSplits = 4;
+
+// A cell of the area quadrature: its rule's value on its four quarters, their sum and how far
+// that sum is from the rule on the whole cell.
+struct AreaCell {
+  double ua, ub, va, vb;
+  double q[4];
+  double fine, err;
+  int depth;
+};
+
+// Global adaptive quadrature of |Su x Sv| over the face: every cell knows its 5 x 5 Gauss
+// rule's value and its quarters'; the cell whose two disagree most is split until the
+// disagreements add up to the tolerance (a rational surface with extreme weights varies its
+// area element by orders of magnitude within a span; the trims make the integrand jump).
+template <class Inside>
+class AreaQuadrature {
+ public:
+  AreaQuadrature(const NurbsSurface& s, const Inside& inside, bool trimmed)
+      : s_(s), inside_(inside), trimmed_(trimmed) {}
+
+  // The starting cells: each knot span split into su x sv cells (more on a trimmed face).
+  void start(const std::vector<double>& bu, const std::vector<double>& bv) {
+    const int su = splits(bu), sv = splits(bv);
+    const int extra = trimmed_ ? kAreaTrimmedSplits : 1;
+    for (size_t i = 0; i + 1 < bu.size(); ++i)
+      for (int a = 0; a < su * extra; ++a) {
+        const double ua = bu[i] + (bu[i + 1] - bu[i]) * a / (su * extra);
+        const double ub = bu[i] + (bu[i + 1] - bu[i]) * (a + 1) / (su * extra);
+        for (size_t j = 0; j + 1 < bv.size(); ++j)
+          for (int b = 0; b < sv * extra; ++b) {
+            const double va = bv[j] + (bv[j + 1] - bv[j]) * b / (sv * extra);
+            const double vb = bv[j] + (bv[j + 1] - bv[j]) * (b + 1) / (sv * extra);
+            heap_.push_back(make(ua, ub, va, vb, rule(ua, ub, va, vb), 0));
+            area_ += heap_.back().fine;
+            err_ += heap_.back().err;
+          }
+      }
+  }
+
+  // Splits the worst cell until the error is within the tolerance (or the budget is spent).
+  double refine() {
+    std::make_heap(heap_.begin(), heap_.end(), worse);
+    while (!heap_.empty() && err_ > kAreaRel * std::abs(area_) && budget_ > 0) {
+      std::pop_heap(heap_.begin(), heap_.end(), worse);
+      const AreaCell c = heap_.back();
+      heap_.pop_back();
+      area_ -= c.fine;
+      err_ -= c.err;
+      if (c.depth >= kAreaMaxDepth) {  // kept as it is, its error counted no more
+        area_ += c.fine;
+        continue;
+      }
+      const double um = 0.5 * (c.ua + c.ub), vm = 0.5 * (c.va + c.vb);
+      const AreaCell kids[4] = {make(c.ua, um, c.va, vm, c.q[0], c.depth + 1),
+                                make(um, c.ub, c.va, vm, c.q[1], c.depth + 1),
+                                make(c.ua, um, vm, c.vb, c.q[2], c.depth + 1),
+                                make(um, c.ub, vm, c.vb, c.q[3], c.depth + 1)};
+      for (const AreaCell& k : kids) {
+        area_ += k.fine;
+        err_ += k.err;
+        heap_.push_back(k);
+        std::push_heap(heap_.begin(), heap_.end(), worse);
+      }
+    }
+    return area_;
+  }
+
+ private:
+  static bool worse(const AreaCell& x, const AreaCell& y) { return x.err < y.err; }
+
+  // Splits of each knot span per direction: about kAreaStartPoints Gauss points in all.
+  static int splits(const std::vector<double>& breaks) {
+    return std::clamp(kAreaStartPoints / (5 * static_cast<int>(breaks.size() - 1)) + 1, 1,
+                      kAreaStartSplitsMax);
+  }
+
+  // The 5 x 5 Gauss rule on the cell [ua, ub] x [va, vb], points off the trims left out.
+  double rule(double ua, double ub, double va, double vb) {
+    double cell = 0.0;
+    for (int gi = 0; gi < 5; ++gi) {
+      const double u = 0.5 * (ua + ub) + 0.5 * (ub - ua) * detail::kGauss5X[gi];
+      for (int gj = 0; gj < 5; ++gj) {
+        const double v = 0.5 * (va + vb) + 0.5 * (vb - va) * detail::kGauss5X[gj];
+        if (trimmed_ && !inside_(Vec2(u, v))) continue;
+        const SurfaceEval1 e = s_.eval1(u, v);
+        --budget_;
+        if (e.ok) cell += detail::kGauss5W[gi] * detail::kGauss5W[gj] * e.du.cross(e.dv).norm();
+      }
+    }
+    return cell * 0.25 * (ub - ua) * (vb - va);
+  }
+
+  AreaCell make(double ua, double ub, double va, double vb, double whole, int depth) {
+    const double um = 0.5 * (ua + ub), vm = 0.5 * (va + vb);
+    AreaCell c{
+        ua,
+        ub,
+        va,
+        vb,
+        {rule(ua, um, va, vm), rule(um, ub, va, vm), rule(ua, um, vm, vb), rule(um, ub, vm, vb)},
+        0.0,
+        0.0,
+        depth};
+    c.fine = c.q[0] + c.q[1] + c.q[2] + c.q[3];
+    c.err = std::abs(c.fine - whole);
+    return c;
+  }
+
+  const NurbsSurface& s_;
+  const Inside& inside_;
+  bool trimmed_;
+  long budget_ = kAreaMaxEvaluations;
+  std::vector<AreaCell> heap_;
+  double area_ = 0.0, err_ = 0.0;
+};
+
+}  // namespace
+
+double Face::compute_area() const {
+  const auto& s = *surface_;
+  const auto& d = s.domain();
+  const auto inside = [this](const Vec2& uv) { return inside_trims(uv); };
+  AreaQuadrature<decltype(inside)> q(s, inside, !loops_.empty());
+  q.start(detail::breakpoints(s.data().knots_u, d.u0, d.u1),
+          detail::breakpoints(s.data().knots_v, d.v0, d.v1));
+  return q.refine();
+}
+
+}  // namespace plyfit
