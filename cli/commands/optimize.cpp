@@ -183,6 +183,11 @@ std::optional<Scene> load_scene(const std::string& path) {
   if (!surface) return fail(surface.error(), job->name_input);
   // The search moves the seed over one face's (u, v); a shell's seed would also choose a face.
   if (surface->face_count() != 1) return fail(Error{ErrorCode::kOptimizeShell, path}, {});
+  // The search varies the scene's problem on the mold (the seed's, turned by the ply angle).
+  auto problem = job_problem(*job, *surface);
+  if (!problem) return fail(problem.error(), job->name_input);
+  job->problem = *problem;
+  job->problem_on_mold = true;
   return Scene{std::move(job).value(), std::move(surface).value()};
 }
 

@@ -38,10 +38,21 @@ std::string resolve(const Options& o, const std::string& key, const std::string&
   return (fs::path(d->second) / p).lexically_normal().string();
 }
 
+// The start keys of the paper, which a seed replaces (start2d stays: the seed's place in the
+// ply).
+constexpr const char* kPaperStartKeys[] = {"base2d", "sweep2d", "start3d", "base-normal",
+                                           "sweep3d"};
+
 Status required_keys(const Options& o, bool need_output) {
-  for (const char* k :
-       {"mold", "start2d", "base2d", "sweep2d", "start3d", "base-normal", "sweep3d"})
-    if (!o.given(k)) return o.missing(k);
+  if (o.given("seed")) {
+    for (const char* k : kPaperStartKeys)
+      if (o.given(k)) return Error{ErrorCode::kOptionsExclusive, k, {"seed", std::string(k)}};
+    if (!o.given("mold")) return o.missing("mold");
+  } else {
+    for (const char* k :
+         {"mold", "start2d", "base2d", "sweep2d", "start3d", "base-normal", "sweep3d"})
+      if (!o.given(k)) return o.missing(k);
+  }
   if (need_output && !o.given("output")) return o.missing("output");
   return ok_status();
 }
@@ -114,9 +125,12 @@ Status read_ply(const Options& o, PlySpec& ply) {
     if (!(v->x() > 0 && v->y() > 0)) return Error{ErrorCode::kPlySizeNotPositive, "ply"};
     ply.rect = *v;
   }
-  auto start = o.vec2("start2d");
-  if (!start) return start.error();
-  ply.start = *start;
+  if (o.given("start2d")) {
+    auto start = o.vec2("start2d");
+    if (!start) return start.error();
+    ply.start = *start;
+  }
+  if (o.given("seed")) return ok_status();  // directions follow from the seed on the mold
   auto base = o.vec2("base2d");
   if (!base) return base.error();
   if (!(base->norm() > 0)) return Error{ErrorCode::kBaseDirZero, "base2d"};
@@ -132,6 +146,22 @@ Status read_ply(const Options& o, PlySpec& ply) {
 // The 3D initial conditions, and the sweeps checked as Ply::create checks them (drape() would
 // refuse them later, after the import).
 Status read_start(const Options& o, DrapeJob& job) {
+  auto rosette = o.vec3("rosette");
+  if (!rosette) return rosette.error();
+  if (!(rosette->norm() > 0)) return Error{ErrorCode::kRosetteZero, "rosette"};
+  job.rosette = *rosette;
+  job.rosette_given = o.given("rosette");
+  const std::string curve = *o.text("seed-curve");
+  if (curve == "geodesic")
+    job.problem.seed_curve = SeedCurve::kGeodesic;
+  else if (curve != "plane")
+    return Error{ErrorCode::kUnknownValue, "seed-curve", {curve, std::string("plane, geodesic")}};
+  if (o.given("seed")) {
+    auto seed = o.vec3("seed");
+    if (!seed) return seed.error();
+    job.seed = *seed;
+    return ok_status();
+  }
   auto start = o.vec3("start3d");
   if (!start) return start.error();
   job.problem.start = *start;

@@ -5,6 +5,7 @@
 
 #include "commands/command_line.hpp"
 
+#include <plyfit/exporters/exporters.hpp>
 #include <plyfit/exporters/messages.hpp>
 #include <plyfit/kernel/drape.hpp>
 #include <plyfit/kernel/optimize.hpp>
@@ -46,7 +47,12 @@ struct DrapeJob {
   std::optional<double> min_width;
   double warn_angle_deg = 25.0;
   std::string ply_name = "ply";
-  double ply_angle_deg = 0.0;      ///< the ply's fibre direction on the part (labels)
+  double ply_angle_deg = 0.0;    ///< --ply-angle: the warp from the rosette (degrees)
+  std::optional<Vec3> seed;      ///< --seed: the ply defined by seed, rosette and angle
+  Vec3 rosette = Vec3::UnitX();  ///< --rosette: the 0 deg direction
+  bool rosette_given = false;    ///< else, with the start keys, their warp is 0 deg
+  /// `problem` is already the problem on the mold (job_problem() applied: seed, angle).
+  bool problem_on_mold = false;
   std::string material = "woven";  ///< name in the materials table
   std::string material_label;      ///< the material's label
   std::string materials_file;      ///< materials table file; empty: plyfit's own
@@ -85,6 +91,13 @@ struct JobOutcome {
 /// side applied; `run`, if given, gets what the report says of the mold. run_job's import,
 /// shared with `plyfit optimize` (which drapes one surface many times).
 Result<MoldSurface> load_surface(const DrapeJob& job, exporters::RunInfo* run = nullptr);
+/// The drape problem of a job on its mold: from --seed, --rosette and --ply-angle, or the start
+/// keys turned by --ply-angle (ply_setup.cpp).
+Result<DrapeProblem> job_problem(const DrapeJob& job, const MoldSurface& surface);
+/// What report.json's `ply` and the labels say of the ply a drape laid: the angle measured on
+/// the drape from the rosette, whatever keys made it.
+Result<exporters::PlyReport> ply_report(const DrapeJob& job, const MoldSurface& surface,
+                                        const DrapeResult& result);
 
 /// Runs a job end to end; outputs are written atomically into job.outdir. `cancel` stops
 /// the drape (no files are written then). Progress goes to stderr when it is a terminal and

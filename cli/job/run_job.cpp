@@ -13,7 +13,6 @@ namespace plyfit::cli {
 
 namespace {
 
-
 using Clock = std::chrono::steady_clock;
 
 double ms_since(Clock::time_point t) {
@@ -51,6 +50,7 @@ exporters::ExportOptions export_options(const DrapeJob& job) {
 
 // The drape, with the node count on stderr while it runs when that is a terminal.
 Result<DrapeResult> drape_with_progress(const MoldSurface& surface, const DrapeJob& job,
+                                        const DrapeProblem& problem,
                                         const std::atomic<bool>* cancel, bool progress) {
   DrapeOptions opt = job.drape;
   opt.cancel = cancel;
@@ -60,7 +60,7 @@ Result<DrapeResult> drape_with_progress(const MoldSurface& surface, const DrapeJ
       std::cerr << "\rplyfit: " << n << " nodes solved" << std::flush;
     };
   }
-  auto res = drape(surface, job.problem, opt);
+  auto res = drape(surface, problem, opt);
   if (tty) std::cerr << "\r\033[K" << std::flush;
   return res;
 }
@@ -93,7 +93,9 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   const MoldSurface surface = std::move(loaded).value();
   run.import_ms = ms_since(t0);
 
-  auto res = drape_with_progress(surface, job, cancel, progress);
+  auto problem = job_problem(job, surface);
+  if (!problem) return problem.error();
+  auto res = drape_with_progress(surface, job, *problem, cancel, progress);
   if (!res) return res.error();
   if (cancel && cancel->load()) return Error{ErrorCode::kCancelled};
   run.drape_ms = res->drape_ms;
@@ -101,8 +103,12 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   fo.min_width = job.min_width;
   const FlatPattern flat = flat_pattern(surface, *res, fo);
   run.total_ms = ms_since(t0);
-  const exporters::ExportOptions eo = export_options(job);
-  const exporters::ExportContext ctx{job.problem, *res, surface, &flat, run, eo};
+  exporters::ExportOptions eo = export_options(job);
+  auto ply = ply_report(job, surface, *res);
+  if (!ply) return ply.error();
+  eo.ply = *ply;
+  eo.ply_angle_deg = ply->laid_angle_deg;  // the label says what the drape laid
+  const exporters::ExportContext ctx{*problem, *res, surface, &flat, run, eo};
   if (!job.outdir.empty())
     if (auto s = exporters::write_outputs(ctx, job.outdir, job.outputs); !s) return s.error();
   JobOutcome out = outcome_of(job, surface, *res, flat);

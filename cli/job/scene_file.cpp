@@ -83,6 +83,12 @@ void mold_and_ply_values(const DrapeJob& job, SceneValues& v) {
   }
   if (p.ply.rect) v["ply"] = {fmt(*p.ply.rect)};
   v["start2d"] = {fmt(p.ply.start)};
+  v["rosette"] = {fmt(job.rosette)};
+  v["seed-curve"] = {to_string(p.seed_curve)};
+  if (job.seed) {  // the directions follow from the seed on the mold
+    v["seed"] = {fmt(*job.seed)};
+    return;
+  }
   v["base2d"] = {fmt(p.ply.base_dir)};
   for (const auto& w : p.ply.sweeps) v["sweep2d"].push_back(fmt(w));
   v["start3d"] = {fmt(p.start)};

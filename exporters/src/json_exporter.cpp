@@ -116,6 +116,7 @@ nlohmann::json inputs_json(const ExportContext& ctx) {
   in["base2d"] = vec(p.ply.base_dir);
   in["sweep2d"] = vecs(p.ply.sweeps);
   in["start3d"] = vec(p.start);
+  in["seed_curve"] = to_string(p.seed_curve);
   in["base_normal"] = vec(p.base_normal);
   in["sweep3d"] = vecs(p.sweeps);
   in["lock_angle_deg"] = ctx.run.lock_angle_deg;
@@ -134,6 +135,23 @@ nlohmann::json inputs_json(const ExportContext& ctx) {
   in["dxf_threads"] = ctx.options.dxf_threads;
   in["outputs"] = ctx.run.outputs;
   return in;
+}
+
+// The ply as laid: how it was defined (seed, rosette, angle, or the start keys) and its frame
+// at the start, measured on the drape.
+nlohmann::json ply_json(const PlyReport& p) {
+  using nlohmann::json;
+  return {{"defined_by", p.from_seed ? "seed" : "start"},
+          {"seed", p.from_seed ? vec(p.seed) : json(nullptr)},
+          {"rosette", vec(p.rosette)},
+          {"angle_deg", p.angle_deg},
+          {"laid_angle_deg", p.laid_angle_deg},
+          {"seed_curve", p.seed_curve},
+          {"point", vec(p.point)},
+          {"normal", vec(p.normal)},
+          {"zero_direction", vec(p.zero)},
+          {"fibre_direction", vec(p.warp)},
+          {"weft_direction", vec(p.weft)}};
 }
 
 // The mold: its unit, the surface draped (one face, or a shell's faces together), then face by
@@ -258,6 +276,7 @@ std::string report_json(const ExportContext& ctx) {
                 {"uv", vec(r.start_at.uv)},
                 {"moved", r.start_moved}};
   j["base_tangent"] = vec(r.base_tangent);
+  if (ctx.options.ply) j["ply"] = ply_json(*ctx.options.ply);
   j["nodes"] = nodes_json(r.metrics);
   add_metrics(j, r.metrics, std::min(ctx.problem.ply.d_weft, ctx.problem.ply.d_warp));
   if (ctx.flat) add_flat_outline(j, *ctx.flat);

@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,17 +41,34 @@ struct RunInfo {
   std::vector<std::string> warnings;  ///< import warnings etc.
 };
 
+/// The ply a drape laid (report.json `ply`): how it was defined and the frame measured on the
+/// drape at its start.
+struct PlyReport {
+  bool from_seed = false;        ///< defined by seed, rosette and angle (else the start keys)
+  Vec3 seed = Vec3::Zero();      ///< the seed as given (from_seed)
+  Vec3 rosette = Vec3::UnitX();  ///< the 0 deg direction as given
+  double angle_deg = 0.0;        ///< the ply angle as given
+  std::string seed_curve = "plane";
+  Vec3 point = Vec3::Zero();    ///< the start (the seed on the mold)
+  Vec3 normal = Vec3::UnitZ();  ///< the outward normal there
+  Vec3 zero = Vec3::UnitX();    ///< the rosette's 0 deg direction on the surface there
+  Vec3 warp = Vec3::UnitY();    ///< the warp fibres there, as laid
+  Vec3 weft = Vec3::UnitX();    ///< the weft fibres there, as laid
+  double laid_angle_deg = 0.0;  ///< the warp's angle from `zero`, as laid
+};
+
 /// Options of the writers.
 struct ExportOptions {
   /// Cells whose shear exceeds this (radians) go to the DXF SHEAR_WARN layer and are flagged
   /// in the pictures; default: 25 degrees, the warning angle of plyfit's default material.
   double warn_shear = 0.43633231299858238;
-  bool dxf_threads = false;    ///< THREADS layer in flat.dxf (a cutter would cut it)
-  int curve_degree = 1;        ///< net.step thread curves: 1 (polyline) or 3 (interpolated)
-  Vec3 view = Vec3(1, 1, 1);   ///< drape.svg view direction (towards the viewer)
-  double ply_angle_deg = 0.0;  ///< the ply's fibre direction on the part (labels, report)
-  std::string material_label;  ///< the material's label text; empty: RunInfo::material
-  std::string materials_file;  ///< the materials table used; empty: plyfit's own
+  bool dxf_threads = false;      ///< THREADS layer in flat.dxf (a cutter would cut it)
+  int curve_degree = 1;          ///< net.step thread curves: 1 (polyline) or 3 (interpolated)
+  Vec3 view = Vec3(1, 1, 1);     ///< drape.svg view direction (towards the viewer)
+  double ply_angle_deg = 0.0;    ///< the ply's fibre direction on the part (labels, report)
+  std::optional<PlyReport> ply;  ///< the ply as laid (report.json `ply`); none: not written
+  std::string material_label;    ///< the material's label text; empty: RunInfo::material
+  std::string materials_file;    ///< the materials table used; empty: plyfit's own
 };
 
 /// Everything a writer may use.

@@ -1,0 +1,109 @@
+// plyfit drape --seed --rosette --ply-angle (--seed-curve): the ply a composites engineer
+// defines, through the binary: the drape, flat.dxf's label and report.json agree.
+
+#include <nlohmann/json.hpp>
+
+#include <catch2/catch.hpp>
+
+#include "cli/cli_util.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+using namespace plyfit::test;
+using nlohmann::json;
+
+namespace {
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+json drape_report(const std::string& flags, const Scratch& tmp) {
+  const std::string out = tmp.file("out");
+  const CliRun r =
+      plyfit_run("drape " + flags + " --outputs json,dxf --quiet -o '" + out + "'", tmp);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  return json::parse(slurp(out + "/report.json"));
+}
+}  // namespace
+
+TEST_CASE(
+    "cli: a plate ply at 0/45/90/-45 from seed and rosette has its outline turned by the angle") {
+  for (double deg : {0.0, 45.0, 90.0, -45.0}) {
+    CAPTURE(deg);
+    Scratch tmp("ply_definition");
+    const json j = drape_report("--mold builtin:plate --seed 50,30,0 --rosette 1,0,0 --ply-angle " +
+                                    std::to_string(deg) + " --spacing 1",
+                                tmp);
+    CHECK(j["status"] == "ok");
+    CHECK(j["ply"]["defined_by"] == "seed");
+    CHECK(j["ply"]["laid_angle_deg"].get<double>() == Approx(deg).margin(1e-9));
+    const double a = deg * kDeg;
+    const auto w = j["ply"]["fibre_direction"];
+    CHECK(w[0].get<double>() == Approx(std::cos(a)).margin(1e-12));
+    CHECK(w[1].get<double>() == Approx(std::sin(a)).margin(1e-12));
+    // The outline's extent in ply coordinates: 60 x 100 turned by the angle (the warp, ply y,
+    // along X at 0 deg).
+    double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+    for (const auto& loop : j["flat_outline_exact"]["loops"])
+      for (const auto& p : loop["points"])
+        for (int k = 0; k < 2; ++k) {
+          lo[k] = std::min(lo[k], p[k].get<double>());
+          hi[k] = std::max(hi[k], p[k].get<double>());
+        }
+    const double c = std::abs(std::cos(a)), s = std::abs(std::sin(a));
+    CHECK(hi[0] - lo[0] == Approx(100 * s + 60 * c).margin(1e-9));
+    CHECK(hi[1] - lo[1] == Approx(100 * c + 60 * s).margin(1e-9));
+    // flat.dxf's label says the same angle.
+    const std::string dxf = slurp(tmp.file("out/flat.dxf"));
+    char label[64];
+    std::snprintf(label, sizeof label, "PLY ANGLE: %g", deg);
+    CHECK(dxf.find(label) != std::string::npos);
+  }
+}
+
+TEST_CASE("cli: the start flags with --ply-angle lay their drape turned by it") {
+  Scratch tmp("ply_definition");
+  const json j = drape_report(
+      "--mold builtin:plate --spacing 1 --start2d 0,0 --base2d 1,0 --sweep2d 0,1 --sweep2d 0,-1 "
+      "--start3d 50,30,0 --base-normal 0,1,0 --sweep3d 0,1,0 --sweep3d 0,-1,0 --ply-angle 30 "
+      "--rosette 1,0,0",
+      tmp);
+  // Base path along +X is ply +x: the warp is +Y (90 deg from X), turned by 30: 120 deg.
+  CHECK(j["ply"]["defined_by"] == "start");
+  CHECK(j["ply"]["laid_angle_deg"].get<double>() == Approx(120.0).margin(1e-9));
+  CHECK(j["base_tangent"][0].get<double>() == Approx(std::cos(30 * kDeg)).margin(1e-12));
+}
+
+TEST_CASE("cli: a geodesic seed curve is echoed and checked in report.json") {
+  Scratch tmp("ply_definition");
+  const json j = drape_report(
+      "--mold builtin:cylinder:R=10,H=40,angle=180 --seed 0,10,20 --rosette 0,0,1 "
+      "--ply-angle 30 --spacing 0.5 --seed-curve geodesic",
+      tmp);
+  CHECK(j["inputs"]["seed_curve"] == "geodesic");
+  CHECK(j["ply"]["seed_curve"] == "geodesic");
+  CHECK(j["residual"]["base_plane_max_rel"].get<double>() < 1e-10);
+  CHECK(j["shear_max_deg"].get<double>() < 0.01);
+}
+
+TEST_CASE("cli: bad ply definitions are one-line errors naming the option") {
+  Scratch tmp("ply_definition");
+  const std::string base = "drape --mold builtin:plate --spacing 1 -o '" + tmp.file("o") + "' ";
+  struct Case {
+    std::string flags, option, code;
+  };
+  for (const Case& c : {Case{"--seed 50,30,900", "--seed", "seed_off_mold"},
+                        Case{"--seed 50,30,0 --rosette 0,0,1", "--rosette", "rosette_along_normal"},
+                        Case{"--seed 50,30,0 --start3d 1,2,3", "--start3d", "options_exclusive"},
+                        Case{"--seed 50,30,0 --seed-curve spiral", "--seed-curve", "unknown_value"},
+                        Case{"--seed 50,30,0 --ply-angle 200", "--ply-angle", "out_of_range"}}) {
+    CAPTURE(c.flags);
+    const CliRun r = plyfit_run(base + c.flags, tmp);
+    CHECK(r.code != 0);
+    CHECK(r.err.find(c.option) != std::string::npos);
+    CHECK(r.err.find("[" + c.code + "]") != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
+}
