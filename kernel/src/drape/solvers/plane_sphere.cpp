@@ -245,53 +245,69 @@ SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const Surfa
   return PlaneSphere(s, x0, at0, e0, n0, pn, t, rho, st, trace).run();
 }
 
-}  // namespace solvers
+namespace {
 
-SolveResult solve_base_path(const DrapeSurface& s, const BasePathStep& step,
-                            const SolverSettings& st) {
+// Solvers 1 and 3 from the known point x0 (at at0), a step of rho: `plane` gives the plane's
+// unit normal pn and the unit tangent t from the face normal n0 there, or why the step is
+// invalid.
+template <class Plane>
+SolveResult from_known_point(const DrapeSurface& s, const Vec3& x0, const SurfaceLocation& at0,
+                             double rho, const SolverSettings& st, Plane&& plane) {
   SolveResult bad;
-  const Vec3 pn = step.plane_normal.normalized();
-  const Vec3 fwd = step.forward.normalized();
-  if (!pn.allFinite() || !fwd.allFinite() || !(step.distance > 0.0)) {
-    bad.reason = "invalid base-path step";
-    return bad;
-  }
-  const SurfaceEval1 e0 = s.eval1(step.from_at);
+  const SurfaceEval1 e0 = s.eval1(at0);
   if (!e0.ok) {
     bad.reason = "the known point is not on the surface";
     return bad;
   }
-  const Vec3 n0 = solvers::face_normal(s, step.from_at, e0);
-  const Vec3 t = solvers::base_path_tangent(n0, pn, fwd);
-  SolveResult r = solvers::plane_sphere_core(s, step.from, step.from_at, e0, n0, pn, t,
-                                             step.distance, st, true);
+  const Vec3 n0 = face_normal(s, at0, e0);
+  Vec3 pn, t;
+  if (const char* why = plane(n0, pn, t)) {
+    bad.reason = why;
+    return bad;
+  }
+  SolveResult r = plane_sphere_core(s, x0, at0, e0, n0, pn, t, rho, st, true);
   ++r.evaluations;
   return r;
 }
 
+}  // namespace
+
+}  // namespace solvers
+
+SolveResult solve_base_path(const DrapeSurface& s, const BasePathStep& step,
+                            const SolverSettings& st) {
+  const Vec3 pn = step.plane_normal.normalized();
+  const Vec3 fwd = step.forward.normalized();
+  if (!pn.allFinite() || !fwd.allFinite() || !(step.distance > 0.0)) {
+    SolveResult bad;
+    bad.reason = "invalid base-path step";
+    return bad;
+  }
+  return solvers::from_known_point(s, step.from, step.from_at, step.distance, st,
+                                   [&](const Vec3& n0, Vec3& plane, Vec3& t) -> const char* {
+                                     plane = pn;
+                                     t = solvers::base_path_tangent(n0, pn, fwd);
+                                     return nullptr;
+                                   });
+}
+
 SolveResult solve_plane_sphere(const DrapeSurface& s, const PlaneSphereStep& step,
                                const SolverSettings& st) {
-  SolveResult bad;
   if (!(step.radius > 0.0) || !step.direction.allFinite()) {
+    SolveResult bad;
     bad.reason = "invalid plane-sphere step";
     return bad;
   }
-  const SurfaceEval1 e0 = s.eval1(step.center_at);
-  if (!e0.ok) {
-    bad.reason = "the known point is not on the surface";
-    return bad;
-  }
-  const Vec3 n = solvers::face_normal(s, step.center_at, e0);
-  Vec3 t = step.direction - step.direction.dot(n) * n;
-  if (!(t.norm() > 0.0)) {
-    bad.reason = "the step direction is normal to the surface";
-    return bad;
-  }
-  t.normalize();
-  SolveResult r = solvers::plane_sphere_core(s, step.center, step.center_at, e0, n, n.cross(t), t,
-                                             step.radius, st, true);
-  ++r.evaluations;
-  return r;
+  // The plane through the normal and the step's direction.
+  return solvers::from_known_point(s, step.center, step.center_at, step.radius, st,
+                                   [&](const Vec3& n, Vec3& plane, Vec3& t) -> const char* {
+                                     t = step.direction - step.direction.dot(n) * n;
+                                     if (!(t.norm() > 0.0))
+                                       return "the step direction is normal to the surface";
+                                     t.normalize();
+                                     plane = n.cross(t);
+                                     return nullptr;
+                                   });
 }
 
 }  // namespace plyfit

@@ -8,11 +8,14 @@
 #include <limits>
 #include <optional>
 
-namespace plyfit {
-
-namespace solvers {
+namespace plyfit::solvers {
 
 namespace {
+
+// Eq. (12) with gamma_max = pi - gamma_min.
+bool past_shear_limit(double angle, double gamma_min) {
+  return angle < gamma_min || angle > kPi - gamma_min;
+}
 
 // The fallback across creases samples this many points on each quarter of the spheres'
 // circle of intersection (the requested side's half first, then the other half: where the
@@ -31,11 +34,6 @@ constexpr double kCircleNearRel = 1e-3;
 // b, while that mean (of two unit normals) is at least this long: the normals turn by less
 // than about 174 degrees between a and b.
 constexpr double kMeanNormalMin = 0.1;
-
-// Eq. (12) with gamma_max = pi - gamma_min.
-bool past_shear_limit(double angle, double gamma_min) {
-  return angle < gamma_min || angle > kPi - gamma_min;
-}
 
 // The residual of a point on the sphere of radius ra about a and on that of radius rb about b.
 struct TwoSphereResidual {
@@ -441,7 +439,9 @@ class TwoSpheres {
 
 }  // namespace
 
-}  // namespace solvers
+}  // namespace plyfit::solvers
+
+namespace plyfit {
 
 Vec2 two_sphere_guess(const DrapeSurface& s, const SurfaceLocation& a_at,
                       const SurfaceLocation& a_prev_at, const Vec3& a, const Vec3& a_prev,
