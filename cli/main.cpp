@@ -12,21 +12,6 @@
 #include <set>
 #include <string>
 
-namespace plyfit::cli {
-
-std::vector<Command>& commands() {
-  static std::vector<Command> list;
-  return list;
-}
-
-void print_error(const std::string& message) {
-  std::string one_line = message;
-  std::replace(one_line.begin(), one_line.end(), '\n', ' ');
-  std::cerr << "plyfit: error: " << one_line << "\n";
-}
-
-}  // namespace plyfit::cli
-
 namespace {
 
 void usage(std::ostream& os) {
@@ -83,19 +68,19 @@ int run(int argc, char** argv) {
       return c.run(args);
     } catch (const std::exception& e) {
       // Only broken internal invariants throw; still one line and a non-zero exit.
-      print_error(std::string("internal error: ") + e.what());
+      print_error(plyfit::Error{plyfit::ErrorCode::kInternal, "", {std::string(e.what())}});
       return kExitFailure;
     }
   }
-  print_error("unknown command '" + name + "' (try plyfit --help)");
+  print_error(plyfit::Error{plyfit::ErrorCode::kUnknownCommand, "", {name}});
   return kExitUsage;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  // Benchmarks: PLYFIT_DEBUG_PRELOAD_OCCT=1 loads the OpenCASCADE module at the start, as
-  // linking OpenCASCADE did before it was loaded lazily (plyfit-bench small-jobs).
+  // Benchmarks: PLYFIT_DEBUG_PRELOAD_OCCT=1 loads the OpenCASCADE module at the start, the cost
+  // every job would pay if it were not loaded on first use (plyfit-bench small-jobs).
   if (const char* p = std::getenv("PLYFIT_DEBUG_PRELOAD_OCCT"); p && *p == '1')
     static_cast<void>(plyfit::occt::occt_module_symbol("plyfit_occt_importers"));
   const int code = run(argc, argv);

@@ -4,11 +4,8 @@
 
 #include "commands/commands.hpp"
 
-#include <plyfit/exporters/messages.hpp>
 #include <plyfit/exporters/mold_writer.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
-
-#include <boost/program_options.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -18,88 +15,80 @@
 namespace plyfit::cli {
 namespace {
 
-namespace po = boost::program_options;
+const OptionTable& sample_options() {
+  static const OptionTable table = {
+      help_option(),
+      output_option("FILE", "mold file to write (.step/.stp or .iges/.igs)"),
+      {"format", "F", "", "step or iges, overriding the extension"},
+      {"name", "TEXT", "", "face name written into the file (default: NAME)"},
+      {"mold", "NAME", "", "built-in mold, as for --mold builtin:NAME"},
+  };
+  return table;
+}
 
-int run_sample(const std::vector<std::string>& args) {
-  po::options_description opts("plyfit sample NAME[:key=value,...] -o FILE [options]");
-  opts.add_options()("help,h", "show this help")("output,o", po::value<std::string>(),
-                                                 "mold file to write (.step/.stp or .iges/.igs)")(
-      "format", po::value<std::string>(), "step or iges, overriding the extension")(
-      "name", po::value<std::string>(), "face name written into the file (default: NAME)")(
-      "mold", po::value<std::string>(), "built-in mold, as for --mold builtin:NAME");
-  po::positional_options_description pos;
-  pos.add("mold", 1);
-  po::variables_map vm;
-  try {
-    po::store(po::command_line_parser(args).options(opts).positional(pos).run(), vm);
-    po::notify(vm);
-  } catch (const po::error& e) {
-    print_error(std::string("sample: ") + e.what());
-    return kExitUsage;
+const CommandHelp kSampleHelp = {
+    "plyfit sample NAME[:key=value,...] -o FILE [options]",
+    "Writes a built-in mold as a one-face STEP or IGES file (exact NURBS surface,\n"
+    "trims and holes as exact curves on it, the face normal as plyfit's, 17\n"
+    "significant digits, a fixed header time stamp so that the bytes depend only\n"
+    "on the inputs), or a built-in shell as one file of several faces sewn along\n"
+    "their shared edges.\n",
+    [](std::ostream& os) {
+      os << "\nbuilt-in molds (see plyfit drape --help for their parameters):";
+      for (const auto& b : builtin_molds()) os << " " << b.name;
+      os << "\nbuilt-in shells:";
+      for (const auto& b : builtin_shells()) os << " " << b.name;
+      os << "\n";
+    }};
+
+// The format a mold file is written in: --format, else the file's extension; one the writer
+// does not know is a bad command line.
+Result<std::string> mold_format(const std::string& path, std::string format) {
+  if (format.empty()) {
+    format = std::filesystem::path(path).extension().string();
+    if (!format.empty()) format.erase(0, 1);
+    std::transform(format.begin(), format.end(), format.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    if (format == "stp") format = "step";
+    if (format == "igs") format = "iges";
   }
-  if (vm.count("help")) {
-    std::cout << "Writes a built-in mold as a one-face STEP or IGES file (exact NURBS surface,\n"
-                 "trims and holes as exact curves on it, the face normal as plyfit's, 17\n"
-                 "significant digits, a fixed header time stamp so that the bytes depend only\n"
-                 "on the inputs), or a built-in shell as one file of several faces sewn along\n"
-                 "their shared edges.\n\n"
-              << opts << "\nbuilt-in molds (see plyfit drape --help for their parameters):";
-    for (const auto& b : builtin_molds()) std::cout << " " << b.name;
-    std::cout << "\nbuilt-in shells:";
-    for (const auto& b : builtin_shells()) std::cout << " " << b.name;
-    std::cout << "\n";
-    return kExitOk;
-  }
-  if (!vm.count("mold") || !vm.count("output")) {
-    print_error("sample: usage: plyfit sample NAME[:key=value,...] -o FILE [--format step|iges]");
-    return kExitUsage;
-  }
-  std::string spec_text = vm["mold"].as<std::string>();
-  if (spec_text.rfind("builtin:", 0) == 0) spec_text = spec_text.substr(8);
-  auto spec = parse_builtin_spec(spec_text);
-  if (!spec) {
-    print_error("sample: " + exporters::describe(spec.error()));
-    return kExitUsage;
-  }
+  const auto known = exporters::mold_formats();
+  if (std::find(known.begin(), known.end(), format) == known.end())
+    return Error{ErrorCode::kUnknownMoldFormat, path, {format}};
+  return format;
+}
+
+// Writes the built-in mold or shell `spec` (bad command lines: 2; a failed write: 1).
+int write_sample(const std::string& spec_text, const std::string& path,
+                 exporters::MoldWriteOptions wo) {
+  auto spec =
+      parse_builtin_spec(spec_text.rfind("builtin:", 0) == 0 ? spec_text.substr(8) : spec_text);
+  if (!spec) return error_exit(kExitUsage, spec.error());
+  if (wo.name.empty()) wo.name = spec->first;
+  const bool shell_mold = is_builtin_shell(spec->first);
   Result<ShellData> shell = ShellData{};
   Result<BuiltinFace> face = BuiltinFace{};
-  if (is_builtin_shell(spec->first))
+  if (shell_mold)
     shell = builtin_shell(spec->first, spec->second);
   else
     face = builtin_face(spec->first, spec->second);
-  if (!shell || !face) {
-    print_error("sample: " + exporters::describe(shell ? face.error() : shell.error()));
-    return kExitUsage;
-  }
+  if (!shell || !face) return error_exit(kExitUsage, shell ? face.error() : shell.error());
+  if (auto f = mold_format(path, wo.format); !f) return error_exit(kExitUsage, f.error());
+  const Status written = shell_mold ? exporters::write_shell(*shell, path, wo)
+                                    : exporters::write_mold(*face, path, wo);
+  return written ? kExitOk : error_exit(kExitFailure, written.error());
+}
+
+int run_sample(const std::vector<std::string>& args) {
+  const OptionTable& table = sample_options();
+  const Arguments a = read_arguments(args, table, {"mold", "built-in mold"}, kSampleHelp);
+  if (a.exit) return *a.exit;
+  const Options o(a.raw, table);
+  if (!o.given("output")) return error_exit(kExitUsage, o.missing("output"), o.namer());
   exporters::MoldWriteOptions wo;
-  if (vm.count("format")) wo.format = vm["format"].as<std::string>();
-  wo.name = vm.count("name") ? vm["name"].as<std::string>() : spec->first;
-  const std::string path = vm["output"].as<std::string>();
-  // A format the writer does not know is a bad command line (2), not a failed write (1).
-  {
-    std::string f = wo.format;
-    if (f.empty()) {
-      f = std::filesystem::path(path).extension().string();
-      if (!f.empty()) f.erase(0, 1);
-      std::transform(f.begin(), f.end(), f.begin(),
-                     [](unsigned char c) { return std::tolower(c); });
-      if (f == "stp") f = "step";
-      if (f == "igs") f = "iges";
-    }
-    const auto known = exporters::mold_formats();
-    if (std::find(known.begin(), known.end(), f) == known.end()) {
-      print_error("sample: " + path + ": unknown mold format '" + f +
-                  "' (use a .step, .stp, .iges or .igs file, or --format step|iges)");
-      return kExitUsage;
-    }
-  }
-  const Status st = is_builtin_shell(spec->first) ? exporters::write_shell(*shell, path, wo)
-                                                  : exporters::write_mold(*face, path, wo);
-  if (!st) {
-    print_error(exporters::describe(st.error()));
-    return kExitFailure;
-  }
-  return kExitOk;
+  wo.format = o.text("format").value_or("");
+  wo.name = o.text("name").value_or("");
+  return write_sample(*o.text("mold"), *o.text("output"), wo);
 }
 
 const CommandRegistrar kRegisterSample{Command{

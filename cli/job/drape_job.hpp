@@ -1,14 +1,16 @@
 #pragma once
-// A drape job: every input of `plyfit drape`, from command-line flags and scene files alike,
-// and running it (import, drape, flat pattern, outputs). Shared by drape, batch and compare.
+// A drape job: every input of `plyfit drape`, from command-line flags and scene files alike
+// (their keys: drape_options()), and running it (import, drape, flat pattern, outputs). Shared
+// by drape, batch, compare and optimize.
 
+#include "commands/command_line.hpp"
+
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/kernel/drape.hpp>
 #include <plyfit/kernel/optimize.hpp>
 #include <plyfit/kernel/result.hpp>
 
 #include <atomic>
-#include <map>
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,31 +21,8 @@ struct RunInfo;
 
 namespace plyfit::cli {
 
-/// One option of the drape job: its key (flag --key, scene key `key`), value form, default
-/// (empty: none) and help.
-struct OptionSpec {
-  std::string key;
-  std::string value;  ///< e.g. "X,Y"; empty for a switch
-  std::string def;    ///< default as text, empty if none
-  std::string help;
-  bool repeatable = false;
-  std::string section;  ///< scene-file section it is listed under by --dump-scene
-};
-
-/// All options of a drape job, in help order.
-const std::vector<OptionSpec>& drape_options();
-
-/// Raw values by key, before conversion (switches have the value "true").
-struct RawOptions {
-  std::map<std::string, std::vector<std::string>> values;
-  /// Folder that relative paths in each key's value are relative to (the scene file's
-  /// folder, or the working directory for flags).
-  std::map<std::string, std::string> dirs;
-  /// Where each key's value came from ("command line" or a scene file), for messages: a flag
-  /// that overrides a scene key is named as the flag.
-  std::map<std::string, std::string> origins;
-  std::string origin;  ///< where they came from, for messages ("command line", a file path)
-};
+/// The keys of a drape job (flags --key, scene keys `key`), in help order.
+const OptionTable& drape_options();
 
 /// Every input of a drape, converted and validated.
 struct DrapeJob {
@@ -72,30 +51,20 @@ struct DrapeJob {
   std::string material_label;      ///< the material's label
   std::string materials_file;      ///< materials table file; empty: plyfit's own
   std::string scene;               ///< scene file the job came from, if any
-  /// How messages name the inputs drape() checks against the mold (start3d, base-normal,
-  /// sweep3d, sweep2d, lock-angle): "--key", or "FILE: key 'key'" for a scene's key.
-  std::map<std::string, std::string> input_names;
+  /// Names the inputs its errors blame (scene keys) as the flag or the scene file's key their
+  /// value came from ("--sweep3d", "FILE: key 'sweep3d'").
+  exporters::InputNamer name_input;
 };
 
-/// Parses flags (the arguments after `plyfit drape`, minus a leading scene file) into raw
-/// values. Unknown flags are errors.
-Result<RawOptions> raw_from_args(const std::vector<std::string>& args);
-/// Reads a scene file (INI; sections allowed, keys as the flags without dashes).
-Result<RawOptions> raw_from_scene(const std::string& path);
-/// Values of `over` replace those of `base` key by key.
-RawOptions merge(const RawOptions& base, const RawOptions& over);
-
-/// Converts raw values into a job. `need_output` requires the output folder.
+/// Converts raw values (flags, a scene file, or both merged) into a job. `need_output` requires
+/// the output folder. Errors blame the key (name them with input_namer(raw, drape_options())).
 Result<DrapeJob> make_job(const RawOptions& raw, bool need_output = true);
-
-/// The effective scene as INI text (defaults filled in), loadable again with
-/// raw_from_scene.
-std::string dump_scene(const DrapeJob& job);
 
 /// What a finished job reports (also for batch summaries).
 struct JobOutcome {
-  std::string status = "error";  ///< ok, partial, error
-  std::string error;             ///< for status error
+  std::string status = "error";  ///< ok, partial, error, cancelled
+  std::string error;             ///< for status error: the error's text
+  std::string error_code;        ///< and its code (to_string(ErrorCode))
   std::uint64_t mapped = 0;
   double shear_max_deg = 0.0;
   double total_ms = 0.0;
@@ -119,12 +88,9 @@ Result<MoldSurface> load_surface(const DrapeJob& job, exporters::RunInfo* run = 
 
 /// Runs a job end to end; outputs are written atomically into job.outdir. `cancel` stops
 /// the drape (no files are written then). Progress goes to stderr when it is a terminal and
-/// `progress` is true.
+/// `progress` is true. Errors blame drape inputs by key (job.name_input names them).
 Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel = nullptr,
                            bool progress = false);
-
-/// Parses a finite number; the error names `what`.
-Result<double> parse_number(const std::string& text, const std::string& what);
 
 /// The scene the search of initial conditions starts from (plyfit optimize).
 SearchScene search_scene(const DrapeJob& job);

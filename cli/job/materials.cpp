@@ -1,5 +1,7 @@
 #include "job/materials.hpp"
 
+#include "job/ini.hpp"
+
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -12,11 +14,18 @@ extern const char* const kBuiltinMaterialsText;
 
 namespace {
 
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return {};
-  const auto e = s.find_last_not_of(" \t\r");
-  return s.substr(b, e - b + 1);
+/// The keys a material takes, as the unknown-key error lists them.
+constexpr const char* kMaterialKeys = "label, warning, limit";
+
+/// Which angles a material's section gave, and where the section starts.
+struct Seen {
+  bool warning = false, limit = false;
+  int line = 0;
+};
+
+Error at(Error e, const std::string& place) {
+  e.where = place;
+  return e;
 }
 
 bool valid_name(const std::string& s) {
@@ -26,86 +35,86 @@ bool valid_name(const std::string& s) {
   return true;
 }
 
-// An angle in [0, 90] degrees; `none` is 90 where allowed.
-Result<double> parse_angle(const std::string& v, bool none_allowed, const std::string& where) {
-  if (none_allowed && v == "none") return 90.0;
+// An angle in [0, 90] degrees; `none` is 90 for the limit.
+Result<double> parse_angle(const Material& m, const std::string& key, const std::string& v) {
+  if (key == "limit" && v == "none") return 90.0;
   char* end = nullptr;
   const double x = std::strtod(v.c_str(), &end);
   if (v.empty() || end != v.c_str() + v.size() || !std::isfinite(x))
-    return Error{where + ": '" + v + "' is not a number" + (none_allowed ? " or none" : "")};
-  if (!(x >= 0.0 && x <= 90.0)) return Error{where + ": " + v + " is not in [0, 90] degrees"};
+    return Error{ErrorCode::kMaterialAngleNotANumber, "", {m.name, key, v}};
+  if (!(x >= 0.0 && x <= 90.0)) return Error{ErrorCode::kMaterialAngleRange, "", {m.name, key, v}};
   return x;
+}
+
+// A [name] line: a new material with no limit (90) and no warning.
+Status add_material(const IniLine& l, MaterialTable& table, std::vector<Seen>& seen) {
+  if (!valid_name(l.section)) return Error{ErrorCode::kMaterialNameInvalid, "", {l.section}};
+  for (const Material& m : table.materials)
+    if (m.name == l.section) return Error{ErrorCode::kMaterialRepeated, "", {l.section}};
+  table.materials.push_back({l.section, l.section, 0.0, 90.0});
+  seen.push_back({false, false, l.line});
+  return ok_status();
+}
+
+// A key = value line of the last material.
+Status set_key(const IniLine& l, MaterialTable& table, std::vector<Seen>& seen) {
+  if (table.materials.empty()) return Error{ErrorCode::kKeyOutsideMaterial, "", {l.key}};
+  Material& m = table.materials.back();
+  Seen& s = seen.back();
+  if (l.key == "label") {
+    if (l.value.empty()) return Error{ErrorCode::kMaterialLabelEmpty, "", {m.name}};
+    m.label = l.value;
+  } else if (l.key == "warning" || l.key == "limit") {
+    auto x = parse_angle(m, l.key, l.value);
+    if (!x) return x.error();
+    (l.key == "warning" ? m.warning_deg : m.limit_deg) = *x;
+    (l.key == "warning" ? s.warning : s.limit) = true;
+  } else {
+    return Error{ErrorCode::kUnknownKey, "", {l.key, m.name, std::string(kMaterialKeys)}};
+  }
+  return ok_status();
+}
+
+// Every material has both angles, the warning at most the limit, a positive limit.
+Status check_complete(const MaterialTable& table, const std::vector<Seen>& seen) {
+  if (table.materials.empty()) return at(Error{ErrorCode::kNoMaterials}, table.source);
+  for (std::size_t k = 0; k < table.materials.size(); ++k) {
+    const Material& m = table.materials[k];
+    const std::string place = ini_place(table.source, seen[k].line);
+    if (!seen[k].warning || !seen[k].limit)
+      return at(Error{ErrorCode::kMaterialAngleMissing,
+                      "",
+                      {m.name, std::string(seen[k].warning ? "limit" : "warning")}},
+                place);
+    if (m.warning_deg > m.limit_deg)
+      return at(Error{ErrorCode::kWarningAboveLimit, "", {m.name}}, place);
+    if (!(m.limit_deg > 0.0)) return at(Error{ErrorCode::kLimitNotPositive, "", {m.name}}, place);
+  }
+  return ok_status();
 }
 
 }  // namespace
 
 Result<MaterialTable> parse_materials(const std::string& text, const std::string& source) {
+  auto lines = read_ini(text, source);
+  if (!lines) return lines.error();
   MaterialTable table;
   table.source = source;
-  struct Seen {
-    bool warning = false, limit = false;
-    int line = 0;
-  };
   std::vector<Seen> seen;
-  std::istringstream in(text);
-  std::string raw;
-  int line_no = 0;
-  while (std::getline(in, raw)) {
-    ++line_no;
-    const std::string at = source + ":" + std::to_string(line_no);
-    const std::string line = trim(raw.substr(0, raw.find('#')));
-    if (line.empty()) continue;
-    if (line.front() == '[') {
-      if (line.back() != ']') return Error{at + ": a section is [name]"};
-      const std::string name = trim(line.substr(1, line.size() - 2));
-      if (!valid_name(name))
-        return Error{at + ": material name '" + name + "' must be letters, digits, '-' or '_'"};
-      for (const Material& m : table.materials)
-        if (m.name == name) return Error{at + ": material '" + name + "' given twice"};
-      table.materials.push_back({name, name, 0.0, 90.0});
-      seen.push_back({false, false, line_no});
-      continue;
-    }
-    const auto eq = line.find('=');
-    if (eq == std::string::npos) return Error{at + ": expected key = value"};
-    const std::string key = trim(line.substr(0, eq)), value = trim(line.substr(eq + 1));
-    if (table.materials.empty())
-      return Error{at + ": key '" + key + "' before the first [material] section"};
-    Material& m = table.materials.back();
-    Seen& s = seen.back();
-    const std::string where = at + ": material '" + m.name + "': " + key;
-    if (key == "label") {
-      if (value.empty()) return Error{where + " is empty"};
-      m.label = value;
-    } else if (key == "warning" || key == "limit") {
-      auto x = parse_angle(value, key == "limit", where);
-      if (!x) return x.error();
-      (key == "warning" ? m.warning_deg : m.limit_deg) = *x;
-      (key == "warning" ? s.warning : s.limit) = true;
-    } else {
-      return Error{at + ": material '" + m.name + "': unknown key '" + key +
-                   "' (known: label, warning, limit)"};
-    }
+  for (const IniLine& l : *lines) {
+    const Status st = l.is_section ? add_material(l, table, seen) : set_key(l, table, seen);
+    if (!st) return at(st.error(), ini_place(source, l.line));
   }
-  if (table.materials.empty()) return Error{source + ": no [material] section"};
-  for (std::size_t k = 0; k < table.materials.size(); ++k) {
-    const Material& m = table.materials[k];
-    const std::string at = source + ":" + std::to_string(seen[k].line) + ": material '" + m.name;
-    if (!seen[k].warning || !seen[k].limit)
-      return Error{at + "' needs " + (seen[k].warning ? "a limit" : "a warning") + " angle"};
-    if (m.warning_deg > m.limit_deg)
-      return Error{at + "': the warning angle is above the limit angle"};
-    if (!(m.limit_deg > 0.0)) return Error{at + "': the limit angle must be positive"};
-  }
+  if (auto st = check_complete(table, seen); !st) return st.error();
   return table;
 }
 
 Result<MaterialTable> load_materials(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{path + ": cannot open the materials file"};
+  if (!in) return at(Error{ErrorCode::kMaterialsCannotOpen}, path);
   std::ostringstream ss;
   ss << in.rdbuf();
-  if (in.bad()) return Error{path + ": cannot read the materials file"};
+  if (in.bad()) return at(Error{ErrorCode::kMaterialsCannotRead}, path);
   return parse_materials(ss.str(), path);
 }
 
@@ -119,7 +128,7 @@ Result<Material> find_material(const MaterialTable& table, const std::string& na
     if (m.name == name) return m;
     known += (known.empty() ? "" : ", ") + m.name;
   }
-  return Error{table.source + ": no material '" + name + "' (known: " + known + ")"};
+  return at(Error{ErrorCode::kUnknownMaterial, "", {name, known}}, table.source);
 }
 
 }  // namespace plyfit::cli

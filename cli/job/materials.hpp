@@ -27,16 +27,18 @@ struct MaterialTable {
 inline constexpr const char* kDefaultMaterial = "woven";
 
 /// Parses a table (INI text: a [name] section per material with the keys label, warning and
-/// limit). Errors name `source` and the line.
+/// limit). An error's place (Error::where) is "SOURCE:LINE" or "SOURCE"; its input is left to
+/// the caller (the option that named the table).
 Result<MaterialTable> parse_materials(const std::string& text, const std::string& source);
 
-/// Reads a table from a file; errors name the file.
+/// Reads a table from a file; errors name the file as their place.
 Result<MaterialTable> load_materials(const std::string& path);
 
 /// The table built into plyfit (data/materials.ini at build time).
 Result<MaterialTable> builtin_materials();
 
-/// The material `name`, or an error naming the table's source and listing the known names.
+/// The material `name`, or an error whose place is the table's source, listing the known
+/// names.
 Result<Material> find_material(const MaterialTable& table, const std::string& name);
 
 }  // namespace plyfit::cli

@@ -6,21 +6,14 @@ namespace plyfit::cli {
 
 std::string outcome_to_json(const JobOutcome& o, int exit_code) {
   const auto& n = o.metrics.nodes;
-  nlohmann::json j = {{"status", o.status},
-                      {"error", o.error},
-                      {"exit_code", exit_code},
-                      {"mapped", o.mapped},
-                      {"auxiliary", n.auxiliary},
-                      {"outside", n.outside},
-                      {"off_ply", n.off_ply},
-                      {"shear_limit", n.shear_limit},
-                      {"failed", n.failed},
-                      {"overlap", n.overlap},
-                      {"conflict", n.conflict},
-                      {"path_end", n.path_end},
-                      {"shear_max_deg", o.shear_max_deg},
-                      {"total_ms", o.total_ms},
-                      {"files", o.files}};
+  nlohmann::json j = {{"status", o.status},           {"error", o.error},
+                      {"error_code", o.error_code},   {"exit_code", exit_code},
+                      {"mapped", o.mapped},           {"auxiliary", n.auxiliary},
+                      {"outside", n.outside},         {"off_ply", n.off_ply},
+                      {"shear_limit", n.shear_limit}, {"failed", n.failed},
+                      {"overlap", n.overlap},         {"conflict", n.conflict},
+                      {"path_end", n.path_end},       {"shear_max_deg", o.shear_max_deg},
+                      {"total_ms", o.total_ms},       {"files", o.files}};
   return j.dump(2) + "\n";
 }
 
@@ -30,6 +23,7 @@ Result<JobOutcome> outcome_from_json(const std::string& text, int* exit_code) {
     JobOutcome o;
     o.status = j.at("status").get<std::string>();
     o.error = j.at("error").get<std::string>();
+    o.error_code = j.at("error_code").get<std::string>();
     o.mapped = j.at("mapped").get<std::uint64_t>();
     o.metrics.nodes.mapped = o.mapped;
     o.metrics.nodes.auxiliary = j.at("auxiliary").get<std::uint64_t>();
@@ -46,7 +40,7 @@ Result<JobOutcome> outcome_from_json(const std::string& text, int* exit_code) {
     if (exit_code) *exit_code = j.at("exit_code").get<int>();
     return o;
   } catch (const nlohmann::json::exception& e) {
-    return Error{std::string("unreadable job outcome: ") + e.what()};
+    return Error{ErrorCode::kOutcomeUnreadable, "", {std::string(e.what())}};
   }
 }
 

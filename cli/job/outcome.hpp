@@ -8,7 +8,8 @@
 
 namespace plyfit::cli {
 
-/// The outcome as JSON text: status, error, exit_code, counts, max shear, time, files.
+/// The outcome as JSON text: status, error and error_code, exit_code, counts, max shear, time,
+/// files.
 std::string outcome_to_json(const JobOutcome& outcome, int exit_code);
 
 /// Reads an outcome written by outcome_to_json; the exit code goes to `exit_code`.

@@ -2,6 +2,9 @@
 
 #include "report/optimize_report.hpp"
 
+#include "job/scene_file.hpp"
+#include "report/text_format.hpp"
+
 #include <plyfit/exporters/messages.hpp>
 
 #include <nlohmann/json.hpp>
@@ -20,15 +23,7 @@ std::string note_of(const Evaluation& e) {
 namespace {
 
 constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
-
-template <typename... Args>
-std::string fmt(const char* format, Args... args) {
-  const int n = std::snprintf(nullptr, 0, format, args...);
-  std::string s(static_cast<std::size_t>(std::max(n, 0)) + 1, '\0');
-  std::snprintf(s.data(), s.size(), format, args...);
-  s.resize(static_cast<std::size_t>(std::max(n, 0)));
-  return s;
-}
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
 
 std::string vary_text(const OptimizeOptions& o) {
   std::string s;
@@ -72,16 +67,16 @@ std::string columns(const std::vector<std::vector<std::string>>& rows) {
 
 std::vector<std::string> drape_cells(const Evaluation& e) {
   const Figures& f = e.figures;
-  return {fmt("#%d", e.index),
-          fmt("%.3f, %.3f, %.3f", e.seed.x(), e.seed.y(), e.seed.z()),
-          fmt("%.3f", e.candidate.angle * kRadToDeg),
-          fmt("%.3f", e.candidate.path * kRadToDeg),
-          fmt("%.3f", f.energy),
-          fmt("%.3f", f.max_shear_deg),
-          fmt("%.2f", f.flat_area),
-          fmt("%.2f", 100.0 * f.coverage),
-          fmt("%.2f", 100.0 * f.cell_coverage),
-          fmt("%llu", static_cast<unsigned long long>(f.mapped))};
+  return {format("#%d", e.index),
+          format("%.3f, %.3f, %.3f", e.seed.x(), e.seed.y(), e.seed.z()),
+          format("%.3f", e.candidate.angle * kRadToDeg),
+          format("%.3f", e.candidate.path * kRadToDeg),
+          format("%.3f", f.energy),
+          format("%.3f", f.max_shear_deg),
+          format("%.2f", f.flat_area),
+          format("%.2f", 100.0 * f.coverage),
+          format("%.2f", 100.0 * f.cell_coverage),
+          format("%llu", static_cast<unsigned long long>(f.mapped))};
 }
 
 const std::vector<std::string>& drape_header() {
@@ -96,25 +91,25 @@ bool refined(const OptimizeOptions& o, Objective ob) {
   return std::find(o.objectives.begin(), o.objectives.end(), ob) != o.objectives.end();
 }
 
+}  // namespace
+
 int feasible_count(const OptimizeResult& r) {
   return static_cast<int>(std::count_if(r.evaluations.begin(), r.evaluations.end(),
                                         [](const Evaluation& e) { return e.feasible; }));
 }
 
-}  // namespace
-
 std::string optimize_table(const DrapeJob& scene, const OptimizeResult& r, const OptimizeOptions& o,
                            double seconds, int jobs) {
   const Evaluation& s = r.evaluations.front();
   std::string out =
-      fmt("plyfit optimize: %s: %d drapes (vary %s; refined for %s) in %.2f s on %d thread%s\n",
-          scene.scene.c_str(), static_cast<int>(r.evaluations.size()) - 1, vary_text(o).c_str(),
-          objectives_text(o).c_str(), seconds, jobs, jobs == 1 ? "" : "s");
-  out += fmt("feasible: drape ok and coverage >= %.2f%% of the face", 100.0 * r.min_coverage);
+      format("plyfit optimize: %s: %d drapes (vary %s; refined for %s) in %.2f s on %d thread%s\n",
+             scene.scene.c_str(), static_cast<int>(r.evaluations.size()) - 1, vary_text(o).c_str(),
+             objectives_text(o).c_str(), seconds, jobs, jobs == 1 ? "" : "s");
+  out += format("feasible: drape ok and coverage >= %.2f%% of the face", 100.0 * r.min_coverage);
   if (r.min_coverage_default)
-    out += fmt(" (the best coverage, %.2f%%, at most 100%%, less %.2f%%) and at most %.2f%%",
-               100.0 * r.best_coverage, 100.0 * kCoverageSlack, 100.0 * (1 + kCoverageSlack));
-  out += fmt("; %d of %d drapes\n\n", feasible_count(r), static_cast<int>(r.evaluations.size()));
+    out += format(" (the best coverage, %.2f%%, at most 100%%, less %.2f%%) and at most %.2f%%",
+                  100.0 * r.best_coverage, 100.0 * kCoverageSlack, 100.0 * (1 + kCoverageSlack));
+  out += format("; %d of %d drapes\n\n", feasible_count(r), static_cast<int>(r.evaluations.size()));
   std::vector<std::vector<std::string>> rows;
   std::vector<std::string> head = {""};
   head.insert(head.end(), drape_header().begin(), drape_header().end());
@@ -142,8 +137,8 @@ std::string optimize_table(const DrapeJob& scene, const OptimizeResult& r, const
       "coverage: the cut ply's share of the face; cells: the mapped cells' (report.json's "
       "coverage).\n";
   if (!s.feasible && !note_of(s).empty()) out += "scene: " + note_of(s) + "\n";
-  out += fmt("\nPareto front over energy, max shear and flat area (%d drapes, by energy):\n",
-             static_cast<int>(r.front.size()));
+  out += format("\nPareto front over energy, max shear and flat area (%d drapes, by energy):\n",
+                static_cast<int>(r.front.size()));
   rows.clear();
   rows.push_back(drape_header());
   for (int i : r.front) rows.push_back(drape_cells(r.evaluations[static_cast<std::size_t>(i)]));
@@ -220,124 +215,18 @@ std::string optimize_json(const DrapeJob& scene, const OptimizeResult& r, const 
   return j.dump(2) + "\n";
 }
 
-namespace {
-
-/// A "nice" tick step (1, 2 or 5 times a power of ten) for about `count` ticks over `span`.
-double tick_step(double span, int count) {
-  const double raw = span / count;
-  const double p = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double m : {1.0, 2.0, 5.0})
-    if (m * p >= raw) return m * p;
-  return 10.0 * p;
-}
-
-}  // namespace
-
-std::string optimize_svg(const DrapeJob& scene, const OptimizeResult& r) {
-  // Three panels side by side (SVG user units).
-  constexpr double kPanel = 300, kGap = 70, kLeft = 70, kTop = 50, kBottom = 95;
-  constexpr int kTicks = 5;
-  const double width = kLeft + 3 * kPanel + 2 * kGap + 30, height = kTop + kPanel + kBottom;
-  const char* names[3] = {"energy (sum cos^2 gamma)", "max shear (deg)", "flat area (mm^2)"};
-  const int pairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};
-  auto value = [](const Evaluation& e, int k) {
-    return k == 0 ? e.figures.energy : k == 1 ? e.figures.max_shear_deg : e.figures.flat_area;
-  };
-  std::vector<const Evaluation*> shown;
-  for (const auto& e : r.evaluations)
-    if (e.feasible || e.index == 0) shown.push_back(&e);
-  std::vector<bool> on_front(r.evaluations.size(), false);
-  for (int i : r.front) on_front[static_cast<std::size_t>(i)] = true;
-  std::string s =
-      fmt("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
-          "viewBox=\"0 0 %.0f %.0f\" font-family=\"sans-serif\" font-size=\"12\">\n",
-          width, height, width, height);
-  s += fmt("<rect width=\"%.0f\" height=\"%.0f\" fill=\"white\"/>\n", width, height);
-  std::string title;
-  for (char c : "plyfit optimize: " + scene.scene)
-    title += c == '&' ? "&amp;" : c == '<' ? "&lt;" : c == '>' ? "&gt;" : std::string(1, c);
-  s +=
-      fmt("<text x=\"%.0f\" y=\"24\" font-size=\"15\">%s: %d feasible drapes, Pareto front "
-          "of %d</text>\n",
-          kLeft, title.c_str(), feasible_count(r), static_cast<int>(r.front.size()));
-  for (int p = 0; p < 3; ++p) {
-    const int kx = pairs[p][0], ky = pairs[p][1];
-    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
-    for (const auto* e : shown) {
-      x0 = std::min(x0, value(*e, kx));
-      x1 = std::max(x1, value(*e, kx));
-      y0 = std::min(y0, value(*e, ky));
-      y1 = std::max(y1, value(*e, ky));
-    }
-    if (shown.empty()) x0 = y0 = 0, x1 = y1 = 1;
-    const double padx = std::max(0.05 * (x1 - x0), 1e-9 * std::max(1.0, std::abs(x1)));
-    const double pady = std::max(0.05 * (y1 - y0), 1e-9 * std::max(1.0, std::abs(y1)));
-    x0 -= padx, x1 += padx, y0 -= pady, y1 += pady;
-    const double ox = kLeft + p * (kPanel + kGap);
-    auto X = [&](double v) { return ox + kPanel * (v - x0) / (x1 - x0); };
-    auto Y = [&](double v) { return kTop + kPanel * (1.0 - (v - y0) / (y1 - y0)); };
-    const double sx = tick_step(x1 - x0, kTicks), sy = tick_step(y1 - y0, kTicks);
-    for (double t = std::ceil(x0 / sx) * sx; t <= x1; t += sx) {
-      s += fmt("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", X(t),
-               kTop, X(t), kTop + kPanel);
-      s += fmt("<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%g</text>\n", X(t),
-               kTop + kPanel + 16, t);
-    }
-    for (double t = std::ceil(y0 / sy) * sy; t <= y1; t += sy) {
-      s += fmt("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", ox,
-               Y(t), ox + kPanel, Y(t));
-      s += fmt("<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%g</text>\n", ox - 5, Y(t) + 4, t);
-    }
-    s +=
-        fmt("<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"none\" "
-            "stroke=\"black\"/>\n",
-            ox, kTop, kPanel, kPanel);
-    s += fmt("<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%s</text>\n", ox + kPanel / 2,
-             kTop + kPanel + 36, names[kx]);
-    s +=
-        fmt("<text transform=\"translate(%.1f %.1f) rotate(-90)\" "
-            "text-anchor=\"middle\">%s</text>\n",
-            ox - 45, kTop + kPanel / 2, names[ky]);
-    // The feasible drapes, the front over them, the scene.
-    for (const auto* e : shown)
-      if (e->index != 0 && !on_front[static_cast<std::size_t>(e->index)])
-        s += fmt("<circle cx=\"%.1f\" cy=\"%.1f\" r=\"2\" fill=\"#aaa\"/>\n", X(value(*e, kx)),
-                 Y(value(*e, ky)));
-    for (int i : r.front) {
-      const Evaluation& e = r.evaluations[static_cast<std::size_t>(i)];
-      s += fmt("<circle cx=\"%.1f\" cy=\"%.1f\" r=\"3.5\" fill=\"#1f77b4\"/>\n", X(value(e, kx)),
-               Y(value(e, ky)));
-    }
-    if (r.best[0] >= 0) {
-      const Evaluation& e = r.evaluations[static_cast<std::size_t>(r.best[0])];
-      s +=
-          fmt("<circle cx=\"%.1f\" cy=\"%.1f\" r=\"7\" fill=\"none\" stroke=\"#2ca02c\" "
-              "stroke-width=\"2\"/>\n",
-              X(value(e, kx)), Y(value(e, ky)));
-    }
-    const Evaluation& sc = r.evaluations.front();
-    s += fmt("<rect x=\"%.1f\" y=\"%.1f\" width=\"8\" height=\"8\" fill=\"#d62728\"/>\n",
-             X(value(sc, kx)) - 4, Y(value(sc, ky)) - 4);
-  }
-  const double ly = kTop + kPanel + 70;
-  s +=
-      fmt("<circle cx=\"%.0f\" cy=\"%.0f\" r=\"2\" fill=\"#aaa\"/><text x=\"%.0f\" "
-          "y=\"%.0f\">feasible drape</text>\n",
-          kLeft, ly, kLeft + 8, ly + 4);
-  s +=
-      fmt("<circle cx=\"%.0f\" cy=\"%.0f\" r=\"3.5\" fill=\"#1f77b4\"/><text x=\"%.0f\" "
-          "y=\"%.0f\">Pareto front (energy, max shear, flat area)</text>\n",
-          kLeft + 130, ly, kLeft + 138, ly + 4);
-  s +=
-      fmt("<circle cx=\"%.0f\" cy=\"%.0f\" r=\"7\" fill=\"none\" stroke=\"#2ca02c\" "
-          "stroke-width=\"2\"/><text x=\"%.0f\" y=\"%.0f\">lowest energy</text>\n",
-          kLeft + 430, ly, kLeft + 442, ly + 4);
-  s +=
-      fmt("<rect x=\"%.0f\" y=\"%.0f\" width=\"8\" height=\"8\" fill=\"#d62728\"/><text "
-          "x=\"%.0f\" y=\"%.0f\">the scene as given</text>\n",
-          kLeft + 560, ly - 4, kLeft + 574, ly + 4);
-  s += "</svg>\n";
-  return s;
+std::string best_scene_ini(const DrapeJob& scene, const MoldSurface& face, const OptimizeResult& r,
+                           Objective ob, const std::string& path) {
+  const Evaluation& e = r.evaluations[static_cast<std::size_t>(r.best[static_cast<int>(ob)])];
+  std::ostringstream ini;
+  ini.precision(17);
+  ini << "# plyfit optimize: the lowest " << to_string(ob) << " of " << path << " (drape #"
+      << e.index << ": energy " << e.figures.energy << ", max shear " << e.figures.max_shear_deg
+      << " deg, flat area " << e.figures.flat_area << " mm^2, coverage "
+      << 100.0 * e.figures.coverage << "%; ply angle " << e.candidate.angle / kDegToRad
+      << " deg from the scene's)\n";
+  ini << dump_scene(candidate_job(scene, face, r, e.candidate));
+  return ini.str();
 }
 
 }  // namespace plyfit::cli

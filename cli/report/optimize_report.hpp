@@ -19,6 +19,12 @@ std::string optimize_table(const DrapeJob& scene, const OptimizeResult& r, const
 /// (threads, seconds) is the only part that changes between equal runs.
 std::string optimize_json(const DrapeJob& scene, const OptimizeResult& r, const OptimizeOptions& o,
                           double seconds, int jobs);
+/// best-OBJECTIVE.ini: the scene of the best drape for `ob` (which must have one), with a
+/// comment giving its figures; `path` is the scene file searched.
+std::string best_scene_ini(const DrapeJob& scene, const MoldSurface& face, const OptimizeResult& r,
+                           Objective ob, const std::string& path);
+/// The drapes of the search that are feasible.
+int feasible_count(const OptimizeResult& r);
 /// front.svg: the feasible drapes and the Pareto front in three panels (energy - max shear,
 /// energy - flat area, max shear - flat area).
 std::string optimize_svg(const DrapeJob& scene, const OptimizeResult& r);

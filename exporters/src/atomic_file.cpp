@@ -33,23 +33,23 @@ void AtomicFile::discard() {
 }
 
 Status AtomicFile::commit() {
-  if (done_) return Error{path_ + ": file already closed"};
+  if (done_) return Error{ErrorCode::kFileAlreadyClosed, path_};
   if (!out_.is_open()) {
     done_ = true;
-    return Error{path_ + ": cannot create the file (folder missing or not writable?)"};
+    return Error{ErrorCode::kFileNotCreated, path_};
   }
   out_.flush();
   const bool good = static_cast<bool>(out_);
   out_.close();
   if (!good || out_.fail()) {
     discard();
-    return Error{path_ + ": write failed (disk full?)"};
+    return Error{ErrorCode::kFileWriteFailed, path_};
   }
   std::error_code ec;
   std::filesystem::rename(temp_, path_, ec);
   if (ec) {
     discard();
-    return Error{path_ + ": cannot rename the finished file into place: " + ec.message()};
+    return Error{ErrorCode::kFileNotRenamed, path_, {ec.message()}};
   }
   done_ = true;
   return ok_status();
@@ -57,7 +57,7 @@ Status AtomicFile::commit() {
 
 Status write_file_atomic(const std::string& path, const std::string& content) {
   AtomicFile f(path);
-  if (!f.ok()) return Error{path + ": cannot create the file (folder missing or not writable?)"};
+  if (!f.ok()) return Error{ErrorCode::kFileNotCreated, path};
   f.stream() << content;
   return f.commit();
 }

@@ -2,31 +2,39 @@
 // paper's thread angles and energy (eq. 12), residuals, timings. nlohmann-json writes numbers in
 // their shortest exact form, so equal inputs give equal bytes except for the timing_ms fields.
 
-#include <plyfit/exporters/atomic_file.hpp>
 #include <plyfit/exporters/exporters.hpp>
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/kernel/flat_pattern.hpp>
 
+#include "net_util.hpp"
 #include "plugins.hpp"
+#include "render/text.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <filesystem>
+#include <type_traits>
 #include <utility>
 
 namespace plyfit::exporters {
 
 namespace {
 
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+using detail::kRadToDeg;
 
 nlohmann::json vec(const Vec2& v) {
   return nlohmann::json::array({v.x(), v.y()});
 }
 nlohmann::json vec(const Vec3& v) {
   return nlohmann::json::array({v.x(), v.y(), v.z()});
+}
+template <typename V>
+nlohmann::json vecs(const std::vector<V>& vs) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const V& v : vs) out.push_back(vec(v));
+  return out;
 }
 
 // The file's unit in one spelling: the importers name it "millimetre" (STEP), "millimetre
@@ -70,20 +78,33 @@ std::string unit_name(const std::string& given) {
   return lower(given);
 }
 
-}  // namespace
+// A face by its index in the mold file: the k-th face draped.
+int file_index(const ExportContext& ctx, std::size_t k) {
+  return k < ctx.run.faces.size() ? ctx.run.faces[k] : static_cast<int>(k);
+}
 
-std::string report_json(const ExportContext& ctx) {
+// The one place that turns warnings into report.json's text: a warning code through
+// exporters::message(); a warning still in words (DrapeResult::warnings and the readers' until
+// they become codes) as it is.
+template <typename W>
+nlohmann::json warning_texts(const std::vector<W>& warnings) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const W& w : warnings) {
+    if constexpr (std::is_same_v<W, Warning>)
+      out.push_back(message(w));
+    else
+      out.push_back(w);
+  }
+  return out;
+}
+
+// The inputs of the run, echoed.
+nlohmann::json inputs_json(const ExportContext& ctx) {
   using nlohmann::json;
-  const DrapeResult& r = ctx.result;
-  const DrapeMetrics& m = r.metrics;
   const DrapeProblem& p = ctx.problem;
-  json j;
-  j["status"] = r.partial ? "partial" : "ok";
-  j["warnings"] = r.warnings;
   json in;
   in["mold"] = ctx.run.mold;
-  const bool shell = ctx.surface.face_count() > 1;
-  if (shell)
+  if (ctx.surface.face_count() > 1)
     in["faces"] = ctx.run.faces;
   else
     in["face"] = ctx.run.faces.empty() ? 0 : ctx.run.faces.front();
@@ -93,12 +114,10 @@ std::string report_json(const ExportContext& ctx) {
   in["ply"] = p.ply.rect ? vec(*p.ply.rect) : json(nullptr);
   in["start2d"] = vec(p.ply.start);
   in["base2d"] = vec(p.ply.base_dir);
-  in["sweep2d"] = json::array();
-  for (const auto& w : p.ply.sweeps) in["sweep2d"].push_back(vec(w));
+  in["sweep2d"] = vecs(p.ply.sweeps);
   in["start3d"] = vec(p.start);
   in["base_normal"] = vec(p.base_normal);
-  in["sweep3d"] = json::array();
-  for (const auto& w : p.sweeps) in["sweep3d"].push_back(vec(w));
+  in["sweep3d"] = vecs(p.sweeps);
   in["lock_angle_deg"] = ctx.run.lock_angle_deg;
   in["tolerance"] = ctx.run.tolerance_rel;
   in["max_iterations"] = ctx.run.max_iterations;
@@ -108,18 +127,21 @@ std::string report_json(const ExportContext& ctx) {
   in["ply_name"] = ctx.run.ply_name;
   in["ply_angle_deg"] = ctx.options.ply_angle_deg;
   in["material"] = ctx.run.material;
-  in["material_label"] =
-      ctx.options.material_label.empty() ? ctx.run.material : ctx.options.material_label;
+  in["material_label"] = render::material_label(ctx);
   in["materials"] = ctx.options.materials_file;
   in["curve_degree"] = ctx.options.curve_degree;
   in["view"] = vec(ctx.options.view);
   in["dxf_threads"] = ctx.options.dxf_threads;
   in["outputs"] = ctx.run.outputs;
-  j["inputs"] = in;
-  // The surface draped (one face, or a shell's faces together), then face by face.
-  auto file_index = [&](std::size_t k) {
-    return k < ctx.run.faces.size() ? ctx.run.faces[k] : static_cast<int>(k);
-  };
+  return in;
+}
+
+// The mold: its unit, the surface draped (one face, or a shell's faces together), then face by
+// face, the largest crease angle and the import warnings.
+nlohmann::json mold_json(const ExportContext& ctx) {
+  using nlohmann::json;
+  const DrapeMetrics& m = ctx.result.metrics;
+  const bool shell = ctx.surface.face_count() > 1;
   json face;
   const FaceInfo none;
   const FaceInfo& first = ctx.run.faces_info.empty() ? none : ctx.run.faces_info.front();
@@ -131,7 +153,7 @@ std::string report_json(const ExportContext& ctx) {
   json faces = json::array();
   for (std::size_t k = 0; k < m.faces.size(); ++k) {
     const FaceInfo& fi = k < ctx.run.faces_info.size() ? ctx.run.faces_info[k] : none;
-    faces.push_back({{"index", file_index(k)},
+    faces.push_back({{"index", file_index(ctx, k)},
                      {"name", fi.name},
                      {"kind", fi.kind},
                      {"area", m.faces[k].area},
@@ -139,28 +161,33 @@ std::string report_json(const ExportContext& ctx) {
                      {"rounding", ctx.surface.face_rounding(static_cast<std::int32_t>(k))},
                      {"covered_area", m.faces[k].covered_area}});
   }
-  j["mold"] = {{"unit", unit_name(ctx.run.mold_unit)},
-               {"face", face},
-               {"faces", faces},
-               {"crease_angle_max_deg", m.crease_angle_max * kRadToDeg},
-               {"warnings", ctx.run.warnings}};
-  j["start"] = {{"point", vec(r.start_point)},
-                {"face", file_index(static_cast<std::size_t>(r.start_at.face))},
-                {"uv", vec(r.start_at.uv)},
-                {"moved", r.start_moved}};
-  j["base_tangent"] = vec(r.base_tangent);
-  j["nodes"] = {{"mapped", m.nodes.mapped},           {"auxiliary", m.nodes.auxiliary},
-                {"outside", m.nodes.outside},         {"off_ply", m.nodes.off_ply},
-                {"shear_limit", m.nodes.shear_limit}, {"overlap", m.nodes.overlap},
-                {"failed", m.nodes.failed},           {"conflict", m.nodes.conflict},
-                {"path_end", m.nodes.path_end},       {"with_angle", m.angles}};
+  return {{"unit", unit_name(ctx.run.mold_unit)},
+          {"face", face},
+          {"faces", faces},
+          {"crease_angle_max_deg", m.crease_angle_max * kRadToDeg},
+          {"warnings", warning_texts(ctx.run.warnings)}};
+}
+
+// Node counts by status, with the reasons of the failed, conflicting and shear-limit ones.
+nlohmann::json nodes_json(const DrapeMetrics& m) {
+  nlohmann::json nodes = {{"mapped", m.nodes.mapped},           {"auxiliary", m.nodes.auxiliary},
+                          {"outside", m.nodes.outside},         {"off_ply", m.nodes.off_ply},
+                          {"shear_limit", m.nodes.shear_limit}, {"overlap", m.nodes.overlap},
+                          {"failed", m.nodes.failed},           {"conflict", m.nodes.conflict},
+                          {"path_end", m.nodes.path_end},       {"with_angle", m.angles}};
   for (const auto& [key, reasons] :
        {std::pair{"failed_reasons", &m.nodes.failed_reasons},
         std::pair{"conflict_reasons", &m.nodes.conflict_reasons},
         std::pair{"shear_limit_reasons", &m.nodes.shear_limit_reasons}}) {
-    j["nodes"][key] = nlohmann::json::object();
-    for (const auto& [why, count] : *reasons) j["nodes"][key][why] = count;
+    nodes[key] = nlohmann::json::object();
+    for (const auto& [why, count] : *reasons) nodes[key][why] = count;
   }
+  return nodes;
+}
+
+// Thread angles, shear, the paper's metrics (eq. 12), residuals (the Newton floor also relative
+// to the spacing `d`) and solver effort.
+void add_metrics(nlohmann::json& j, const DrapeMetrics& m, double d) {
   j["area_mesh_points"] = m.area_mesh_points;
   j["flat_area"] = m.flat_area;
   j["surface_area"] = m.surface_area;
@@ -182,7 +209,6 @@ std::string report_json(const ExportContext& ctx) {
                         {"oriented_gamma_max", m.paper.oriented_gamma_max},
                         {"oriented_gamma_min_deg", m.paper.oriented_gamma_min * kRadToDeg},
                         {"oriented_gamma_max_deg", m.paper.oriented_gamma_max * kRadToDeg}};
-  const double d = std::min(p.ply.d_weft, p.ply.d_warp);
   j["residual"] = {{"edge_length_max_rel", m.edge_length_max_rel},
                    {"surface_distance_max", m.surface_distance_max},
                    {"base_plane_max_rel", m.base_plane_max_rel},
@@ -192,29 +218,49 @@ std::string report_json(const ExportContext& ctx) {
   j["solver"] = {{"solves", m.solves},
                  {"mean_iterations", m.solves ? double(m.iterations) / m.solves : 0.0},
                  {"mean_evaluations", m.solves ? double(m.evaluations) / m.solves : 0.0}};
-  if (ctx.flat) {
-    auto loops_of = [&](const std::vector<OutlineLoop>& outline) {
-      json loops = json::array();
-      for (const auto& l : outline) {
-        json pts = json::array();
-        for (const auto& q : l.points) pts.push_back(vec(q));
-        loops.push_back(
-            {{"hole", l.hole}, {"area", l.area}, {"perimeter", l.perimeter}, {"points", pts}});
-      }
-      return loops;
-    };
-    const FlatPattern& fp = *ctx.flat;
-    // The cut outline (what flat.dxf's cutter cuts) and the exact outline it was made from.
-    j["flat_outline"] = {{"area", fp.cut_area},
-                         {"perimeter", fp.cut_perimeter},
-                         {"min_width", fp.min_width},
-                         {"removed_area", fp.cut_removed_area},
-                         {"added_area", fp.cut_added_area},
-                         {"slivers", fp.slivers},
-                         {"loops", loops_of(fp.cut)}};
-    j["flat_outline_exact"] = {
-        {"area", fp.area}, {"perimeter", fp.perimeter}, {"loops", loops_of(fp.outline)}};
+}
+
+nlohmann::json loops_json(const std::vector<OutlineLoop>& outline) {
+  nlohmann::json loops = nlohmann::json::array();
+  for (const auto& l : outline) {
+    nlohmann::json pts = nlohmann::json::array();
+    for (const auto& q : l.points) pts.push_back(vec(q));
+    loops.push_back(
+        {{"hole", l.hole}, {"area", l.area}, {"perimeter", l.perimeter}, {"points", pts}});
   }
+  return loops;
+}
+
+// The cut outline (what flat.dxf's cutter cuts) and the exact outline it was made from.
+void add_flat_outline(nlohmann::json& j, const FlatPattern& fp) {
+  j["flat_outline"] = {{"area", fp.cut_area},
+                       {"perimeter", fp.cut_perimeter},
+                       {"min_width", fp.min_width},
+                       {"removed_area", fp.cut_removed_area},
+                       {"added_area", fp.cut_added_area},
+                       {"slivers", fp.slivers},
+                       {"loops", loops_json(fp.cut)}};
+  j["flat_outline_exact"] = {
+      {"area", fp.area}, {"perimeter", fp.perimeter}, {"loops", loops_json(fp.outline)}};
+}
+
+}  // namespace
+
+std::string report_json(const ExportContext& ctx) {
+  const DrapeResult& r = ctx.result;
+  nlohmann::json j;
+  j["status"] = r.partial ? "partial" : "ok";
+  j["warnings"] = warning_texts(r.warnings);
+  j["inputs"] = inputs_json(ctx);
+  j["mold"] = mold_json(ctx);
+  j["start"] = {{"point", vec(r.start_point)},
+                {"face", file_index(ctx, static_cast<std::size_t>(r.start_at.face))},
+                {"uv", vec(r.start_at.uv)},
+                {"moved", r.start_moved}};
+  j["base_tangent"] = vec(r.base_tangent);
+  j["nodes"] = nodes_json(r.metrics);
+  add_metrics(j, r.metrics, std::min(ctx.problem.ply.d_weft, ctx.problem.ply.d_warp));
+  if (ctx.flat) add_flat_outline(j, *ctx.flat);
   j["memory_bytes_per_node"] = r.bytes_per_node();
   j["timing_ms"] = {
       {"import", ctx.run.import_ms}, {"drape", ctx.run.drape_ms}, {"total", ctx.run.total_ms}};
@@ -222,13 +268,8 @@ std::string report_json(const ExportContext& ctx) {
 }
 
 Exporter make_json_exporter() {
-  return {"json",
-          {"report.json"},
-          "report.json: status, counts, areas, angles, residuals, timings",
-          [](const ExportContext& ctx, const std::string& outdir) {
-            return write_file_atomic((std::filesystem::path(outdir) / "report.json").string(),
-                                     report_json(ctx));
-          }};
+  return file_exporter("json", "report.json: status, counts, areas, angles, residuals, timings",
+                       {{"report.json", report_json}});
 }
 
 }  // namespace plyfit::exporters

@@ -13,11 +13,10 @@ namespace {
 // The module's mold writer, loading the module on first use; errors name `path`.
 Result<const OcctMoldWriterApi*> occt_mold_writer(const std::string& path) {
   auto entry = plyfit::occt::occt_module_symbol(kMoldWriterEntry);
-  if (!entry) return Error{path}.because(entry.error());
+  if (!entry) return Error(entry.error()).in(path);
   const OcctMoldWriterApi* api = reinterpret_cast<OcctMoldWriterEntry>(*entry)();
   if (!api || api->abi != plyfit::occt::kOcctModuleAbi)
-    return Error{path + ": plyfit's OpenCASCADE module " + plyfit::occt::kOcctModuleFile +
-                 " is from another build of plyfit"};
+    return Error{ErrorCode::kMoldWriterOtherBuild, path, {plyfit::occt::kOcctModuleFile}};
   return api;
 }
 

@@ -1,16 +1,19 @@
 #pragma once
-// Helpers shared by the writers: locale-independent number text, the mapped cells of the net
-// with their shear, and the shear colour scale of the pictures.
+// What the writers draw of a drape: the mapped cells of the net with their shear, node shear,
+// and the box of what a picture shows.
 
 #include <plyfit/kernel/drape.hpp>
 #include <plyfit/kernel/flat_pattern.hpp>
 
 #include <cstdint>
 #include <limits>
-#include <string>
+#include <numbers>
 #include <vector>
 
 namespace plyfit::exporters::detail {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kRadToDeg = 180.0 / kPi;
 
 /// A 2D box grown point by point (empty until the first point).
 struct Box2 {
@@ -20,17 +23,19 @@ struct Box2 {
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
   }
+  /// Every point of the loops.
+  void add(const std::vector<OutlineLoop>& loops) {
+    for (const auto& l : loops)
+      for (const Vec2& p : l.points) add(p);
+  }
+  /// The ply position of every mapped node.
+  void add_mapped(const DrapeResult& r) {
+    for (const DrapeNode& n : r.nodes)
+      if (n.mapped()) add(n.ply);
+  }
   bool empty() const { return !(lo.x() <= hi.x() && lo.y() <= hi.y()); }
   Vec2 size() const { return hi - lo; }
 };
-
-constexpr double kPi = 3.14159265358979323846;
-constexpr double kRadToDeg = 180.0 / kPi;
-
-/// Shortest decimal text (fixed notation, no exponent) that reads back as exactly `x`.
-std::string exact_text(double x);
-/// `x` in fixed notation with `decimals` decimals, trailing zeros removed ("-0" becomes "0").
-std::string fixed_text(double x, int decimals);
 
 /// Shear of a node: |pi/2 - thread_angle| (radians), or a negative value if the node has no
 /// thread angle.
@@ -50,68 +55,7 @@ struct NetCell {
 /// DrapeMetrics::flat_area), with its shear. Sorted by (j, i): deterministic.
 std::vector<NetCell> mapped_cells(const DrapeResult& r);
 
-/// True when p lies inside the outline (even-odd over all loops, so holes are outside).
-bool inside_outline(const std::vector<OutlineLoop>& loops, const Vec2& p);
-
-/// Distance from p to the nearest edge of the loops (infinity without loops).
-double outline_distance(const std::vector<OutlineLoop>& loops, const Vec2& p);
-
-/// A point well inside the outline: the centre of a largest inscribed circle and its radius.
-struct InteriorPoint {
-  Vec2 point = Vec2::Zero();
-  double radius = 0.0;  ///< distance from `point` to the outline
-  bool found = false;   ///< false without loops of positive area
-};
-
-/// A pole of inaccessibility of the outline (a point inside it as far from its edges as can
-/// be): a grid of about kGridCells square cells along the outline's long side (at most
-/// kMaxInteriorProbes), then the kClimbSeeds best grid points each climbed uphill on the
-/// distance to the edges (eight directions, the step halved when none is better) until the
-/// step is below precision / 4. The result is a local maximum within `precision`; on outlines
-/// whose best grid point lies in the reach of the global maximum, the largest inscribed circle.
-InteriorPoint interior_point(const std::vector<OutlineLoop>& loops, double precision);
-/// Grid cells along the outline's long side, the cap on grid points (each costs one pass over
-/// the edges), the grid points climbed from, and the climb's step cap.
-constexpr int kGridCells = 32;
-constexpr int kMaxInteriorProbes = 4096;
-constexpr int kClimbSeeds = 8;
-constexpr int kMaxClimbSteps = 400;
-
-/// True when the box [lo, hi] lies inside the outline: its centre inside and no edge of the
-/// loops meeting it.
-bool box_inside_outline(const std::vector<OutlineLoop>& loops, const Vec2& lo, const Vec2& hi);
-
-/// An RGB colour.
-struct Rgb {
-  double r = 0, g = 0, b = 0;  ///< 0..1
-  /// "#rrggbb".
-  std::string hex() const;
-  /// This colour scaled towards black by `f` (1 = unchanged).
-  Rgb shaded(double f) const;
-};
-
-/// The pictures' shear colour scale (viridis-like, dark blue at 0, yellow at the top):
-/// t in [0, 1], clamped.
-Rgb shear_colour(double t);
-
-/// Colour of cells without a shear value.
-inline Rgb no_shear_colour() {
-  return {0.75, 0.75, 0.75};
-}
-
-/// The mold as labels show it: a file's name without its folder, or "builtin:..." as given.
-std::string mold_label(const std::string& mold);
-/// The faces draped, for labels: "face 3", "faces 3, 4, 7", or "18 faces" for many (an empty
-/// list is the default face 0).
-std::string faces_label(const std::vector<int>& faces);
-
-/// Unicode code points of UTF-8 text; invalid bytes become U+FFFD.
-std::u32string utf8_decode(const std::string& s);
-/// UTF-8 text of code points.
-std::string utf8_encode(const std::u32string& s);
-
-/// XML-escapes text for SVG content and attributes (invalid UTF-8 and control characters are
-/// replaced).
-std::string xml_escape(const std::string& s);
+/// The ply positions of a cell's corners, in order.
+std::vector<Vec2> cell_ply_points(const DrapeResult& r, const NetCell& c);
 
 }  // namespace plyfit::exporters::detail

@@ -4,7 +4,21 @@
 
 #include <plyfit/exporters/exporters.hpp>
 
+#include <functional>
+#include <string>
+#include <vector>
+
 namespace plyfit::exporters {
+
+/// One file a writer makes: its name in the output folder and how its bytes are made.
+struct OutputFile {
+  std::string name;
+  std::function<Result<std::string>(const ExportContext&)> content;
+};
+
+/// A writer of `files`, in order: each file's bytes are made, then written atomically into the
+/// output folder; the first failure stops it (its error names the file).
+Exporter file_exporter(std::string key, std::string description, std::vector<OutputFile> files);
 
 /// report.json (json_exporter.cpp).
 Exporter make_json_exporter();

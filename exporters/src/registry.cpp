@@ -1,5 +1,7 @@
 #include <plyfit/exporters/exporters.hpp>
 
+#include <plyfit/exporters/atomic_file.hpp>
+
 #include "plugins.hpp"
 
 #include <algorithm>
@@ -31,14 +33,29 @@ std::string supported_keys() {
   return s;
 }
 
+Exporter file_exporter(std::string key, std::string description, std::vector<OutputFile> files) {
+  Exporter e{std::move(key), {}, std::move(description), {}};
+  for (const OutputFile& f : files) e.files.push_back(f.name);
+  e.write = [files = std::move(files)](const ExportContext& ctx, const std::string& outdir) {
+    for (const OutputFile& f : files) {
+      const std::string path = (std::filesystem::path(outdir) / f.name).string();
+      auto content = f.content(ctx);
+      if (!content) return Status(Error(content.error()).in(path));
+      if (auto s = write_file_atomic(path, *content); !s) return s;
+    }
+    return ok_status();
+  };
+  return e;
+}
+
 Status write_outputs(const ExportContext& ctx, const std::string& outdir,
                      const std::vector<std::string>& keys) {
   std::error_code ec;
   std::filesystem::create_directories(outdir, ec);
-  if (ec) return Error{outdir + ": cannot create the output folder: " + ec.message()};
+  if (ec) return Error{ErrorCode::kOutputFolderNotCreated, outdir, {ec.message()}};
   for (const auto& k : keys) {
     const Exporter* e = find_exporter(k);
-    if (!e) return Error{"unknown output '" + k + "' (known: " + supported_keys() + ")"};
+    if (!e) return Error{ErrorCode::kUnknownOutput, {}, {k, supported_keys()}};
     if (auto s = e->write(ctx, outdir); !s) return s;
   }
   return ok_status();

@@ -1,6 +1,6 @@
-// Native STEP (ISO 10303-21, AP214) writer of named 3D curve sets. The structure is the one
-// OpenCASCADE's XDE writer produced for net.step before (what its XDE reader maps to named
-// shapes): per set a PRODUCT with its definition, formation, shape and category, and a
+// Native STEP (ISO 10303-21, AP214) writer of named 3D curve sets, in the structure
+// OpenCASCADE's XDE reader maps to named shapes (docs/decisions/net-step-writer.md): per set a
+// PRODUCT with its definition, formation, shape and category, and a
 // GEOMETRICALLY_BOUNDED_WIREFRAME_SHAPE_REPRESENTATION holding one GEOMETRIC_CURVE_SET of
 // B_SPLINE_CURVE_WITH_KNOTS; one representation context in millimetres shared by all sets.
 
@@ -126,14 +126,19 @@ std::string refs(const std::vector<int>& ids) {
   return s + ")";
 }
 
+// An error of a curve of set `name`: the set is its place in the file.
+Error in_set(Error e, const std::string& name) {
+  if (e.where.empty()) e.where = name;
+  return e;
+}
+
 // A curve as B_SPLINE_CURVE_WITH_KNOTS (distinct knots and multiplicities).
 Result<int> add_curve(Writer& w, const NurbsCurveData3& c) {
-  if (!c.weights.empty()) return Error{"rational curves are not written"};
+  if (!c.weights.empty()) return Error{ErrorCode::kCurveRational};
   auto valid = NurbsCurve3::create(c);
-  if (!valid) return Error{"invalid curve"}.because(valid.error());
+  if (!valid) return Error{ErrorCode::kCurveInvalid}.because(valid.error());
   std::vector<int> points;
   for (const auto& p : c.poles) {
-    if (!p.allFinite()) return Error{"a curve point is not finite"};
     points.push_back(
         w.add("CARTESIAN_POINT('',(" + real(p.x()) + "," + real(p.y()) + "," + real(p.z()) + "))"));
   }
@@ -162,7 +167,7 @@ Result<StepCurveSet> polyline_set(std::string name, const std::vector<std::vecto
     std::vector<Vec3> pts = line;
     if (closed && pts.size() >= 2 && pts.front() != pts.back()) pts.push_back(pts.front());
     auto c = polyline_curve(pts);
-    if (!c) return Error{set.name}.because(c.error());
+    if (!c) return in_set(c.error(), set.name);
     set.curves.push_back(c->data());
   }
   return set;
@@ -207,7 +212,7 @@ Status emit(std::ostream& out, const std::vector<StepCurveSet>& sets, const Step
     std::vector<int> curves;
     for (const auto& c : set.curves) {
       auto id = add_curve(w, c);
-      if (!id) return Error{set.name}.because(id.error());
+      if (!id) return in_set(id.error(), set.name);
       curves.push_back(*id);
     }
     const int curve_set = w.add("GEOMETRIC_CURVE_SET(''," + refs(curves) + ")");
@@ -230,13 +235,9 @@ Result<std::string> step_curves_text(const std::vector<StepCurveSet>& sets,
 
 Status write_step_curves(const std::string& path, const std::vector<StepCurveSet>& sets,
                          const StepFileInfo& info) {
-  AtomicFile file(path);
-  if (!file.ok()) return Error{path + ": cannot create the file (folder missing or not writable?)"};
-  if (auto st = emit(file.stream(), sets, info); !st) {
-    file.discard();
-    return Error{path}.because(st.error());
-  }
-  return file.commit();
+  auto text = step_curves_text(sets, info);
+  if (!text) return Error(text.error()).in(path);
+  return write_file_atomic(path, *text);
 }
 
 }  // namespace plyfit::exporters

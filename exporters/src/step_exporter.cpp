@@ -21,7 +21,6 @@
 
 #include "plugins.hpp"
 
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -56,19 +55,17 @@ Result<std::vector<StepCurveSet>> boundary_sets(const FlatPattern& flat) {
   for (const OutlineLoop& loop : flat.outline) {
     std::vector<Vec3> pts = boundary_points(loop);
     const std::string name = loop.hole ? "ply_hole_" + std::to_string(++holes) : "ply_boundary";
-    if (pts.size() < 3)
-      return Error{"cannot build the " + name + " curve: the loop has fewer than 3 distinct " +
-                   "points on the mold"};
+    if (pts.size() < 3) return Error{ErrorCode::kBoundaryLoopTooSmall, {}, {name}};
     if (!loop.hole) {
       outer.push_back(std::move(pts));
       continue;
     }
     auto set = polyline_set(name, {pts}, true);
-    if (!set) return Error{"cannot build a curve set"}.because(set.error());
+    if (!set) return Error{ErrorCode::kCurveSetNotBuilt}.because(set.error());
     sets.push_back(std::move(set).value());
   }
   auto set = polyline_set("ply_boundary", outer, true);
-  if (!set) return Error{"cannot build a curve set"}.because(set.error());
+  if (!set) return Error{ErrorCode::kCurveSetNotBuilt}.because(set.error());
   sets.insert(sets.begin(), std::move(set).value());
   return sets;
 }
@@ -93,7 +90,8 @@ Result<std::vector<StepCurveSet>> net_curve_sets(const ExportContext& ctx) {
       auto curve = ctx.options.curve_degree == 3 ? interpolate_cubic(pts) : polyline_curve(pts);
       if (!curve) curve = polyline_curve(pts);
       if (!curve)
-        return Error{std::string("cannot build a ") + g.name + " curve"}.because(curve.error());
+        return Error{ErrorCode::kThreadCurveNotBuilt, {}, {std::string(g.name)}}.because(
+            curve.error());
       set.curves.push_back(curve->data());
     }
     sets.push_back(std::move(set));
@@ -106,24 +104,23 @@ Result<std::vector<StepCurveSet>> net_curve_sets(const ExportContext& ctx) {
   return sets;
 }
 
-Status write_step(const ExportContext& ctx, const std::string& path) {
+// The text of net.step.
+Result<std::string> net_step(const ExportContext& ctx) {
   auto sets = net_curve_sets(ctx);
-  if (!sets) return Error{path}.because(sets.error());
+  if (!sets) return sets.error();
   StepFileInfo info;
   info.file_name = "net.step";
   info.description = "plyfit draped thread net";
-  return write_step_curves(path, *sets, info);
+  return step_curves_text(*sets, info);
 }
 
 }  // namespace
 
 Exporter make_step_exporter() {
-  return {"step",
-          {"net.step"},
-          "net.step: draped weft, warp and base path, and the ply boundary, as 3D curves (AP214)",
-          [](const ExportContext& ctx, const std::string& outdir) {
-            return write_step(ctx, (std::filesystem::path(outdir) / "net.step").string());
-          }};
+  return file_exporter(
+      "step",
+      "net.step: draped weft, warp and base path, and the ply boundary, as 3D curves (AP214)",
+      {{"net.step", net_step}});
 }
 
 }  // namespace plyfit::exporters

@@ -104,6 +104,13 @@ constexpr int kBisectionSteps = 60;
 constexpr int kMaxSegments = 20000;
 // The error is not driven below this multiple of the rounding of the summed contributions.
 constexpr double kRoundoffFloor = 64.0 * std::numeric_limits<double>::epsilon();
+// A face spans at most this many periods of a periodic surface (a valid one spans one).
+constexpr double kMaxPeriods = 64.0;
+
+// Thrown when a measure runs out of its work cap (Evaluator::budget, kMaxPeriods).
+struct WorkCapReached {
+  const char* what;
+};
 
 // |S_u x S_v| and points of the face's surface.
 // The integration's (u, v) are the surface's, or (v, u) when `transposed`.
@@ -122,11 +129,12 @@ class Evaluator {
     return p;
   }
   mutable long count = 0;
+  long budget = kMaxMeasureEvaluations;  // evaluations allowed
   bool transposed = false;
 
  private:
   void at(double u, double v, Vec3& p, Vec3& a, Vec3& b) const {
-    ++count;
+    if (++count > budget) throw WorkCapReached{"the integration ran out of its work cap"};
     if (transposed)
       d1(v, u, p, a, b);
     else
@@ -191,6 +199,8 @@ struct Breaks {
       return;
     }
     const double first = base.front();
+    if (!((hi - lo) / period <= kMaxPeriods))
+      throw WorkCapReached{"the face spans more periods of its surface than any valid face"};
     for (double shift = std::floor((lo - first) / period) * period; first + shift < hi;
          shift += period)
       for (double b : base)
@@ -653,6 +663,11 @@ void add_segment(const gp_Pnt2d& a, const gp_Pnt2d& b, std::vector<EdgeRef>& edg
   ranges.emplace_back(0.0, length);
 }
 
+// `box`, or an empty box when a corner is not finite (a point evaluated off a broken face).
+BBox3 finite_or_empty(const BBox3& box) {
+  return box.empty || (box.min.allFinite() && box.max.allFinite()) ? box : BBox3{};
+}
+
 FaceMeasure fallback(const TopoDS_Face& face, double rel_tol, bool with_box) {
   FaceMeasure m;
   GProp_GProps props;
@@ -668,6 +683,12 @@ FaceMeasure fallback(const TopoDS_Face& face, double rel_tol, bool with_box) {
       m.bbox.add(Vec3(x1, y1, z1));
     }
   }
+  if (!std::isfinite(m.area)) {
+    m.area = 0.0;
+    m.measured = false;
+    m.failure = "OpenCASCADE's integration gave no finite value";
+  }
+  m.bbox = finite_or_empty(m.bbox);
   return m;
 }
 
@@ -714,6 +735,104 @@ BBox3 face_box(const Evaluator& eval, const std::vector<EdgeRef>& edges,
     }
   }
   return box;
+}
+
+// The boundary, wire by wire with the edges in order along it; where an edge's pcurve does
+// not start where the previous one ended (CAD files leave gaps of up to 6e-4 mm, e.g.
+// PRO20359-L1.igs), a straight (u, v) segment closes the gap, so that every loop is closed
+// and Green's theorem gives the area it bounds (an open loop's result would depend on the
+// direction of integration).
+// False when an edge has no pcurve. `transposed`: every pcurve mirrored in the line u = v.
+bool boundary_of(const TopoDS_Face& face, bool transposed, std::vector<EdgeRef>& edges,
+                 std::vector<std::pair<double, double>>& ranges) {
+  const gp_Ax2d diagonal(gp_Pnt2d(0, 0), gp_Dir2d(1, 1));
+  for (TopExp_Explorer wx(face, TopAbs_WIRE); wx.More(); wx.Next()) {
+    const size_t first = edges.size();
+    gp_Pnt2d loop_start, last_end;
+    for (const TopoDS_Edge& e : ordered_edges(TopoDS::Wire(wx.Current()), face)) {
+      const TopAbs_Orientation o = e.Orientation();
+      if (o != TopAbs_FORWARD && o != TopAbs_REVERSED) continue;
+      double a = 0, b = 0;
+      Handle(Geom2d_Curve) c = BRep_Tool::CurveOnSurface(e, face, a, b);
+      if (c.IsNull() || !(b > a)) return false;
+      if (transposed) {
+        c = Handle(Geom2d_Curve)::DownCast(c->Copy());
+        c->Mirror(diagonal);
+      }
+      const bool reversed = o == TopAbs_REVERSED;
+      const gp_Pnt2d start = c->Value(reversed ? b : a), end = c->Value(reversed ? a : b);
+      if (edges.size() == first)
+        loop_start = start;
+      else
+        add_segment(last_end, start, edges, ranges);
+      edges.push_back(EdgeRef{c, reversed ? -1.0 : 1.0});
+      ranges.emplace_back(a, b);
+      last_end = end;
+    }
+    if (edges.size() > first) add_segment(last_end, loop_start, edges, ranges);
+  }
+  return !edges.empty();
+}
+
+// The boundary integral over a row table made to `inner_tol` (relative to a row integral).
+struct Pass {
+  double total = 0.0, error = 0.0, magnitude = 0.0, inner_rel = 0.0;
+};
+
+// The (u, v) box of the face, its surface (for its knots) and its boundary, to integrate over.
+struct Region {
+  const Handle(Geom_Surface) & geometry;
+  bool transposed;
+  double u0, u1, v0, v1;
+  const std::vector<EdgeRef>& edges;
+  const std::vector<std::pair<double, double>>& ranges;
+};
+
+Pass integrate_pass(const Evaluator& eval, const Region& r, double rel_tol, double inner_tol) {
+  const auto& edges = r.edges;
+  const auto& ranges = r.ranges;
+  const RowTable table(eval, breaks_of(r.geometry, !r.transposed),
+                       breaks_of(r.geometry, r.transposed), r.u0, r.u1, r.v0, r.v1, inner_tol);
+  const AreaIntegrator integrator(table);
+  std::vector<Segment> segs;
+  const Breaks ub = table.column_breaks(), vb = table.band_breaks();
+  for (size_t k = 0; k < edges.size(); ++k)
+    split_at_crossings(edges[k].curve, ranges[k].first, ranges[k].second, ub, vb,
+                       static_cast<int>(k), segs);
+  // Globally adaptive: the segment with the largest error estimate is halved until the
+  // estimates add up to the outer share of the requested accuracy.
+  std::priority_queue<Segment> queue;
+  Pass p;
+  p.inner_rel = table.relative_error();
+  for (Segment& seg : segs) {
+    integrator.integrate(edges[static_cast<size_t>(seg.edge)], seg);
+    p.total += seg.value;
+    p.error += seg.error;
+    p.magnitude += seg.abs_value;
+    queue.push(seg);
+  }
+  while (p.error >
+             std::max(kOuterShare * rel_tol * std::abs(p.total), kRoundoffFloor * p.magnitude) &&
+         static_cast<int>(queue.size()) < kMaxSegments) {
+    const Segment worst = queue.top();
+    queue.pop();
+    const double mid = 0.5 * (worst.t0 + worst.t1);
+    if (!(mid > worst.t0 && mid < worst.t1)) {
+      // Cannot be halved further: keep it as it is (its error stays in the sum).
+      queue.push(Segment{worst.t0, worst.t1, worst.edge, worst.value, 0.0, worst.abs_value});
+      p.error -= worst.error;
+      continue;
+    }
+    Segment a{worst.t0, mid, worst.edge, 0, 0, 0}, b{mid, worst.t1, worst.edge, 0, 0, 0};
+    integrator.integrate(edges[static_cast<size_t>(a.edge)], a);
+    integrator.integrate(edges[static_cast<size_t>(b.edge)], b);
+    p.total += a.value + b.value - worst.value;
+    p.error += a.error + b.error - worst.error;
+    p.magnitude += a.abs_value + b.abs_value - worst.abs_value;
+    queue.push(a);
+    queue.push(b);
+  }
+  return p;
 }
 
 }  // namespace
@@ -766,113 +885,45 @@ FaceMeasure measure_face(const TopoDS_Face& face, double rel_tol, bool with_box,
   std::unique_ptr<Evaluator> eval = kernel_evaluator(bspline);
   if (!eval) eval = std::make_unique<OcctEvaluator>(basis);
   eval->transposed = transposed;
-  // Transposed: every pcurve mirrored in the line u = v.
-  const gp_Ax2d diagonal(gp_Pnt2d(0, 0), gp_Dir2d(1, 1));
+  if (!bspline.IsNull())
+    eval->budget +=
+        kMeasureEvaluationsPerPatch * (bspline->NbUKnots() - 1) * (bspline->NbVKnots() - 1);
   const Handle(Geom_Surface)& geometry = bspline.IsNull() ? basis : bspline;
 
-  // The boundary, wire by wire with the edges in order along it; where an edge's pcurve does
-  // not start where the previous one ended (CAD files leave gaps of up to 6e-4 mm, e.g.
-  // PRO20359-L1.igs), a straight (u, v) segment closes the gap, so that every loop is closed
-  // and Green's theorem gives the area it bounds (an open loop's result would depend on the
-  // direction of integration).
   std::vector<EdgeRef> edges;
   std::vector<std::pair<double, double>> ranges;
-  for (TopExp_Explorer wx(face, TopAbs_WIRE); wx.More(); wx.Next()) {
-    const size_t first = edges.size();
-    gp_Pnt2d loop_start, last_end;
-    for (const TopoDS_Edge& e : ordered_edges(TopoDS::Wire(wx.Current()), face)) {
-      const TopAbs_Orientation o = e.Orientation();
-      if (o != TopAbs_FORWARD && o != TopAbs_REVERSED) continue;
-      double a = 0, b = 0;
-      Handle(Geom2d_Curve) c = BRep_Tool::CurveOnSurface(e, face, a, b);
-      if (c.IsNull() || !(b > a)) return fallback(face, rel_tol, with_box);
-      if (transposed) {
-        c = Handle(Geom2d_Curve)::DownCast(c->Copy());
-        c->Mirror(diagonal);
-      }
-      const bool reversed = o == TopAbs_REVERSED;
-      const gp_Pnt2d start = c->Value(reversed ? b : a), end = c->Value(reversed ? a : b);
-      if (edges.size() == first)
-        loop_start = start;
-      else
-        add_segment(last_end, start, edges, ranges);
-      edges.push_back(EdgeRef{c, reversed ? -1.0 : 1.0});
-      ranges.emplace_back(a, b);
-      last_end = end;
-    }
-    if (edges.size() > first) add_segment(last_end, loop_start, edges, ranges);
-  }
-  if (edges.empty()) return fallback(face, rel_tol, with_box);
-
+  if (!boundary_of(face, transposed, edges, ranges)) return fallback(face, rel_tol, with_box);
   double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
   BRepTools::UVBounds(face, u0, u1, v0, v1);
   if (transposed) {
     std::swap(u0, v0);
     std::swap(u1, v1);
   }
-  // The boundary integral over a row table made to `inner_tol` (relative to a row integral).
-  struct Pass {
-    double total = 0.0, error = 0.0, magnitude = 0.0, inner_rel = 0.0;
-  };
-  auto integrate = [&](double inner_tol) {
-    const RowTable table(*eval, breaks_of(geometry, !transposed), breaks_of(geometry, transposed),
-                         u0, u1, v0, v1, inner_tol);
-    const AreaIntegrator integrator(table);
-    std::vector<Segment> segs;
-    const Breaks ub = table.column_breaks(), vb = table.band_breaks();
-    for (size_t k = 0; k < edges.size(); ++k)
-      split_at_crossings(edges[k].curve, ranges[k].first, ranges[k].second, ub, vb,
-                         static_cast<int>(k), segs);
-    // Globally adaptive: the segment with the largest error estimate is halved until the
-    // estimates add up to the outer share of the requested accuracy.
-    std::priority_queue<Segment> queue;
-    Pass p;
-    p.inner_rel = table.relative_error();
-    for (Segment& seg : segs) {
-      integrator.integrate(edges[static_cast<size_t>(seg.edge)], seg);
-      p.total += seg.value;
-      p.error += seg.error;
-      p.magnitude += seg.abs_value;
-      queue.push(seg);
-    }
-    while (p.error >
-               std::max(kOuterShare * rel_tol * std::abs(p.total), kRoundoffFloor * p.magnitude) &&
-           static_cast<int>(queue.size()) < kMaxSegments) {
-      const Segment worst = queue.top();
-      queue.pop();
-      const double mid = 0.5 * (worst.t0 + worst.t1);
-      if (!(mid > worst.t0 && mid < worst.t1)) {
-        // Cannot be halved further: keep it as it is (its error stays in the sum).
-        queue.push(Segment{worst.t0, worst.t1, worst.edge, worst.value, 0.0, worst.abs_value});
-        p.error -= worst.error;
-        continue;
-      }
-      Segment a{worst.t0, mid, worst.edge, 0, 0, 0}, b{mid, worst.t1, worst.edge, 0, 0, 0};
-      integrator.integrate(edges[static_cast<size_t>(a.edge)], a);
-      integrator.integrate(edges[static_cast<size_t>(b.edge)], b);
-      p.total += a.value + b.value - worst.value;
-      p.error += a.error + b.error - worst.error;
-      p.magnitude += a.abs_value + b.abs_value - worst.abs_value;
-      queue.push(a);
-      queue.push(b);
-    }
-    return p;
-  };
-  // The inner share assumes the boundary's rows add up to about the area; where they add up
-  // to more (rows of both signs that cancel) and the table's error is what misses the accuracy,
-  // the table is made again, tighter by the ratio.
-  Pass pass = integrate(kInnerShare * rel_tol);
-  const double area = std::abs(pass.total), inner = pass.inner_rel * pass.magnitude;
-  if (pass.error + inner > rel_tol * area && inner > kOuterShare * rel_tol * area &&
-      pass.magnitude > area)
-    pass = integrate(kInnerShare * rel_tol * area / pass.magnitude);
-  const double total = pass.total, error = pass.error, magnitude = pass.magnitude;
+  const Region region{geometry, transposed, u0, u1, v0, v1, edges, ranges};
 
   FaceMeasure m;
-  m.area = std::abs(total);
-  m.error = error + pass.inner_rel * magnitude;
-  m.converged = m.error <= std::max(rel_tol * m.area, kRoundoffFloor * magnitude);
-  if (with_box) m.bbox = face_box(*eval, edges, ranges, u0, u1, v0, v1);
+  try {
+    if (with_box) m.bbox = finite_or_empty(face_box(*eval, edges, ranges, u0, u1, v0, v1));
+    // The inner share assumes the boundary's rows add up to about the area; where they add up
+    // to more (rows of both signs that cancel) and the table's error is what misses the
+    // accuracy, the table is made again, tighter by the ratio.
+    Pass pass = integrate_pass(*eval, region, rel_tol, kInnerShare * rel_tol);
+    const double area = std::abs(pass.total), inner = pass.inner_rel * pass.magnitude;
+    if (pass.error + inner > rel_tol * area && inner > kOuterShare * rel_tol * area &&
+        pass.magnitude > area)
+      pass = integrate_pass(*eval, region, rel_tol, kInnerShare * rel_tol * area / pass.magnitude);
+    m.area = std::abs(pass.total);
+    m.error = pass.error + pass.inner_rel * pass.magnitude;
+    m.converged = m.error <= std::max(rel_tol * m.area, kRoundoffFloor * pass.magnitude);
+    if (!std::isfinite(m.area) || !std::isfinite(m.error))
+      throw WorkCapReached{"the integration gave no finite value"};
+  } catch (const WorkCapReached& e) {
+    const BBox3 box = m.bbox;  // the box alone, if made
+    m = FaceMeasure{};
+    m.bbox = box;
+    m.measured = false;
+    m.failure = e.what;
+  }
   m.evaluations = eval->count;
   return m;
 }

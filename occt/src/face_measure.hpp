@@ -23,6 +23,7 @@
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Wire.hxx>
 
+#include <string>
 #include <vector>
 
 namespace plyfit::importers::occt {
@@ -38,7 +39,20 @@ struct FaceMeasure {
   /// for.
   BBox3 bbox;
   long evaluations = 0;  ///< surface evaluations made
+  /// False when the face could not be measured: the integration ran out of its work cap
+  /// (kMaxMeasureEvaluations) or gave no finite value, as on an invalid face (a boundary that
+  /// does not bound a region of its surface); `area` and `error` are 0 then and `failure` says
+  /// why.
+  bool measured = true;
+  std::string failure;
 };
+
+/// Work cap of one measure_face(): surface evaluations, kMaxMeasureEvaluations and
+/// kMeasureEvaluationsPerPatch for each Bezier patch of a B-spline surface. The faces of the
+/// shared CAD files need at most 1.9e5 at 1e-9 relative, a few hundred per patch; an invalid face
+/// can make the adaptive rules ask for ever more.
+constexpr long kMaxMeasureEvaluations = 2'000'000;
+constexpr long kMeasureEvaluationsPerPatch = 2'000;
 
 /// Grid points per direction of the interior samples of the bounding box.
 constexpr int kBoxGrid = 32;
@@ -50,7 +64,8 @@ constexpr int kBoxEdgeSamples = 64;
 /// `with_box`. `transposed` integrates along v and around the boundary in u instead (the same
 /// area by another path of quadratures: tests and benchmarks compare the two). Falls back to
 /// OpenCASCADE's integration (BRepGProp) for a face that has no boundary with pcurves; then
-/// `converged` is false and `bbox` comes from OpenCASCADE's BRepBndLib::AddOptimal.
+/// `converged` is false and `bbox` comes from OpenCASCADE's BRepBndLib::AddOptimal. Ends within
+/// its work cap of surface evaluations (FaceMeasure::measured says whether it measured).
 FaceMeasure measure_face(const TopoDS_Face& face, double rel_tol, bool with_box,
                          bool transposed = false);
 

@@ -1,6 +1,8 @@
 #include "mold_file.hpp"
 
 #include "face_measure.hpp"
+#include "file_checks.hpp"
+#include "geometry_checks.hpp"
 
 #include <BRepBuilderAPI_NurbsConvert.hxx>
 #include <BRepTools.hxx>
@@ -20,11 +22,6 @@
 #include <Geom_SurfaceOfLinearExtrusion.hxx>
 #include <Geom_SurfaceOfRevolution.hxx>
 #include <Geom_ToroidalSurface.hxx>
-#include <Interface_Check.hxx>
-#include <Interface_Static.hxx>
-#include <Message.hxx>
-#include <Message_Messenger.hxx>
-#include <OSD.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
@@ -33,20 +30,12 @@
 #include <TopoDS.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Wire.hxx>
-#include <TransferBRep.hxx>
-#include <XSControl_TransferReader.hxx>
-#include <XSControl_WorkSession.hxx>
 
 #include <algorithm>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <iterator>
-#include <map>
-#include <mutex>
-#include <sstream>
+#include <memory>
 
 namespace plyfit::importers::occt {
 
@@ -78,7 +67,8 @@ constexpr double kNaturalBoundaryRel = 5e-8;
 // tolerance reachable in double precision for a continuous pcurve).
 constexpr int kMinEdgeSegments = 8;
 constexpr int kMaxRefineDepth = 20;
-// Budget of trim polyline points for one face; past it the conversion fails with an error.
+// Budget of trim polyline points for one face (all its edges); past it the conversion fails
+// with an error.
 constexpr size_t kMaxLoopPoints = 2'000'000;
 // Sample count along a seam to check that the two seam edges of the surface coincide.
 constexpr int kSeamSamples = 9;
@@ -92,8 +82,10 @@ Vec3 vec(const gp_Pnt& p) {
 // ---------------------------------------------------------------------------------------------
 // Listing: surface kind, degrees, range, natural boundary.
 
-// Empty when `m` reached the relative accuracy `rel`, else what it reached.
+// Empty when `m` reached the relative accuracy `rel`, else what it reached; why it was not
+// measured when it was not (FaceInfo::area_measured).
 std::string area_accuracy_note(const FaceMeasure& m, double rel) {
+  if (!m.measured) return m.failure;
   if (m.converged) return {};
   char buf[160];
   if (m.area > 0.0 && m.error > 0.0)
@@ -250,6 +242,7 @@ FaceInfo describe_face(const TopoDS_Face& f, int index, double area_rel, std::st
   describe_surface(s, info);
   const FaceMeasure m = measure_face(f, area_rel, true);
   info.area = m.area;
+  info.area_measured = m.measured;
   info.bbox = m.bbox;
   area_note = area_accuracy_note(m, area_rel);
   const int wires = count_wires(f);
@@ -294,8 +287,10 @@ class EdgeSampler {
     for (size_t k = 0; k + 1 < ts.size(); ++k) {
       if (!(ts[k + 1] > ts[k])) continue;
       refine(ts[k], pts.back(), ts[k + 1], uv(ts[k + 1]), 0, pts);
-      if (pts.size() > kMaxLoopPoints) return Error{"trim polyline exceeds the point budget"};
+      if (points_ + pts.size() > kMaxLoopPoints)
+        return Error{"trim polylines exceed the point budget"};
     }
+    points_ += pts.size();
     if (e.Orientation() == TopAbs_REVERSED) std::reverse(pts.begin(), pts.end());
     out.insert(out.end(), pts.begin(), pts.end());
     return ok_status();
@@ -323,7 +318,7 @@ class EdgeSampler {
       if (chords3d_) err = std::max(err, (on - (point(p0) + fr * (point(p1) - point(p0)))).norm());
       if (err > tol_) break;
     }
-    if (err <= tol_ || depth >= kMaxRefineDepth || out.size() > kMaxLoopPoints) {
+    if (err <= tol_ || depth >= kMaxRefineDepth || points_ + out.size() > kMaxLoopPoints) {
       out.push_back(p1);
       return;
     }
@@ -338,6 +333,7 @@ class EdgeSampler {
   double tol_;
   Vec2 speeds_;
   bool chords3d_;
+  size_t points_ = 0;  // of the face's edges sampled so far: the budget is the face's
 };
 
 // With `tag`, loop.edges[k] is the tag of the edge segment k was sampled from (a segment that
@@ -502,6 +498,13 @@ Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const To
   return fd;
 }
 
+// "face 3 (#120)": face i and the entity of the file that made it, when known.
+std::string face_name(int i, const std::vector<std::string>& entities) {
+  const size_t k = static_cast<size_t>(i);
+  return "face " + std::to_string(i) +
+         (k < entities.size() && !entities[k].empty() ? " (" + entities[k] + ")" : "");
+}
+
 // An opened file. Reading and transferring happen at open; each face's entry (kind, degrees,
 // area, box, trim status) is computed when first needed: all of them, with areas to
 // kAreaRelListing, on the first call to mold(); face i alone, with its area to kAreaRelPrecise,
@@ -509,9 +512,11 @@ Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const To
 // of the others nor for a listing-accuracy area it does not use. Not thread-safe.
 class OcctMoldFile final : public MoldFile {
  public:
-  OcctMoldFile(Mold mold, TopTools_IndexedMapOfShape faces, ImportOptions options, double precision)
+  OcctMoldFile(Mold mold, TopTools_IndexedMapOfShape faces, std::vector<std::string> entities,
+               ImportOptions options, double precision)
       : mold_(std::move(mold)),
         faces_(std::move(faces)),
+        entities_(std::move(entities)),
         options_(std::move(options)),
         precision_(precision),
         state_(static_cast<size_t>(faces_.Extent()), State::kPending),
@@ -520,16 +525,22 @@ class OcctMoldFile final : public MoldFile {
 
   const Mold& mold() const override {
     if (!listed_) {
-      int failed = 0, short_areas = 0;
-      std::string first, first_short;
+      int failed = 0, short_areas = 0, invalid = 0;
+      std::string first, first_short, first_invalid;
       for (int i = 0; i < faces_.Extent(); ++i) {
         const size_t k = static_cast<size_t>(i);
         if (!describe_once(i, false)) {
           if (failed++ == 0) first = failure_[k];
+        } else if (!mold_.faces[k].area_measured) {
+          if (invalid++ == 0) first_invalid = face_name(i, entities_) + ": " + note_text(k);
         } else if (!note_[k].empty() && state_[k] == State::kListed && short_areas++ == 0) {
-          first_short = "face " + std::to_string(i) + ": " + note_[k];
+          first_short = face_name(i, entities_) + ": " + note_[k];
         }
       }
+      if (invalid)
+        mold_.warnings.push_back(
+            "listing: " + std::to_string(invalid) +
+            " faces whose area could not be measured (first: " + first_invalid + ")");
       if (failed)
         mold_.warnings.push_back("listing: " + std::to_string(failed) +
                                  " faces could not be described (first: " + first + ")");
@@ -547,7 +558,7 @@ class OcctMoldFile final : public MoldFile {
   Result<FaceInfo> describe(int index) const override {
     if (auto st = check_index(index); !st) return st.error();
     if (!describe_once(index, true))
-      return Error{mold_.source + ": face " + std::to_string(index) + ": " +
+      return Error{mold_.source + ": " + face_name(index, entities_) + ": " +
                    failure_[static_cast<size_t>(index)]};
     return mold_.faces[static_cast<size_t>(index)];
   }
@@ -556,9 +567,15 @@ class OcctMoldFile final : public MoldFile {
 
   Result<FaceData> convert_face(int index) override {
     if (auto st = check_index(index); !st) return st.error();
-    const std::string what = mold_.source + ": face " + std::to_string(index);
+    const std::string what = mold_.source + ": " + face_name(index, entities_);
     if (!describe_once(index, true))
       return Error{what + ": " + failure_[static_cast<size_t>(index)]};
+    if (!mold_.faces[static_cast<size_t>(index)].area_measured) {
+      Error e{ErrorCode::kFaceAreaNotMeasured, mold_.source, {note_[static_cast<size_t>(index)]}};
+      e.face = index;
+      e.where = entities_[static_cast<size_t>(index)];
+      return e;
+    }
     auto r = guarded(what, [&]() -> Result<FaceData> {
       return convert(TopoDS::Face(faces_(index + 1)), mold_.faces[static_cast<size_t>(index)],
                      options_.tolerances, nullptr);
@@ -615,44 +632,51 @@ class OcctMoldFile final : public MoldFile {
         return false;
       }
       mold_.faces[k].area = m->area;
+      mold_.faces[k].area_measured = m->measured;
       note_[k] = area_accuracy_note(*m, kAreaRelPrecise);
       state_[k] = State::kPrecise;
     } else {
       return state_[k] != State::kFailed;
     }
     if (state_[k] == State::kPrecise && !note_[k].empty())
-      mold_.warnings.push_back("face " + std::to_string(i) + ": " + note_[k]);
+      mold_.warnings.push_back(face_name(i, entities_) + ": " + note_text(k));
     return state_[k] != State::kFailed;
+  }
+
+  // Face k's note for a warning.
+  std::string note_text(size_t k) const {
+    if (mold_.faces[k].area_measured) return note_[k];
+    return "area not measured (" + note_[k] + "): an invalid face";
   }
 
   mutable Mold mold_;
   TopTools_IndexedMapOfShape faces_;
+  std::vector<std::string> entities_;  // the file's entity of each face ("#12", "DE 5", "")
   ImportOptions options_;
   double precision_;
   mutable std::vector<State> state_;
   mutable std::vector<std::string> failure_;
-  mutable std::vector<std::string> note_;  // the area's accuracy when short of the asked
+  // The area's accuracy when short of the asked; why it was not measured when it was not.
+  mutable std::vector<std::string> note_;
   mutable bool listed_ = false;
 };
 
-std::string read_head(std::ifstream& in, size_t n) {
-  std::string s(n, '\0');
-  in.read(s.data(), static_cast<std::streamsize>(n));
-  s.resize(static_cast<size_t>(in.gcount()));
-  return s;
-}
-
-// A STEP file ends with END-ISO-10303-21; an IGES file with its Terminate section (a line
-// with 'T' in column 73). Their absence means the file was cut short.
-bool looks_complete(Sniffed format, const std::string& tail) {
-  if (format == Sniffed::kStep) return tail.find("END-ISO-10303-21") != std::string::npos;
-  std::istringstream is(tail);
-  std::string line, last;
-  while (std::getline(is, line)) {
-    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-    if (!line.empty()) last = line;
+// Every face's geometry as read (geometry_checks.hpp); the first problem names the file,
+// the face and its entity.
+Status check_geometry(const std::string& path, const TopTools_IndexedMapOfShape& faces,
+                      const std::vector<std::string>& entities) {
+  for (int i = 0; i < faces.Extent(); ++i) {
+    const std::string what = path + ": " + face_name(i, entities);
+    auto st = guarded(what, [&] { return check_face_geometry(TopoDS::Face(faces(i + 1))); });
+    if (!st && st.error().code == ErrorCode::kText) return st.error();  // OpenCASCADE failed
+    if (!st) {
+      Error e = st.error();
+      e.face = i;
+      e.where = entities[static_cast<size_t>(i)];
+      return std::move(e).in(path);
+    }
   }
-  return last.size() >= 73 && last[72] == 'T';
+  return ok_status();
 }
 
 }  // namespace
@@ -662,176 +686,19 @@ Result<FaceData> convert_face(const TopoDS_Face& face, const FaceInfo& info, con
   return convert(face, info, tol, tag);
 }
 
-Deadline::Deadline(double seconds)
-    : end_(std::chrono::steady_clock::now() +
-           std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-               std::chrono::duration<double>(seconds))),
-      seconds_(seconds) {}
-
-bool Deadline::expired() const {
-  return std::chrono::steady_clock::now() > end_;
-}
-
-Sniffed sniff(const std::string& head) {
-  size_t i = head.find_first_not_of(" \t\r\n");
-  if (i == std::string::npos) return Sniffed::kUnknown;
-  if (head.compare(i, 12, "ISO-10303-21") == 0) return Sniffed::kStep;
-  // IGES: fixed 80-column records with the section letter in column 73 (S or, without a
-  // start section, G).
-  const size_t eol = head.find('\n');
-  std::string first = head.substr(0, eol);
-  if (!first.empty() && first.back() == '\r') first.pop_back();
-  if (first.size() >= 73 && (first[72] == 'S' || first[72] == 'G')) return Sniffed::kIges;
-  return Sniffed::kUnknown;
-}
-
-void prepare_occt() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    // OpenCASCADE's messages are summarised into Mold::warnings, never printed raw.
-    Message::DefaultMessenger()->ChangePrinters().Clear();
-  });
-}
-
-namespace {
-// The signals OSD::SetSignal installs handlers for on Linux.
-constexpr int kOsdSignals[] = {SIGHUP, SIGINT,  SIGQUIT, SIGILL, SIGTRAP,
-                               SIGBUS, SIGSEGV, SIGSYS,  SIGFPE};
-}  // namespace
-
-struct SignalScope::Saved {
-  struct sigaction actions[std::size(kOsdSignals)];
-};
-
-SignalScope::SignalScope() : saved_(new Saved) {
-  for (size_t i = 0; i < std::size(kOsdSignals); ++i)
-    sigaction(kOsdSignals[i], nullptr, &saved_->actions[i]);
-  // Faults inside OCC_CATCH_SIGNALS become OSD_Signal exceptions; floating-point traps off.
-  OSD::SetSignal(OSD_SignalMode_Set, Standard_False);
-}
-
-SignalScope::~SignalScope() {
-  for (size_t i = 0; i < std::size(kOsdSignals); ++i)
-    sigaction(kOsdSignals[i], &saved_->actions[i], nullptr);
-  delete saved_;
-}
-
-std::string text(const Handle(TCollection_HAsciiString) & s) {
-  if (s.IsNull()) return {};
-  std::string t = s->ToCString();
-  const size_t a = t.find_first_not_of(" \t\r\n");
-  if (a == std::string::npos) return {};
-  const size_t b = t.find_last_not_of(" \t\r\n");
-  return t.substr(a, b - a + 1);
-}
-
-Status read_file(XSControl_Reader& reader, const std::string& path,
-                 const std::string& format_name) {
-  // Geometry comes out in millimetres whatever the file's unit.
-  Interface_Static::SetCVal("xstep.cascade.unit", "MM");
-  const IFSelect_ReturnStatus status = reader.ReadFile(path.c_str());
-  if (status != IFSelect_RetDone)
-    return Error{"not a readable " + format_name + " file (the " + format_name + " parser failed" +
-                 std::string(status == IFSelect_RetVoid ? ": nothing to read" : "") + ")"};
-  return ok_status();
-}
-
-void transfer_roots(XSControl_Reader& reader, Deadline& deadline,
-                    const std::function<std::string(const Handle(Standard_Transient) &)>& name_of,
-                    ReadOutput& out) {
-  if (auto w = summarise_checks(reader.WS()->ModelCheckList(), "load"); !w.empty())
-    out.warnings.push_back(w);
-  reader.TransferRoots(deadline.Start());
-  const Handle(Transfer_TransientProcess) process =
-      reader.WS()->TransferReader()->TransientProcess();
-  if (!process.IsNull())
-    if (auto w = summarise_checks(process->CheckList(Standard_False), "transfer"); !w.empty())
-      out.warnings.push_back(w);
-  out.shape = reader.OneShape();
-  out.shape_names = shape_names(process, name_of);
-  out.precision = file_precision(reader);
-}
-
-std::string summarise_checks(const Interface_CheckIterator& checks, const std::string& stage) {
-  std::map<std::string, int> fails, warnings;
-  int nf = 0, nw = 0;
-  for (checks.Start(); checks.More(); checks.Next()) {
-    const Handle(Interface_Check)& c = checks.Value();
-    for (int i = 1; i <= c->NbFails(); ++i, ++nf) fails[c->CFail(i)]++;
-    for (int i = 1; i <= c->NbWarnings(); ++i, ++nw) warnings[c->CWarning(i)]++;
-  }
-  auto group = [](const std::map<std::string, int>& m, int n, const char* word) {
-    std::vector<std::pair<int, std::string>> v;
-    for (const auto& [msg, k] : m) v.emplace_back(-k, msg);
-    std::sort(v.begin(), v.end());
-    std::string s = std::to_string(n) + " " + word + (n == 1 ? "" : "s") + " (";
-    for (size_t i = 0; i < v.size() && i < 3; ++i) {
-      std::string msg = v[i].second;
-      std::replace(msg.begin(), msg.end(), '\n', ' ');
-      s += (i ? ", " : "") + std::to_string(-v[i].first) + "x '" + msg + "'";
-    }
-    if (v.size() > 3) s += ", ...";
-    return s + ")";
-  };
-  std::string out;
-  if (nf) out += group(fails, nf, "fail");
-  if (nw) out += (out.empty() ? "" : ", ") + group(warnings, nw, "warning");
-  return out.empty() ? out : stage + ": " + out;
-}
-
-std::vector<std::pair<TopoDS_Shape, std::string>> shape_names(
-    const Handle(Transfer_TransientProcess) & process,
-    const std::function<std::string(const Handle(Standard_Transient) &)>& name_of) {
-  std::vector<std::pair<TopoDS_Shape, std::string>> out;
-  if (process.IsNull()) return out;
-  for (int i = 1; i <= process->NbMapped(); ++i) {
-    const Handle(Transfer_Binder) b = process->MapItem(i);
-    if (b.IsNull() || !b->HasResult()) continue;
-    const TopoDS_Shape sh = TransferBRep::ShapeResult(b);
-    if (sh.IsNull() || sh.ShapeType() != TopAbs_FACE) continue;
-    std::string name = name_of(process->Mapped(i));
-    if (!name.empty()) out.emplace_back(sh, std::move(name));
-  }
-  return out;
-}
-
 Result<std::unique_ptr<MoldFile>> open_with(const std::string& path, const std::string& format_key,
                                             const ImportOptions& options,
                                             const ReadFunction& read) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const auto st = fs::status(path, ec);
-  if (ec || !fs::exists(st)) return Error{path + ": no such file"};
-  if (!fs::is_regular_file(st)) return Error{path + ": not a regular file"};
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return Error{path + ": cannot be opened for reading"};
-  const std::string head = read_head(in, 4096);
-  if (head.find_first_not_of(" \t\r\n") == std::string::npos) return Error{path + ": empty file"};
-  const Sniffed want = format_key == "step" ? Sniffed::kStep : Sniffed::kIges;
-  const Sniffed got = sniff(head);
-  const std::string upper = format_key == "step" ? "STEP" : "IGES";
-  if (got != want) {
-    std::string hint;
-    if (got == Sniffed::kStep) hint = "; it looks like STEP (--format step)";
-    if (got == Sniffed::kIges) hint = "; it looks like IGES (--format iges)";
-    return Error{path + ": not a " + upper + " file" + hint};
-  }
-  const auto file_size = fs::file_size(path, ec);
-  if (!ec && file_size > 4096) {
-    in.clear();
-    in.seekg(static_cast<std::streamoff>(file_size - 4096));
-  } else {
-    in.clear();
-    in.seekg(0);
-  }
-  if (!looks_complete(want, read_head(in, 4096)))
-    return Error{path + ": truncated " + upper + " file (" +
-                 (want == Sniffed::kStep ? "no END-ISO-10303-21 trailer" : "no terminate section") +
-                 ")"};
+  const auto sniffed = check_file_head(path, format_key);
+  if (!sniffed) return sniffed.error();
+  const Sniffed want = *sniffed;
+  if (auto checked = check_file_text(path, want == Sniffed::kStep); !checked)
+    return Error(checked.error()).in(path);
 
   prepare_occt();
   Handle(Deadline) deadline = new Deadline(options.time_limit_s);
   auto out = guarded(path, [&]() -> Result<ReadOutput> {
+    debug_reader_fault();
     auto r = read(path, *deadline);
     if (!r) return Error{path}.because(r.error());
     return r;
@@ -865,8 +732,12 @@ Result<std::unique_ptr<MoldFile>> open_with(const std::string& path, const std::
     const int k = faces.FindIndex(shape);
     if (k > 0 && mold.faces[k - 1].name.empty()) mold.faces[k - 1].name = name;
   }
-  return std::unique_ptr<MoldFile>(
-      std::make_unique<OcctMoldFile>(std::move(mold), std::move(faces), options, ro.precision));
+  std::vector<std::string> entities(static_cast<size_t>(faces.Extent()));
+  for (const auto& [shape, label] : ro.face_entities)
+    if (const int k = faces.FindIndex(shape); k > 0) entities[static_cast<size_t>(k - 1)] = label;
+  if (auto checked = check_geometry(path, faces, entities); !checked) return checked.error();
+  return std::unique_ptr<MoldFile>(std::make_unique<OcctMoldFile>(
+      std::move(mold), std::move(faces), std::move(entities), options, ro.precision));
 }
 
 }  // namespace plyfit::importers::occt

@@ -63,6 +63,8 @@ struct ReadOutput {
   std::vector<std::pair<TopoDS_Shape, std::string>> shape_names;
   /// The file's length precision in millimetres (see file_precision()).
   double precision = 0.0;
+  /// The entity of the file that made each face ("#12", "DE 5"; entity_label()).
+  std::vector<std::pair<TopoDS_Shape, std::string>> face_entities;
 };
 
 /// A format's reading step: reads `path` into a shape (units converted to millimetres).
@@ -74,6 +76,14 @@ enum class Sniffed { kStep, kIges, kUnknown };
 
 /// Looks at the first bytes of `head` (the start of a file): STEP Part 21 or IGES.
 Sniffed sniff(const std::string& head);
+
+/// Checks that `path` exists, is a regular non-empty file, looks like `format_key` ("step" or
+/// "iges") and is complete (its trailer or terminate section is there); the format it is.
+Result<Sniffed> check_file_head(const std::string& path, const std::string& format_key);
+
+/// Tests: PLYFIT_DEBUG_READER_FAULT=segv or =stack makes the guarded read fault as a broken
+/// reader would (a segmentation fault; a stack overflow by a recursion without end).
+void debug_reader_fault();
 
 /// Silences OpenCASCADE's default messenger (idempotent; called by open_with()).
 void prepare_occt();
@@ -104,7 +114,7 @@ Result<std::unique_ptr<MoldFile>> open_with(const std::string& path, const std::
 Status read_file(XSControl_Reader& reader, const std::string& path, const std::string& format_name);
 
 /// Transfers every root of a reader's model (under `deadline`) into `out`: the shape, the
-/// load and transfer check summaries, and the face names found by `name_of`.
+/// load and transfer check summaries, the face names found by `name_of` and the faces' entities.
 void transfer_roots(XSControl_Reader& reader, Deadline& deadline,
                     const std::function<std::string(const Handle(Standard_Transient) &)>& name_of,
                     ReadOutput& out);

@@ -190,12 +190,17 @@ TEST_CASE("cli: batch runs the good scenes, reports the broken ones and exits 1"
   CHECK(scene_entry(s, "good")["mapped"] == 716);
   CHECK(scene_entry(s, "good")["outdir"] == out + "/good");
   CHECK(scene_entry(s, "good-2")["status"] == "ok");
-  CHECK(scene_entry(s, "missing")["error"] ==
-        tmp.file("missing.ini") + ": cannot open the scene file");
-  CHECK(scene_entry(s, "malformed")["error"] ==
-        tmp.file("malformed.ini") + ": key 'lock-angle': 'steep' is not a number");
+  // Each error with its code; its text names the file and the key.
+  CHECK(scene_entry(s, "missing")["error_code"] == "scene_cannot_open");
+  CHECK(scene_entry(s, "missing")["error"].get<std::string>().rfind(tmp.file("missing.ini") + ": ",
+                                                                    0) == 0);
+  CHECK(scene_entry(s, "malformed")["error_code"] == "not_a_number");
+  CHECK(scene_entry(s, "malformed")["error"].get<std::string>().rfind(
+            tmp.file("malformed.ini") + ": key 'lock-angle': ", 0) == 0);
   CHECK(scene_entry(s, "malformed")["exit_code"] == 1);
+  CHECK(scene_entry(s, "good")["error_code"] == "");
   CHECK(scene_entry(s, "corrupt")["status"] == "error");
+  CHECK_FALSE(scene_entry(s, "corrupt")["error_code"].get<std::string>().empty());
   CHECK(scene_entry(s, "corrupt")["error"].get<std::string>().find("corrupt.step") !=
         std::string::npos);
   CHECK(scene_entry(s, "nomold")["error"].get<std::string>().find("no-such-mold.igs") !=
@@ -204,10 +209,14 @@ TEST_CASE("cli: batch runs the good scenes, reports the broken ones and exits 1"
   // The CSV holds the same rows.
   const std::string csv = slurp(out + "/summary.csv");
   CHECK(lines(csv) == 8);
-  CHECK(csv.rfind(
-            "index,name,scene,status,exit_code,mapped,shear_max_deg,time_s,outdir,files,error\n",
-            0) == 0);
+  CHECK(
+      csv.rfind("index,name,scene,status,exit_code,mapped,shear_max_deg,time_s,outdir,files,error,"
+                "error_code\n",
+                0) == 0);
   CHECK(csv.find("\n1,missing,") != std::string::npos);
+  CHECK(csv.find(",scene_cannot_open\n") != std::string::npos);
+  // The table gives each error with its code.
+  CHECK(r.out.find("[scene_cannot_open]") != std::string::npos);
   CHECK(csv.find("\n3,good-2,") != std::string::npos);
   // Running the same batch again replaces the previous outputs; all good now: exit 0.
   const CliRun again = plyfit_run(
@@ -220,20 +229,26 @@ TEST_CASE("cli: batch runs the good scenes, reports the broken ones and exits 1"
   const CliRun keep = plyfit_run("batch '" + tmp.file("a/good.ini") + "' -o '" + out + "'", tmp);
   CHECK(keep.code == 1);
   CHECK(slurp(out + "/good/notes.txt") == "mine");
-  CHECK(scene_entry(json::parse(slurp(out + "/summary.json")), "good")["error"]
-            .get<std::string>()
-            .find("holds other files") != std::string::npos);
+  const json kept = scene_entry(json::parse(slurp(out + "/summary.json")), "good");
+  CHECK(kept["error_code"] == "folder_holds_other_files");
+  CHECK(kept["error"].get<std::string>().rfind(out + "/good: ", 0) == 0);
 }
 
 TEST_CASE("cli: batch command-line errors exit 2") {
   Scratch tmp("batch_usage");
-  CHECK(plyfit_run("batch", tmp).code == 2);
-  CHECK(plyfit_run("batch x.ini -j 0", tmp).code == 2);
+  CliRun r = plyfit_run("batch", tmp);
+  CHECK(r.code == 2);
+  CHECK(error_code(r) == "missing_argument");
+  r = plyfit_run("batch x.ini -j 0", tmp);
+  CHECK(r.code == 2);
+  CHECK(error_code(r) == "not_an_integer");
+  CHECK(r.err.rfind("plyfit: error: --jobs: ", 0) == 0);
   for (const char* shard : {"2/2", "1", "a/b", "-1/2", "1/0", "1/2/3"}) {
     INFO(shard);
-    const CliRun r = plyfit_run(std::string("batch x.ini --shard ") + shard, tmp);
+    r = plyfit_run(std::string("batch x.ini --shard ") + shard, tmp);
     CHECK(r.code == 2);
-    CHECK(lines(r.err) == 1);
+    CHECK(error_code(r) == "bad_shard");
+    CHECK(r.err.rfind("plyfit: error: --shard: ", 0) == 0);
   }
 }
 
@@ -279,7 +294,8 @@ TEST_CASE("cli: a crashing scene does not stop the others") {
   const json s = json::parse(slurp(out + "/summary.json"));
   CHECK(scene_entry(s, "slow")["status"] == "crashed");
   CHECK(scene_entry(s, "slow")["signal"] == SIGSEGV);
-  CHECK(scene_entry(s, "slow")["error"].get<std::string>().find("killed by signal 11") !=
+  CHECK(scene_entry(s, "slow")["error_code"] == "drape_crashed");
+  CHECK(scene_entry(s, "slow")["error"].get<std::string>().find(std::to_string(SIGSEGV)) !=
         std::string::npos);
   CHECK(scene_entry(s, "quick")["status"] == "ok");
   CHECK(scene_entry(s, "after")["status"] == "ok");
@@ -311,6 +327,7 @@ TEST_CASE("cli: Ctrl-C stops a batch cleanly") {
   CHECK(scene_entry(s, "quick")["status"] == "ok");
   CHECK(scene_entry(s, "slow")["status"] == "cancelled");
   CHECK(scene_entry(s, "slow-2")["status"] == "cancelled");
+  CHECK(scene_entry(s, "slow")["error_code"] == "interrupted");
   CHECK(scene_entry(s, "later")["status"] == "not run");
   CHECK(s["counts"]["cancelled"] == 2);
   CHECK(s["counts"]["not_run"] == 1);

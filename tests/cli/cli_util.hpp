@@ -78,4 +78,14 @@ inline int lines(const std::string& s) {
   return n;
 }
 
+/// The code of the one error line a run printed, "plyfit: error: TEXT [code]" (docs/errors.md);
+/// empty when stderr is not one such line.
+inline std::string error_code(const CliRun& r) {
+  const std::string& e = r.err;
+  if (lines(e) != 1 || e.rfind("plyfit: error: ", 0) != 0 || e.size() < 4) return {};
+  const auto open = e.rfind(" [");
+  if (open == std::string::npos || e.compare(e.size() - 2, 2, "]\n") != 0) return {};
+  return e.substr(open + 2, e.size() - 2 - open - 2);
+}
+
 }  // namespace plyfit::test

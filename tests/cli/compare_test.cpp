@@ -11,6 +11,7 @@
 #include <cmath>
 #include <functional>
 #include <sstream>
+#include <tuple>
 
 using namespace plyfit::test;
 using nlohmann::json;
@@ -178,8 +179,7 @@ TEST_CASE("cli: compare refuses scenes on different molds unless --force") {
   const std::string a = sample("sphere-octant-a.ini"), r3 = sample("revolution-third-a.ini");
   CliRun r = plyfit_run("compare '" + a + "' '" + r3 + "'", tmp);
   CHECK(r.code == 2);
-  CHECK(lines(r.err) == 1);
-  CHECK(r.err.find("scenes on different molds") != std::string::npos);
+  CHECK(error_code(r) == "different_molds");
   CHECK(r.err.find("revolution-third.step") != std::string::npos);
   CHECK(r.out.empty());
   r = plyfit_run("compare --force '" + a + "' '" + r3 + "'", tmp);
@@ -201,10 +201,21 @@ TEST_CASE("cli: compare refuses scenes on different molds unless --force") {
   r = plyfit_run("compare --force '" + a + "' '" + tmp.file("gone.ini") + "'", tmp);
   CHECK(r.code == 1);
   CHECK(r.out.find("gone: error: ") != std::string::npos);
+  // The warning that the molds differ, then the error naming the mold file, with its code.
+  CliRun error_line = r;
+  error_line.err = r.err.substr(r.err.find("plyfit: error: "));
+  CHECK(error_line.err.find("gone.step") != std::string::npos);
+  CHECK_FALSE(error_code(error_line).empty());
   // Usage errors.
-  CHECK(plyfit_run("compare", tmp).code == 2);
-  CHECK(plyfit_run("compare --csv --markdown '" + a + "'", tmp).code == 2);
-  CHECK(plyfit_run("compare '" + tmp.file("none.ini") + "'", tmp).code == 1);
+  for (const auto& [args, exit, code] : std::vector<std::tuple<std::string, int, std::string>>{
+           {"compare", 2, "missing_argument"},
+           {"compare --csv --markdown '" + a + "'", 2, "options_exclusive"},
+           {"compare '" + tmp.file("none.ini") + "'", 1, "scene_cannot_open"}}) {
+    INFO(args);
+    r = plyfit_run(args, tmp);
+    CHECK(r.code == exit);
+    CHECK(error_code(r) == code);
+  }
 }
 
 TEST_CASE("cli: compare never marks as best a fitting that covers less of the face") {

@@ -3,10 +3,12 @@
 // command, every scene key, built-in mold and shell, output file and report.json field, each on
 // its own page. Read from the built plyfit's own listings and outputs, so a new option, key or
 // field without documentation fails here; every link of the README and of docs/ must lead to
-// a file and heading that exist. (The README's first drape, on a shared CAD file, is run in
+// a file and heading that exist; docs/errors.md documents every error and warning code (read
+// from the X-macros of result.hpp). (The README's first drape, on a shared CAD file, is run in
 // readme_corpus_test.cpp.)
 
 #include <plyfit/exporters/exporters.hpp>
+#include <plyfit/kernel/result.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -95,6 +97,27 @@ void field_paths(const nlohmann::json& j, const std::string& at, std::set<std::s
     if (it->is_array() && !it->empty() && it->front().is_object())
       field_paths(it->front(), path + "[]", out);
   }
+}
+
+/// Every error code's name (PLYFIT_ERROR_CODES) and every warning code's
+/// (PLYFIT_WARNING_CODES), in order.
+#define PLYFIT_CODE_NAME(name, snake) #snake,
+const std::vector<std::string> kErrorCodes = {PLYFIT_ERROR_CODES(PLYFIT_CODE_NAME)};
+const std::vector<std::string> kWarningCodes = {PLYFIT_WARNING_CODES(PLYFIT_CODE_NAME)};
+#undef PLYFIT_CODE_NAME
+
+/// The codes a section of docs/errors.md documents: the first cells `name` of its table rows,
+/// each row with a meaning and what to do.
+std::set<std::string> documented_codes(const std::string& section) {
+  std::set<std::string> out;
+  for (const auto& row : table_rows(section)) {
+    if (row.empty() || row[0].size() < 3 || row[0].front() != '`' || row[0].back() != '`') continue;
+    INFO("docs/errors.md: " << row[0]);
+    CHECK(row.size() == 3);
+    CHECK((row.size() > 2 && !row[1].empty() && !row[2].empty()));
+    out.insert(row[0].substr(1, row[0].size() - 2));
+  }
+  return out;
 }
 
 /// The markdown files of the manual: the README and every page under docs/.
@@ -360,4 +383,26 @@ TEST_CASE("cli: every link of the README and of docs/ leads to a file and headin
     }
   }
   CHECK(links >= 50);
+}
+
+TEST_CASE("cli: docs/errors.md documents every error and warning code, and no other") {
+  const std::string doc = source_file("docs/errors.md");
+  REQUIRE(!doc.empty());
+  for (const auto& [heading, codes] : {std::pair{std::string("## Error codes"), kErrorCodes},
+                                       std::pair{std::string("## Warning codes"), kWarningCodes}}) {
+    const std::string section = md_section(doc, heading);
+    INFO(heading);
+    REQUIRE(!section.empty());
+    const std::set<std::string> documented = documented_codes(section);
+    for (const auto& code : codes) {
+      INFO("code " << code << " is not in docs/errors.md");
+      CHECK(documented.count(code) == 1);
+    }
+    const std::set<std::string> known(codes.begin(), codes.end());
+    for (const auto& d : documented) {
+      INFO("docs/errors.md documents " << d << ", which is no code");
+      CHECK(known.count(d) == 1);
+    }
+  }
+  CHECK(kErrorCodes.size() >= 50);
 }

@@ -30,6 +30,8 @@ import sys
 
 import ezdxf
 
+from check_report import finish  # same folder
+
 AREA_REL = 1e-9          # outline area as in report.json to 1e-9 relative
 INSIDE_REL = 1e-9        # a THREADS line ends on the outline within this fraction of its size
 LABEL_ROUNDING = 5e-4    # the AREA label shows three decimals
@@ -275,14 +277,9 @@ def main():
     else:
         check(len(warn) == 0, "%d SHEAR_WARN cells, none expected" % len(warn))
 
-    if failures:
-        for f in failures[:20]:
-            print("check_dxf: %s: %s" % (path, f))
-        print("check_dxf: %d failures" % len(failures))
-        return 1
-    print("check_dxf: %s: ok (%d outline loops, %d holes, area %.12g, %d thread lines, %d shear-warning "
-          "cells, %d labels inside)" % (path, outer, holes, total, len(threads), len(warn), len(texts)))
-    return 0
+    return finish("check_dxf", path, failures,
+                  "%d outline loops, %d holes, area %.12g, %d thread lines, %d shear-warning cells, "
+                  "%d labels inside" % (outer, holes, total, len(threads), len(warn), len(texts)))
 
 
 if __name__ == "__main__":

@@ -25,6 +25,7 @@ import ezdxf
 from ezdxf import bbox
 
 from check_dxf import inside  # the even-odd point-in-outline test (same folder)
+from check_report import finish
 
 DPI = 100             # rasterisation of the A4 page
 INK = 240             # a grey level below this is ink (not white: cyan layers are light)
@@ -147,14 +148,9 @@ def main():
 
 
 def report(dxf, failures, texts=0, ink=0, size=(0, 0)):
-    if failures:
-        for f in failures[:20]:
-            print("check_librecad: %s: %s" % (dxf, f))
-        print("check_librecad: %d failures" % len(failures))
-        return 1
-    print("check_librecad: %s: ok (one page, %d ink pixels of %dx%d, %d labels inside and drawn)"
-          % (dxf, ink, size[0], size[1], texts))
-    return 0
+    return finish("check_librecad", dxf, failures,
+                  "one page, %d ink pixels of %dx%d, %d labels inside and drawn"
+                  % (ink, size[0], size[1], texts))
 
 
 if __name__ == "__main__":

@@ -22,6 +22,8 @@ import sys
 
 import vtk
 
+from check_report import finish  # same folder
+
 REL = 1e-9       # areas and angle extremes as in report.json
 ROUNDOFF = 1e-9  # degrees: shear against |90 - angle|
 
@@ -122,14 +124,9 @@ def main():
         elif not math.isnan(cshear[k]):
             check(0 <= cshear[k] <= 90, "cell shear %r out of [0, 90]" % cshear[k])
 
-    if failures:
-        for f in failures[:20]:
-            print("check_vtk: %s: %s" % (path, f))
-        print("check_vtk: %d failures" % len(failures))
-        return 1
-    print("check_vtk: %s: ok (%d points, %d beyond the face, %d lines, %d polygons of area %.12g)"
-          % (path, npts, beyond, nl, count, area))
-    return 0
+    return finish("check_vtk", path, failures,
+                  "%d points, %d beyond the face, %d lines, %d polygons of area %.12g"
+                  % (npts, beyond, nl, count, area))
 
 
 if __name__ == "__main__":

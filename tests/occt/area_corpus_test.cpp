@@ -1,12 +1,16 @@
 // Face areas (importers/src/face_measure.cpp) on the shared CAD files: the integration along u
 // against the one along v (another path of quadratures for the same integral) to the accuracy
-// asked, at the listing's 1e-6 and a described face's 1e-9. Closed forms: area_test.cpp.
+// asked, at the listing's 1e-6 and a described face's 1e-9; an invalid face ends within the work
+// cap, its area marked. Closed forms: area_test.cpp.
 
 #include <catch2/catch.hpp>
 
 #include "corpus.hpp"
 #include "face_measure.hpp"  // occt/src
 #include "occt/occt_reference.hpp"
+
+#include <BRepCheck_Analyzer.hxx>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include "surface/face.hpp"
@@ -60,4 +64,74 @@ TEST_CASE(
     // importer integrates along u.
     CHECK(unconverged <= (name == "surf114.igs" ? 1 : 0));
   }
+}
+
+namespace {
+
+// bug27693_cornetta-step.stp with records 510 to 552 cut out: face 73, a rational B-spline
+// face, keeps one edge of its wire, whose pcurve runs a little outside its surface's domain;
+// the face fails OpenCASCADE's BRepCheck. Its area integration once never ended.
+constexpr int kInvalidFace = 73;
+std::string invalid_brep_file(const TempDir& dir) {
+  const std::string bytes = read_bytes(shared_cad("bug27693_cornetta-step.stp"));
+  std::vector<std::string> lines;
+  size_t pos = 0;
+  while (pos < bytes.size()) {
+    const size_t eol = std::min(bytes.find('\n', pos), bytes.size());
+    lines.push_back(bytes.substr(pos, eol + 1 - pos));
+    pos = eol + 1;
+  }
+  REQUIRE(lines.size() > 552);
+  lines.erase(lines.begin() + 509, lines.begin() + 552);
+  std::string cut;
+  for (const auto& l : lines) cut += l;
+  const std::string path = dir.file("invalid_brep.stp");
+  write_bytes(path, cut);
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("importers: the area integration of an invalid face ends within its work cap") {
+  TempDir dir("invalid_brep_measure");
+  const Reference ref = read_reference(invalid_brep_file(dir), false);
+  REQUIRE(ref.count() > kInvalidFace);
+  const TopoDS_Face face = ref.face(kInvalidFace);
+  REQUIRE_FALSE(BRepCheck_Analyzer(face).IsValid());
+  const auto surface = Handle(Geom_BSplineSurface)::DownCast(BRep_Tool::Surface(face));
+  REQUIRE_FALSE(surface.IsNull());
+  const long cap = importers::occt::kMaxMeasureEvaluations +
+                   importers::occt::kMeasureEvaluationsPerPatch * (surface->NbUKnots() - 1) *
+                       (surface->NbVKnots() - 1);
+  for (const bool transposed : {false, true}) {
+    const auto m = importers::occt::measure_face(face, kDescribedRel, true, transposed);
+    INFO("transposed " << transposed << ": " << m.evaluations << " evaluations");
+    CHECK_FALSE(m.measured);
+    CHECK(m.area == 0.0);
+    CHECK(m.evaluations <= cap + 1);
+    CHECK_FALSE(m.bbox.empty);
+  }
+}
+
+TEST_CASE("importers: plyfit info lists a file with an invalid face, its area marked invalid") {
+  TempDir dir("invalid_brep_cli");
+  const std::string path = invalid_brep_file(dir);
+  const Run list = run_plyfit("info --json '" + path + "'", dir);
+  INFO("exit " << list.code << ", stderr: " << list.err);
+  REQUIRE(list.code == 0);
+  const auto j = nlohmann::json::parse(list.out);
+  REQUIRE(j["faces"].size() > static_cast<size_t>(kInvalidFace));
+  for (const auto& f : j["faces"]) {
+    INFO("face " << f["index"]);
+    if (f["index"] == kInvalidFace)
+      CHECK(f["area_mm2"].is_null());
+    else
+      CHECK(f["area_mm2"].get<double>() > 0.0);
+  }
+  const Run one = run_plyfit("info '" + path + "' --face " + std::to_string(kInvalidFace), dir);
+  INFO("exit " << one.code << ", stderr: " << one.err);
+  CHECK(one.code == 1);
+  CHECK(std::count(one.err.begin(), one.err.end(), '\n') == 1);
+  CHECK(one.err.find(path) != std::string::npos);
+  CHECK(one.err.find("face " + std::to_string(kInvalidFace)) != std::string::npos);
 }

@@ -112,3 +112,17 @@ TEST_CASE("importers: a file without faces, a bad face index and a time limit ar
   for (const std::string name : {"plate-hole.step", "dish.igs"})
     check_bad_index_and_time_limit(sample_mold(name), 1);
 }
+
+TEST_CASE("importers: a fault inside the reader is a one-line error naming the file") {
+  TempDir dir("reader_fault");
+  const std::string path = sample_mold("dish.step");
+  // A segmentation fault, and a stack overflow (a recursion that does not end), inside the read.
+  for (const std::string fault : {"segv", "stack"}) {
+    const Run r = run_plyfit("info '" + path + "'", dir, "PLYFIT_DEBUG_READER_FAULT=" + fault);
+    INFO(fault << ": exit " << r.code << ", stderr: " << r.err);
+    CHECK(r.code == 1);
+    CHECK(r.err.rfind("plyfit: error: ", 0) == 0);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(r.err.find(path) != std::string::npos);
+  }
+}

@@ -1,372 +1,42 @@
-// The writers, read back by independent readers: net.step by OpenCASCADE's XDE STEP reader
-// (names, curve counts, every node on its curve), net.vtk by a small binary legacy-VTK parser
-// written here (counts, cells, arrays, NaN), the labels, units and sizes the shop sees, the
-// interior point the DXF labels sit on, and the atomic-write and determinism promises. The
-// DXF, SVG and VTK files are also checked by ezdxf, Python's XML parser and VTK's own reader
-// (tests/exporters/*.py), and LibreCAD renders the DXF.
+// The writers, read back: net.vtk by a small binary legacy-VTK parser written here (counts,
+// cells, arrays, NaN), the labels, units and sizes the shop sees, the interior point the DXF
+// labels sit on, the atomic-write and determinism promises and the writers' error codes.
+// net.step is read back by OpenCASCADE in net_step_test.cpp. The DXF, SVG and VTK files are
+// also checked by ezdxf, Python's XML parser and VTK's own reader (tests/exporters/*.py), and
+// LibreCAD renders the DXF.
 
+#include <plyfit/exporters/atomic_file.hpp>
 #include <plyfit/exporters/exporters.hpp>
 #include <plyfit/exporters/messages.hpp>
 #include <plyfit/exporters/step_curves.hpp>
-#include <plyfit/importers/importers.hpp>
-#include <plyfit/kernel/builtin_molds.hpp>
-#include "drape/drape.hpp"
 #include "pattern/cells.hpp"
-#include "pattern/flat_pattern.hpp"
-#include "support/face_of.hpp"
-#include "surface/shell/shell.hpp"
 
-#include <unistd.h>
-#include <catch2/catch.hpp>
+#include "export_cases.hpp"
+
 #include <nlohmann/json.hpp>
 
-#include "support/problems.hpp"
-
-#include "net_util.hpp"          // exporters/src: the writers' cell enumeration
-#include "nurbs_conversion.hpp"  // occt/src: kernel NURBS as OpenCASCADE geometry
+#include "net_util.hpp"                // exporters/src: the writers' cell enumeration
+#include "render/label_placement.hpp"  // exporters/src: where the DXF labels go
 #include "test_util.hpp"
-
-#include <BRep_Tool.hxx>
-#include <GeomAPI_ProjectPointOnCurve.hxx>
-#include <GeomAPI_ProjectPointOnSurf.hxx>
-#include <Geom_BSplineCurve.hxx>
-#include <Geom_BSplineSurface.hxx>
-#include <Geom_TrimmedCurve.hxx>
-#include <IFSelect_ReturnStatus.hxx>
-#include <STEPCAFControl_Reader.hxx>
-#include <TCollection_AsciiString.hxx>
-#include <TDF_LabelSequence.hxx>
-#include <TDataStd_Name.hxx>
-#include <TDocStd_Document.hxx>
-#include <TopExp_Explorer.hxx>
-#include <TopoDS.hxx>
-#include <XCAFApp_Application.hxx>
-#include <XCAFDoc_DocumentTool.hxx>
-#include <XCAFDoc_ShapeTool.hxx>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
-#include <memory>
+#include <numbers>
 #include <set>
 #include <sstream>
 
 using namespace plyfit;
+using namespace plyfit::test;  // export_cases.hpp: Case, cases(), fresh_dir(), slurp()
 namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-// A node lies on its STEP curve within this fraction of the face size (bounding-box
-// diagonal): OpenCASCADE writes reals with 12 significant digits, so a pole moves by about
-// 1e-12 of the coordinates; the brief asks for 1e-9.
-constexpr double kOnCurveRel = 1e-9;
-// A point of the 3D ply boundary is a node, a boundary crossing or a boundary vertex, each
-// evaluated on the surface: on the mold within this fraction of its size (the same rounding
-// as kOnCurveRel).
-constexpr double kOnMoldRel = 1e-9;
-// The middle of a boundary segment leaves a curved mold by the chord's sagitta, L^2 / (8 R)
-// for a chord L on a radius R. A segment stays within one cell (L <= sqrt(2) d for the spacing
-// d); on the cases here (d / R <= 0.2) that is at most 0.05 d: "small against the spacing".
-constexpr double kMidSegmentOffSpacing = 0.05;
-
-// A drape with everything the writers need, kept alive together.
-struct Case {
-  std::string name;
-  MoldSurface surface;                  ///< a face or a shell
-  std::vector<NurbsSurfaceData> molds;  ///< the surfaces of its faces
-  DrapeProblem problem;
-  DrapeResult result;
-  FlatPattern flat;
-  exporters::RunInfo run;
-  exporters::ExportOptions options;
-  exporters::ExportContext ctx() const { return {problem, result, surface, &flat, run, options}; }
-};
-
-std::unique_ptr<Case> make_case(const std::string& mold,
-                                std::shared_ptr<const DrapeSurface> surface,
-                                std::vector<NurbsSurfaceData> molds, DrapeProblem pb) {
-  auto r = drape(*surface, pb);  // the kernel's own drape() of a Face or Shell
-  INFO(mold << ": " << (r.ok() ? std::string() : exporters::describe(r.error())));
-  REQUIRE(r.ok());
-  FlatPattern flat = flat_pattern(*surface, *r);
-  auto c = std::unique_ptr<Case>(new Case{mold,
-                                          MoldSurface(std::move(surface)),
-                                          std::move(molds),
-                                          pb,
-                                          std::move(r).value(),
-                                          std::move(flat),
-                                          {},
-                                          {}});
-  c->run.mold = mold;
-  c->run.ply_name = "test ply";
-  c->run.material = "plain weave";
-  return c;
-}
-
-std::unique_ptr<Case> make_case(const std::string& mold, Result<Face> face, DrapeProblem pb) {
-  INFO(mold << ": " << (face.ok() ? std::string() : exporters::describe(face.error())));
-  REQUIRE(face.ok());
-  std::vector<NurbsSurfaceData> molds = {face->surface().data()};
-  return make_case(mold, std::make_shared<const Face>(std::move(face).value()), std::move(molds),
-                   std::move(pb));
-}
-
-std::unique_ptr<Case> make_case(const std::string& mold, Result<MoldSurface> surface,
-                                DrapeProblem pb) {
-  INFO(mold << ": " << (surface.ok() ? std::string() : exporters::describe(surface.error())));
-  REQUIRE(surface.ok());
-  return make_case(mold, Face(test::face_of(*surface)), std::move(pb));
-}
-
-// A drape across the faces of built-in shell `name`.
-std::unique_ptr<Case> make_shell_case(const std::string& name, DrapeProblem pb) {
-  auto data = builtin_shell(name, {});
-  REQUIRE(data.ok());
-  std::vector<NurbsSurfaceData> molds;
-  for (const FaceData& f : data->faces) molds.push_back(f.surface);
-  auto shell = Shell::create(std::move(data).value());
-  INFO(name << ": " << (shell.ok() ? std::string() : exporters::describe(shell.error())));
-  REQUIRE(shell.ok());
-  return make_case("builtin:" + name, std::make_shared<const Shell>(std::move(shell).value()),
-                   std::move(molds), std::move(pb));
-}
-
-std::unique_ptr<Case> make_case(const std::string& mold, std::map<std::string, double> params,
-                                DrapeProblem pb) {
-  auto fd = builtin_mold(mold, params);
-  REQUIRE(fd.ok());
-  return make_case("builtin:" + mold, Face::create(std::move(fd).value()), std::move(pb));
-}
-
-using support::problem;
-
-// The paper's sphere-octant cases (a) and (c), a base path off the grid (auxiliary points),
-// a two-sided sweep on the surface of revolution and a torus.
-std::vector<std::unique_ptr<Case>> cases() {
-  std::vector<std::unique_ptr<Case>> v;
-  v.push_back(make_case("sphere-octant", {},
-                        problem(1, {0, 0}, {1, 0}, {{0, 1}}, {0, 0, 20}, {0, 1, 0}, {{0, 1, 0}})));
-  v.push_back(
-      make_case("sphere-octant", {},
-                problem(1, {15, 0}, {1, 1}, {{-1, 1}}, {0, 0, 20}, {0, 1, 0}, {{0, 1, 0}})));
-  v.push_back(
-      make_case("sphere-octant", {},
-                problem(1.3, {0.4, 0.3}, {2, 1}, {{-1, 2}}, {0, 0, 20}, {0, 1, 0}, {{0, 1, 0}})));
-  v.push_back(make_case("revolution-third", {},
-                        problem(1, {35, 0}, {0, 1}, {{-1, 0}, {1, 0}}, {10, 10 * std::sqrt(3.0), 0},
-                                {1, -1, 0}, {{1, -1, 0}, {-1, 1, 0}})));
-  v.push_back(make_case("torus", {},
-                        problem(2, {0, 0}, {1, 0}, {{0, 1}, {0, -1}}, {40, 0, 0}, {0, 0, 1},
-                                {{0, 0, 1}, {0, 0, -1}})));
-  // A trimmed face with a hole read from IGES (plyfit's sample dish: the corpus's trimmed
-  // CATIA face PRO20359-L1 runs in the exporter case of tests/CMakeLists.txt), swept both ways.
-  const std::string dish = std::string(PLYFIT_SOURCE_DIR) + "/samples/molds/dish.igs";
-  v.push_back(make_case(dish, importers::load_face(dish, 0),
-                        problem(2, {0, 0}, {1, 0}, {{0, 1}, {0, -1}}, {18, 0, 4.05}, {0, 1, 0},
-                                {{0, 1, 0}, {0, -1, 0}})));
-  // A plate with a hole that the cloth flows round: the outline has a hole.
-  v.push_back(make_case("plate",
-                        {{"W", 100}, {"H", 60}, {"hole_r", 10}, {"hole_x", 50}, {"hole_y", 30}},
-                        problem(2, {0, 0}, {1, 0}, {{0, 1}, {0, -1}}, {20, 10, 0}, {0, 1, 0},
-                                {{0, 1, 0}, {0, -1, 0}})));
-  // A shell: from the flange over the fillet onto the wall, swept both ways.
-  v.push_back(make_shell_case("flange-fillet-wall",
-                              problem(2, {0, 0}, {1, 0}, {{0, 1}, {0, -1}}, {-20, 30, 0}, {0, 1, 0},
-                                      {{0, 1, 0}, {0, -1, 0}})));
-  return v;
-}
-
-// Scratch folders, one per name and process (test runs of several clones at once, or ctest
-// -j, must not share one), removed when the test program ends.
-struct ScratchDirs {
-  std::vector<fs::path> made;
-  ~ScratchDirs() {
-    std::error_code ec;
-    for (const auto& p : made) fs::remove_all(p, ec);
-  }
-};
-ScratchDirs scratch_dirs;
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path p = fs::temp_directory_path() /
-                     ("plyfit_exporters_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(p);
-  scratch_dirs.made.push_back(p);
-  fs::create_directories(p);
-  return p;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// ---------------------------------------------------------------------------------------
-// STEP, read back by OpenCASCADE's XDE reader.
-
-struct StepGroup {
-  std::vector<Handle(Geom_Curve)> curves;
-  std::vector<std::pair<double, double>> ranges;
-};
-
-std::map<std::string, StepGroup> read_step(const fs::path& file) {
-  STEPCAFControl_Reader reader;
-  reader.SetNameMode(Standard_True);
-  REQUIRE(reader.ReadFile(file.c_str()) == IFSelect_RetDone);
-  Handle(TDocStd_Document) doc;
-  XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc);
-  REQUIRE(reader.Transfer(doc));
-  const Handle(XCAFDoc_ShapeTool) shapes = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
-  TDF_LabelSequence labels;
-  shapes->GetFreeShapes(labels);
-  std::map<std::string, StepGroup> out;
-  for (int k = 1; k <= labels.Length(); ++k) {
-    Handle(TDataStd_Name) name;
-    REQUIRE(labels.Value(k).FindAttribute(TDataStd_Name::GetID(), name));
-    const std::string key = TCollection_AsciiString(name->Get()).ToCString();
-    StepGroup& g = out[key];
-    for (TopExp_Explorer ex(shapes->GetShape(labels.Value(k)), TopAbs_EDGE); ex.More(); ex.Next()) {
-      double a = 0, b = 0;
-      Handle(Geom_Curve) c = BRep_Tool::Curve(TopoDS::Edge(ex.Current()), a, b);
-      REQUIRE(!c.IsNull());
-      g.curves.push_back(c);
-      g.ranges.emplace_back(a, b);
-    }
-  }
-  XCAFApp_Application::GetApplication()->Close(doc);
-  return out;
-}
-
-// The B-spline behind a (possibly trimmed) curve.
-Handle(Geom_BSplineCurve) bspline_of(Handle(Geom_Curve) c) {
-  if (auto t = Handle(Geom_TrimmedCurve)::DownCast(c); !t.IsNull()) c = t->BasisCurve();
-  return Handle(Geom_BSplineCurve)::DownCast(c);
-}
-
-// The ply boundary's sets net.step should hold: `ply_boundary` with the outer loops of the
-// outline, `ply_hole_N` with its N-th hole (README, "net.step").
-std::map<std::string, std::vector<const OutlineLoop*>> boundary_sets(const FlatPattern& flat) {
-  std::map<std::string, std::vector<const OutlineLoop*>> sets;
-  int holes = 0;
-  for (const OutlineLoop& loop : flat.outline)
-    sets[loop.hole ? "ply_hole_" + std::to_string(++holes) : "ply_boundary"].push_back(&loop);
-  return sets;
-}
-
-// Distance from p to the nearest of `molds` (OpenCASCADE's projection onto each surface).
-double mold_distance(const std::vector<Handle(Geom_BSplineSurface)>& molds, const gp_Pnt& p) {
-  double best = std::numeric_limits<double>::infinity();
-  for (const auto& s : molds) {
-    GeomAPI_ProjectPointOnSurf proj(p, s);
-    if (proj.NbPoints() > 0) best = std::min(best, proj.LowerDistance());
-  }
-  return best;
-}
-
-// The ply boundary read back: one closed degree-1 curve per outline loop, through every 3D
-// outline point, its corners on the mold and its segments close to it.
-void check_boundary(const Case& c, const std::map<std::string, StepGroup>& groups) {
-  std::vector<Handle(Geom_BSplineSurface)> molds;
-  for (const auto& m : c.molds) molds.push_back(occt::to_occt(m));
-  const double tol = kOnCurveRel * c.surface.size();
-  const double on_mold = kOnMoldRel * c.surface.size();
-  const double mid_tol =
-      kMidSegmentOffSpacing * std::max(c.problem.ply.d_weft, c.problem.ply.d_warp);
-  const auto expected = boundary_sets(c.flat);
-  REQUIRE(expected.count("ply_boundary") == 1);  // every case has an outline
-  for (const auto& [name, loops] : expected) {
-    INFO(c.name << " group " << name);
-    REQUIRE(groups.count(name) == 1);
-    const StepGroup& g = groups.at(name);
-    REQUIRE(g.curves.size() == loops.size());
-    for (std::size_t k = 0; k < loops.size(); ++k) {
-      const Handle(Geom_BSplineCurve) b = bspline_of(g.curves[k]);
-      REQUIRE(!b.IsNull());
-      CHECK(b->Degree() == 1);
-      CHECK(b->NbPoles() >= 4);  // a closed loop of three corners or more
-      const gp_Pnt a = g.curves[k]->Value(g.ranges[k].first);
-      const gp_Pnt z = g.curves[k]->Value(g.ranges[k].second);
-      CHECK(a.Distance(z) <= tol);
-      double worst_point = 0.0, worst_corner = 0.0, worst_mid = 0.0;
-      for (const Vec3& p : loops[k]->points3d) {
-        GeomAPI_ProjectPointOnCurve proj(gp_Pnt(p.x(), p.y(), p.z()), g.curves[k],
-                                         g.ranges[k].first, g.ranges[k].second);
-        REQUIRE(proj.NbPoints() > 0);
-        worst_point = std::max(worst_point, proj.LowerDistance());
-      }
-      for (int i = 1; i <= b->NbPoles(); ++i) {
-        worst_corner = std::max(worst_corner, mold_distance(molds, b->Pole(i)));
-        if (i > 1) {
-          const gp_XYZ mid = 0.5 * (b->Pole(i - 1).XYZ() + b->Pole(i).XYZ());
-          worst_mid = std::max(worst_mid, mold_distance(molds, gp_Pnt(mid)));
-        }
-      }
-      CHECK(worst_point <= tol);
-      CHECK(worst_corner <= on_mold);
-      CHECK(worst_mid <= mid_tol);
-    }
-  }
-}
-
-void check_step(const Case& c, int degree) {
-  const fs::path dir = fresh_dir("step");
-  exporters::ExportOptions opt = c.options;
-  opt.curve_degree = degree;
-  const exporters::ExportContext ctx{c.problem, c.result, c.surface, &c.flat, c.run, opt};
-  const auto* e = exporters::find_exporter("step");
-  REQUIRE(e);
-  const auto st = e->write(ctx, dir.string());
-  INFO((st.ok() ? std::string() : exporters::describe(st.error())));
-  REQUIRE(st.ok());
-  const auto groups = read_step(dir / "net.step");
-
-  const std::map<std::string, std::vector<std::vector<std::uint32_t>>> expected = {
-      {"weft", c.result.threads(true)},
-      {"warp", c.result.threads(false)},
-      {"base_path", {c.result.base_path}}};
-  REQUIRE(groups.size() == 3 + boundary_sets(c.flat).size());
-  const double tol = kOnCurveRel * c.surface.size();
-  for (const auto& [name, runs] : expected) {
-    INFO(c.name << " degree " << degree << " group " << name);
-    REQUIRE(groups.count(name) == 1);
-    const StepGroup& g = groups.at(name);
-    REQUIRE(g.curves.size() == runs.size());
-    REQUIRE(!runs.empty());
-    for (std::size_t k = 0; k < runs.size(); ++k) {
-      const Handle(Geom_BSplineCurve) b = bspline_of(g.curves[k]);
-      REQUIRE(!b.IsNull());
-      const int n = static_cast<int>(runs[k].size());
-      // Degree 1 always; degree 3 through four nodes or more (the kernel's interpolation
-      // gives a line through two points and a quadratic through three).
-      CHECK(b->Degree() == (degree == 1 ? 1 : std::min(3, n - 1)));
-      double worst = 0.0;
-      for (const std::uint32_t id : runs[k]) {
-        const Vec3& p = c.result.nodes[id].point;
-        GeomAPI_ProjectPointOnCurve proj(gp_Pnt(p.x(), p.y(), p.z()), g.curves[k],
-                                         g.ranges[k].first, g.ranges[k].second);
-        REQUIRE(proj.NbPoints() > 0);
-        worst = std::max(worst, proj.LowerDistance());
-      }
-      CHECK(worst <= tol);
-      // The curve runs from the run's first node to its last.
-      const Vec3& p0 = c.result.nodes[runs[k].front()].point;
-      const Vec3& p1 = c.result.nodes[runs[k].back()].point;
-      const gp_Pnt a = g.curves[k]->Value(g.ranges[k].first);
-      const gp_Pnt z = g.curves[k]->Value(g.ranges[k].second);
-      CHECK(a.Distance(gp_Pnt(p0.x(), p0.y(), p0.z())) <= tol);
-      CHECK(z.Distance(gp_Pnt(p1.x(), p1.y(), p1.z())) <= tol);
-    }
-  }
-  check_boundary(c, groups);
-}
+constexpr double kPi = std::numbers::pi;
 
 // ---------------------------------------------------------------------------------------
 // VTK, read by a small parser of the legacy BINARY format (big-endian data blocks).
@@ -474,98 +144,6 @@ TEST_CASE("exporters: the registry holds dxf, step, json, svg, vtk") {
   CHECK(exporters::find_exporter("svg")->files ==
         std::vector<std::string>{"flat.svg", "drape.svg", "shear.svg"});
   CHECK(exporters::find_exporter("pdf") == nullptr);
-}
-
-TEST_CASE(
-    "exporters: net.step reads back in OpenCASCADE with named groups, nodes on curves and the "
-    "ply boundary closed on the mold",
-    "[slow]") {
-  for (const auto& c : cases()) {
-    check_step(*c, 1);
-    check_step(*c, 3);
-  }
-}
-
-TEST_CASE(
-    "exporters: the STEP curve writer's closed polylines and names read back in "
-    "OpenCASCADE") {
-  // A set of closed 3D polylines (as the ply boundary in 3D will be) and a name that needs
-  // escaping, next to an open set.
-  const std::vector<std::vector<Vec3>> loops = {
-      {Vec3(0, 0, 0), Vec3(10, 0, 1), Vec3(10, 5, 2), Vec3(0, 5, 1)},
-      {Vec3(2, 2, 0.5), Vec3(4, 2, 0.5), Vec3(3, 3, 0.5)}};
-  auto closed = exporters::polyline_set("ply_boundary", loops, true);
-  REQUIRE(closed.ok());
-  auto open = exporters::polyline_set("it's a \\ test", {{Vec3(0, 0, 0), Vec3(1, 2, 3)}}, false);
-  REQUIRE(open.ok());
-  const fs::path dir = fresh_dir("step_curves");
-  exporters::StepFileInfo info;
-  info.file_name = "curves.step";
-  REQUIRE(
-      exporters::write_step_curves((dir / "curves.step").string(), {*closed, *open}, info).ok());
-  const auto groups = read_step(dir / "curves.step");
-  REQUIRE(groups.size() == 2);
-  REQUIRE(groups.count("ply_boundary") == 1);
-  CHECK(groups.count("it's a \\ test") == 1);
-  const StepGroup& g = groups.at("ply_boundary");
-  REQUIRE(g.curves.size() == loops.size());
-  for (std::size_t k = 0; k < loops.size(); ++k) {
-    const Handle(Geom_BSplineCurve) b = bspline_of(g.curves[k]);
-    REQUIRE(!b.IsNull());
-    CHECK(b->Degree() == 1);
-    // Every corner, and back to the first: the poles are the loop's points, exactly.
-    REQUIRE(b->NbPoles() == static_cast<int>(loops[k].size()) + 1);
-    for (int i = 1; i <= b->NbPoles(); ++i) {
-      const Vec3& p = loops[k][static_cast<std::size_t>(i - 1) % loops[k].size()];
-      CHECK(b->Pole(i).Distance(gp_Pnt(p.x(), p.y(), p.z())) == 0.0);
-    }
-  }
-  // A rational curve is refused, with the set named.
-  exporters::StepCurveSet rational = *open;
-  rational.curves[0].weights = {1.0, 2.0};
-  const auto st = exporters::step_curves_text({rational}, info);
-  REQUIRE_FALSE(st.ok());
-  CHECK(exporters::describe(st.error()).find("rational") != std::string::npos);
-}
-
-TEST_CASE("exporters: net.step reads back in DRAW (occt-draw) with its names and curve counts") {
-  // DRAW, OpenCASCADE's test harness (Debian occt-draw, scripts/install-deps --test), reads the
-  // file with its own commands: ReadStep into an XDE document, the product names and the edges
-  // of each.
-  if (std::system("command -v occt-draw > /dev/null 2>&1") != 0) {
-    WARN("skipped: occt-draw is not installed (scripts/install-deps --test)");
-    return;
-  }
-  for (const auto& c : cases()) {
-    INFO(c->name);
-    const fs::path dir = fresh_dir("draw");
-    REQUIRE(exporters::find_exporter("step")->write(c->ctx(), dir.string()).ok());
-    std::map<std::string, std::size_t> expected = {{"weft", c->result.threads(true).size()},
-                                                   {"warp", c->result.threads(false).size()},
-                                                   {"base_path", 1}};
-    for (const auto& [name, loops] : boundary_sets(c->flat)) expected[name] = loops.size();
-    {
-      std::ofstream tcl(dir / "read.tcl");
-      tcl << "pload MODELING XDE OCAF\nReadStep D {" << (dir / "net.step").string() << "}\n"
-          << "foreach lab {";
-      for (std::size_t k = 1; k <= expected.size(); ++k) tcl << " 0:1:1:" << k;
-      tcl << "} {\n  XGetShape s D $lab\n"
-          << "  puts \"group [GetName D $lab] [llength [explode s e]]\"\n}\nexit\n";
-    }
-    const std::string out = (dir / "draw.txt").string();
-    const std::string cmd =
-        "timeout 120 occt-draw -b -f '" + (dir / "read.tcl").string() + "' > '" + out + "' 2>&1";
-    REQUIRE(std::system(cmd.c_str()) == 0);
-    std::ifstream in(out);
-    std::map<std::string, std::size_t> edges;
-    for (std::string line; std::getline(in, line);) {
-      std::istringstream ls(line);
-      std::string word, name;
-      std::size_t n = 0;
-      if (ls >> word >> name >> n && word == "group") edges[name] = n;
-    }
-    CHECK(edges == expected);
-  }
 }
 
 TEST_CASE(
@@ -680,7 +258,8 @@ TEST_CASE("exporters: a failed write leaves neither the file nor a temporary fil
       fs::create_directory(dir / e.files[blocked]);
       const auto st = e.write(c.ctx(), dir.string());
       REQUIRE(!st.ok());
-      CHECK(exporters::describe(st.error()).find(e.files[blocked]) != std::string::npos);
+      CHECK(st.error().code == ErrorCode::kFileNotRenamed);
+      CHECK(st.error().input == (dir / e.files[blocked]).string());
       CHECK(exporters::describe(st.error()).find('\n') == std::string::npos);
       // Files before the blocked one are whole; nothing else is there.
       std::set<std::string> present;
@@ -693,14 +272,84 @@ TEST_CASE("exporters: a failed write leaves neither the file nor a temporary fil
     // A folder that does not exist: nothing is created.
     const fs::path missing = fresh_dir("atomic_missing") / "absent";
     const auto st = e.write(c.ctx(), missing.string());
-    CHECK(!st.ok());
+    REQUIRE(!st.ok());
+    CHECK(st.error().code == ErrorCode::kFileNotCreated);
+    CHECK(st.error().input == (missing / e.files.front()).string());
     CHECK(!fs::exists(missing));
   }
   // The output folder cannot be created (a file is in the way).
   const fs::path dir = fresh_dir("atomic_outdir");
   { std::ofstream(dir / "file") << "x"; }
   const auto st = exporters::write_outputs(c.ctx(), (dir / "file" / "out").string(), {"dxf"});
-  CHECK(!st.ok());
+  REQUIRE(!st.ok());
+  CHECK(st.error().code == ErrorCode::kOutputFolderNotCreated);
+  CHECK(st.error().input == (dir / "file" / "out").string());
+  // An output no writer makes: named, with the known ones.
+  const auto unknown = exporters::write_outputs(c.ctx(), fresh_dir("unknown").string(), {"pdf"});
+  REQUIRE(!unknown.ok());
+  CHECK(unknown.error().code == ErrorCode::kUnknownOutput);
+  CHECK(unknown.error().values ==
+        std::vector<MessageValue>{std::string("pdf"), exporters::supported_keys()});
+}
+
+TEST_CASE("exporters: writer errors are codes naming the file, the curve set or the thread") {
+  const auto all = cases();
+  const Case& c = *all.front();
+  const auto* step = exporters::find_exporter("step");
+  REQUIRE(step);
+  const fs::path dir = fresh_dir("errors");
+  const std::string net_step = (dir / "net.step").string();
+  SECTION("a weft run through two coincident nodes") {
+    DrapeResult r = c.result;
+    const auto runs = r.threads(true);
+    const auto run =
+        std::find_if(runs.begin(), runs.end(),
+                     [](const std::vector<std::uint32_t>& v) { return v.size() >= 2; });
+    REQUIRE(run != runs.end());
+    r.nodes[(*run)[1]].point = r.nodes[(*run)[0]].point;
+    const exporters::ExportContext ctx{c.problem, r, c.surface, &c.flat, c.run, c.options};
+    const auto st = step->write(ctx, dir.string());
+    REQUIRE(!st.ok());
+    CHECK(st.error().code == ErrorCode::kThreadCurveNotBuilt);
+    CHECK(st.error().input == net_step);
+    CHECK(st.error().values == std::vector<MessageValue>{std::string("weft")});
+    CHECK(st.error().cause != nullptr);
+    CHECK(!fs::exists(net_step));
+  }
+  SECTION("a ply boundary loop of fewer than three points on the mold") {
+    FlatPattern flat = c.flat;
+    REQUIRE(!flat.outline.empty());
+    REQUIRE(!flat.outline.front().hole);
+    flat.outline.front().points3d.resize(2);
+    const exporters::ExportContext ctx{c.problem, c.result, c.surface, &flat, c.run, c.options};
+    const auto st = step->write(ctx, dir.string());
+    REQUIRE(!st.ok());
+    CHECK(st.error().code == ErrorCode::kBoundaryLoopTooSmall);
+    CHECK(st.error().input == net_step);
+    CHECK(st.error().values == std::vector<MessageValue>{std::string("ply_boundary")});
+  }
+  SECTION("a curve the kernel refuses (knots out of order), in its set") {
+    NurbsCurveData3 bad;
+    bad.degree = 1;
+    bad.poles = {Vec3(0, 0, 0), Vec3(1, 0, 0)};
+    bad.knots = {0.0, 1.0, 0.5, 1.0};
+    const auto st = exporters::write_step_curves(net_step, {{"bad set", {bad}}}, {});
+    REQUIRE(!st.ok());
+    CHECK(st.error().code == ErrorCode::kCurveInvalid);
+    CHECK(st.error().input == net_step);
+    CHECK(st.error().where == "bad set");
+    CHECK(st.error().cause != nullptr);
+    CHECK(!fs::exists(net_step));
+  }
+  SECTION("a file committed twice") {
+    exporters::AtomicFile file(net_step);
+    file.stream() << "x";
+    REQUIRE(file.commit().ok());
+    const auto again = file.commit();
+    REQUIRE(!again.ok());
+    CHECK(again.error().code == ErrorCode::kFileAlreadyClosed);
+    CHECK(again.error().input == net_step);
+  }
 }
 
 TEST_CASE("exporters: equal inputs give equal bytes") {
@@ -813,7 +462,7 @@ std::vector<OutlineLoop> loops_of(const std::vector<std::vector<Vec2>>& polys) {
 }
 
 TEST_CASE("exporters: the labels' interior point is the centre of a largest inscribed circle") {
-  using exporters::detail::interior_point;
+  using exporters::render::interior_point;
   constexpr double kPrecision = 1e-4;
   // A 4 x 2 rectangle: the inscribed circle has radius 1, its centre on the line y = 1.
   {
@@ -834,7 +483,7 @@ TEST_CASE("exporters: the labels' interior point is the centre of a largest insc
     const auto p = interior_point(loops, kPrecision);
     REQUIRE(p.found);
     CHECK(std::abs(p.radius - (4 - 2 * std::sqrt(2.0))) <= kPrecision);
-    CHECK(exporters::detail::inside_outline(loops, p.point));
+    CHECK(exporters::render::inside_outline(loops, p.point));
     const Vec2 q = p.point;
     CHECK_FALSE((q.x() > 2 && q.x() < 8 && q.y() > 2 && q.y() < 8));
   }
@@ -846,7 +495,7 @@ TEST_CASE("exporters: the labels' interior point is the centre of a largest insc
     const auto p = interior_point(loops, kPrecision);
     REQUIRE(p.found);
     CHECK(std::abs(p.radius - (2 - std::sqrt(2.0))) <= kPrecision);
-    CHECK(exporters::detail::inside_outline(loops, p.point));
+    CHECK(exporters::render::inside_outline(loops, p.point));
   }
   // A regular 64-gon of circumradius 10: the centre, radius 10 cos(pi / 64).
   {
@@ -862,7 +511,7 @@ TEST_CASE("exporters: the labels' interior point is the centre of a largest insc
 }
 
 TEST_CASE("exporters: a box lies inside an outline when no edge meets it") {
-  using exporters::detail::box_inside_outline;
+  using exporters::render::box_inside_outline;
   const auto loops =
       loops_of({{{0, 0}, {10, 0}, {10, 10}, {0, 10}}, {{4, 4}, {4, 6}, {6, 6}, {6, 4}}});
   CHECK(box_inside_outline(loops, {1, 1}, {3, 9}));

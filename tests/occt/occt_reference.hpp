@@ -393,11 +393,13 @@ struct Run {
 };
 
 /// Runs the built plyfit binary with `args` under a time limit (coreutils timeout: exit code
-/// 124 when it had to stop it; 128 + N when a signal N killed it).
-inline Run run_plyfit(const std::string& args, const TempDir& dir) {
+/// 124 when it had to stop it; 128 + N when a signal N killed it), with the environment
+/// variables `env` ("NAME=value ...") set.
+inline Run run_plyfit(const std::string& args, const TempDir& dir, const std::string& env = "") {
   const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
-  const std::string cmd = "timeout -k 5 " + std::to_string(kHangLimitSeconds) + " '" + PLYFIT_BIN +
-                          "' " + args + " > '" + out + "' 2> '" + err + "'";
+  const std::string cmd = (env.empty() ? "" : "env " + env + " ") + "timeout -k 5 " +
+                          std::to_string(kHangLimitSeconds) + " '" + PLYFIT_BIN + "' " + args +
+                          " > '" + out + "' 2> '" + err + "'";
   const int status = std::system(cmd.c_str());
   Run r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);

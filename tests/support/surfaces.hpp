@@ -49,6 +49,19 @@ inline NurbsSurfaceData roof(double s) {
   return d;
 }
 
+/// A non-rational Bezier patch of degree p in u and v on [0, 1] x [0, 1] (no interior knot),
+/// its (p + 1)^2 poles at the origin: the caller places them with pole(i, j).
+inline NurbsSurfaceData bezier_patch(int p) {
+  NurbsSurfaceData d;
+  d.degree_u = d.degree_v = p;
+  d.count_u = d.count_v = p + 1;
+  d.knots_u.assign(static_cast<std::size_t>(p + 1), 0.0);
+  d.knots_u.insert(d.knots_u.end(), static_cast<std::size_t>(p + 1), 1.0);
+  d.knots_v = d.knots_u;
+  d.poles.assign(static_cast<std::size_t>((p + 1) * (p + 1)), Vec3::Zero());
+  return d;
+}
+
 /// A non-rational bicubic quarter dome with a pole: every pole of the first row (u = 0) is the
 /// apex (0, 0, h), so that edge collapses to one point; the second row lies in the plane z = h,
 /// so the apex is a smooth point with the tangent plane z = h (its fan of u-derivatives spans
@@ -56,11 +69,7 @@ inline NurbsSurfaceData roof(double s) {
 /// edge is v = 0); `at_end`: the rows are reversed (the collapsed edge is u = 1, or v = 1).
 inline NurbsSurfaceData quarter_dome(double size, double h, bool transpose, bool at_end) {
   constexpr double kQuarter = 1.5707963267948966;
-  NurbsSurfaceData d;
-  d.degree_u = d.degree_v = 3;
-  d.count_u = d.count_v = 4;
-  d.knots_u = d.knots_v = {0, 0, 0, 0, 1, 1, 1, 1};
-  d.poles.resize(16);
+  NurbsSurfaceData d = bezier_patch(3);
   for (int i = 0; i < 4; ++i) {
     const double rho = size * i / 3.0;
     const double z = i <= 1 ? h : h - 0.3 * size * (i / 3.0) * (i / 3.0);

@@ -38,16 +38,29 @@ std::string Values::brief(std::size_t k) const {
 
 }  // namespace render
 
+namespace {
+
+// Each code's text function, in the order of its enumeration.
+using TextFn = std::string (*)(const render::Values&);
+#define PLYFIT_TEXT_ENTRY(name, snake) &render::text_##snake,
+constexpr TextFn kErrorTexts[] = {PLYFIT_ERROR_CODES(PLYFIT_TEXT_ENTRY)};
+#undef PLYFIT_TEXT_ENTRY
+#define PLYFIT_TEXT_ENTRY(name, snake) &render::warning_##snake,
+constexpr TextFn kWarningTexts[] = {PLYFIT_WARNING_CODES(PLYFIT_TEXT_ENTRY)};
+#undef PLYFIT_TEXT_ENTRY
+
+// The text of `code` with `values` by its function in `texts` (the code's name when it has
+// none: a code out of range).
+template <typename Code, std::size_t N>
+std::string text_of(const TextFn (&texts)[N], Code code, const std::vector<MessageValue>& values) {
+  const auto k = static_cast<std::size_t>(code);
+  return k < N ? texts[k](render::Values{values}) : std::string(to_string(code));
+}
+
+}  // namespace
+
 std::string message(const Error& e) {
-  const render::Values x{e.values};
-  switch (e.code) {
-#define PLYFIT_TEXT_CASE(name, snake) \
-  case ErrorCode::k##name:            \
-    return render::text_##snake(x);
-    PLYFIT_ERROR_CODES(PLYFIT_TEXT_CASE)
-#undef PLYFIT_TEXT_CASE
-  }
-  return to_string(e.code);
+  return text_of(kErrorTexts, e.code, e.values);
 }
 
 std::string describe(const Error& e, const InputNamer& name_input) {
@@ -61,15 +74,7 @@ std::string describe(const Error& e, const InputNamer& name_input) {
 }
 
 std::string message(const Warning& w) {
-  const render::Values x{w.values};
-  switch (w.code) {
-#define PLYFIT_TEXT_CASE(name, snake) \
-  case WarningCode::k##name:          \
-    return render::warning_##snake(x);
-    PLYFIT_WARNING_CODES(PLYFIT_TEXT_CASE)
-#undef PLYFIT_TEXT_CASE
-  }
-  return to_string(w.code);
+  return text_of(kWarningTexts, w.code, w.values);
 }
 
 }  // namespace plyfit::exporters

@@ -41,7 +41,7 @@ void Scanner::map_path(const Vec3& t3) {
       node(idx).flags |= DrapeNode::kOnPath;
       const DrapeNode& from = node(prev);
       const SolveResult r =
-          solve_base_path(s_, {from.point, from.at(), res_.base_normal, travel, rest}, st_);
+          solve_base_path(s_, {from.point, from.at(), path_plane(from, travel), travel, rest}, st_);
       resolve(idx, r);
       // Across a hole of the face the path goes on, on the face's surface under the hole
       // (kInHole: outside, extended), and comes back onto the face beyond it: the seed curve
@@ -65,6 +65,18 @@ void Scanner::map_path(const Vec3& t3) {
   res_.base_path.insert(res_.base_path.end(), ahead.begin(), ahead.end());
   for (std::uint32_t k = 0; k < res_.base_path.size(); ++k) path_pos_[res_.base_path[k]] = k;
   for (std::uint32_t k : res_.base_path) push_neighbours(k);
+}
+
+// The plane the next path point lies in, through `from`: the base plane, or for a geodesic
+// the plane holding the normal at `from` and the chord that arrived there (`travel`), so
+// that the path turns neither left nor right on the surface. From the start the chord is the
+// start's tangent, which the base plane holds.
+Vec3 Scanner::path_plane(const DrapeNode& from, const Vec3& travel) const {
+  if (res_.seed_curve != SeedCurve::kGeodesic || from.has(DrapeNode::kStart))
+    return res_.base_normal;
+  const SurfaceNormal sn = s_.normal(from.at());
+  const Vec3 m = sn.n.cross(travel);
+  return sn.ok && m.norm() > 0.0 ? m : res_.base_normal;
 }
 
 // Direction of the base path at path node a, along +tau (a chord to a path neighbour).

@@ -350,6 +350,7 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
   if (!t3) return t3.error();
   if (auto ok = pair_sweeps(pb, *ply, opt.tol, n0, *t3); !ok) return ok.error();
   res.base_tangent = *t3;
+  res.seed_curve = pb.seed_curve;
   auto mply = std::make_shared<Ply>(std::move(ply).value());  // the scan extends the path
   res.ply = mply;
   res.nodes.reserve(

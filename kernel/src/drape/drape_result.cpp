@@ -10,6 +10,10 @@
 
 namespace plyfit {
 
+const char* to_string(SeedCurve c) {
+  return c == SeedCurve::kGeodesic ? "geodesic" : "plane";
+}
+
 const char* to_string(GuessRule g) {
   switch (g) {
     case GuessRule::kPaper:

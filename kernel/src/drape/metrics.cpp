@@ -118,6 +118,24 @@ void cell_areas(DrapeResult& res) {
   res.metrics.surface_area = a3;
 }
 
+// A geodesic path's own plane test: at each interior path node q, with neighbours p and r on
+// the path, the distance of r from the plane through q holding p and the normal at q, over d
+// (zero for the straightest curve; the same test read from either end).
+double geodesic_residual(const DrapeSurface& s, const DrapeResult& res) {
+  const double d = res.ply->d();
+  double worst = 0.0;
+  const auto& bp = res.base_path;
+  for (std::size_t k = 1; k + 1 < bp.size(); ++k) {
+    const DrapeNode &p = res.nodes[bp[k - 1]], &q = res.nodes[bp[k]], &r = res.nodes[bp[k + 1]];
+    if (!p.mapped() || !q.mapped() || !r.mapped()) continue;
+    const SurfaceNormal sn = s.normal(q.at());
+    const Vec3 m = sn.n.cross(p.point - q.point);
+    if (!sn.ok || !(m.norm() > 0.0)) continue;
+    worst = std::max(worst, std::abs(m.normalized().dot(r.point - q.point)) / d);
+  }
+  return worst;
+}
+
 // The stopped nodes' reasons, by status.
 void count_stop_reasons(DrapeResult& res) {
   DrapeMetrics& m = res.metrics;
@@ -198,10 +216,11 @@ void check_residuals(const DrapeSurface& s, const Tolerances& tol, DrapeResult& 
     const SurfaceEval1 e = s.eval1(n.at());
     m.surface_distance_max =
         std::max(m.surface_distance_max, e.ok ? (e.p - n.point).norm() : INFINITY);
-    if (n.has(DrapeNode::kOnPath))
+    if (n.has(DrapeNode::kOnPath) && res.seed_curve == SeedCurve::kPlane)
       m.base_plane_max_rel = std::max(m.base_plane_max_rel,
                                       std::abs(res.base_normal.dot(n.point - res.start_point)) / d);
   }
+  if (res.seed_curve == SeedCurve::kGeodesic) m.base_plane_max_rel = geodesic_residual(s, res);
   if (!std::isfinite(m.surface_distance_max)) m.surface_distance_max = 1e300;
   const BBox3 box = s.bbox();
   const Vec3 far = box.min.cwiseAbs().cwiseMax(box.max.cwiseAbs());

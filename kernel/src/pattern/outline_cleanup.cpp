@@ -276,16 +276,8 @@ void finish(const Loop& l, OutlineLoop& out) {
   for (Index k = 0; k < l.n(); ++k) out.perimeter += (l.at(k + 1) - l.at(k)).norm();
 }
 
-}  // namespace
-
-OutlineCleanupResult outline_cleanup(const std::vector<OutlineLoop>& loops,
-                                     const OutlineCleanupOptions& options) {
-  OutlineCleanupResult res;
-  const double w = options.min_width;
-  if (!(w > 0.0) || !std::isfinite(w)) {
-    res.loops = loops;
-    return res;
-  }
+// The loops as worked on: repeated points (and a last point equal to the first) removed.
+std::vector<Loop> working_loops(const std::vector<OutlineLoop>& loops) {
   std::vector<Loop> work;
   for (const OutlineLoop& ol : loops) {
     Loop l;
@@ -302,19 +294,37 @@ OutlineCleanupResult outline_cleanup(const std::vector<OutlineLoop>& loops,
     }
     work.push_back(std::move(l));
   }
+  return work;
+}
+
+// The clean-up of a set of loops at width w.
+struct Cleanup {
+  std::vector<Loop> work;
+  std::vector<bool> dropped;
+  double w;
+  OutlineCleanupResult res;
+
   // Drops loop li (its area removed if cloth, added if a gap).
-  std::vector<bool> dropped(work.size(), false);
-  auto drop = [&](std::size_t li) {
+  void drop(std::size_t li) {
     const double a = signed_area(work[li].p);
     (a > 0 ? res.removed_area : res.added_area) += std::abs(a);
     dropped[li] = true;
     ++res.loops_dropped;
     ++res.slivers;
-  };
-  for (std::size_t li = 0; li < work.size(); ++li)
-    if (work[li].n() < 3 || hull_narrower(work[li].p, w)) drop(li);
-  for (std::size_t li = 0; li < work.size(); ++li) {
-    if (dropped[li]) continue;
+  }
+
+  // Drops loop li if it is narrower than w everywhere; true if so.
+  bool drop_if_narrow(std::size_t li) {
+    if (work[li].n() < 3 || hull_narrower(work[li].p, w)) {
+      drop(li);
+      return true;
+    }
+    return false;
+  }
+
+  // Cuts the tips of loop li one after the other (the first found each time), until none
+  // is left but those no clean cut was found for, or the loop is dropped.
+  void cut_tips(std::size_t li) {
     std::vector<Vec2> left;  // tips no cut was found for (their first vertex)
     const Index cap = work[li].n() + kExtraCuts;
     for (Index cuts = 0; cuts < cap && !dropped[li];) {
@@ -340,16 +350,33 @@ OutlineCleanupResult outline_cleanup(const std::vector<OutlineLoop>& loops,
       ++res.slivers;
       ++cuts;
       work[li] = apply(l, *c);
-      if (work[li].n() < 3 || hull_narrower(work[li].p, w)) drop(li);
+      drop_if_narrow(li);
     }
   }
-  for (std::size_t li = 0; li < work.size(); ++li) {
-    if (dropped[li]) continue;
-    OutlineLoop out;
-    finish(work[li], out);
-    res.loops.push_back(std::move(out));
+};
+
+}  // namespace
+
+OutlineCleanupResult outline_cleanup(const std::vector<OutlineLoop>& loops,
+                                     const OutlineCleanupOptions& options) {
+  const double w = options.min_width;
+  if (!(w > 0.0) || !std::isfinite(w)) {
+    OutlineCleanupResult res;
+    res.loops = loops;
+    return res;
   }
-  return res;
+  Cleanup c{working_loops(loops), {}, w, {}};
+  c.dropped.assign(c.work.size(), false);
+  for (std::size_t li = 0; li < c.work.size(); ++li) c.drop_if_narrow(li);
+  for (std::size_t li = 0; li < c.work.size(); ++li)
+    if (!c.dropped[li]) c.cut_tips(li);
+  for (std::size_t li = 0; li < c.work.size(); ++li) {
+    if (c.dropped[li]) continue;
+    OutlineLoop out;
+    finish(c.work[li], out);
+    c.res.loops.push_back(std::move(out));
+  }
+  return std::move(c.res);
 }
 
 }  // namespace plyfit

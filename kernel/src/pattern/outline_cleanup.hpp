@@ -1,6 +1,6 @@
 #pragma once
 /// \file The cut outline: a flat pattern's exact outline with the features narrower than a
-/// minimum width removed (issue 13). A pure 2-D polygon function: it knows nothing of the
+/// minimum width removed. A pure 2-D polygon function: it knows nothing of the
 /// drape.
 ///
 /// What is narrow: a *tip*, a run of outline vertices joined by edges shorter than the width

@@ -53,8 +53,11 @@ Result<FaceStart> face_start(const MoldSurface& surface) {
   const SurfaceEval1 e = face.eval1(s.uv);
   s.point = e.p;
   s.normal = face.normal(s.uv).n;
-  // The base path along u (along v where u degenerates), on the tangent plane.
-  Vec3 t = e.du.norm() > e.dv.norm() * kCollapsedTangentRel ? e.du : e.dv;
+  // The base path along u, on the tangent plane; along v where u degenerates, or where the
+  // face closes round along u only (a full cylinder or tube): a path round the face comes
+  // back onto its own start and leaves a slit, a path across it lets both sweeps go round.
+  const bool across_closed_u = face.closed_u() && !face.closed_v();
+  Vec3 t = e.du.norm() > e.dv.norm() * kCollapsedTangentRel && !across_closed_u ? e.du : e.dv;
   t -= t.dot(s.normal) * s.normal;
   if (!(t.norm() > 0)) return Error{ErrorCode::kStartFaceNoTangent};
   s.tangent = t.normalized();

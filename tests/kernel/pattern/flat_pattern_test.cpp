@@ -16,7 +16,7 @@ using namespace plyfit;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-// Issue 6: outline area and perimeter within 0.1% of exact at a spacing of 1/50 of the part.
+// Outline area and perimeter within 0.1% of exact at a spacing of 1/50 of the part.
 constexpr double kOutlineRel = 1e-3;
 
 Face builtin(const std::string& name, std::map<std::string, double> p = {}) {

@@ -1,4 +1,4 @@
-// Issue 13: every flat-pattern outline is simple and spike-free (tests/support/
+// Every flat-pattern outline is simple and spike-free (tests/support/
 // outline_checks.hpp), over many drapes: the sample scenes' cases on the built-in molds, every
 // built-in mold and shell with random initial conditions.
 
@@ -139,9 +139,9 @@ TEST_CASE("outline checks: a spike or notch put into a true outline is a defect"
   }
 }
 
-// Issue 13's random-drape spikes, one of each kind found (tests/kernel/outline_quality_test's
-// drapes with seeds 1..): the outline turns back within d/2 (the geometric check fails), and
-// the drape itself shows the narrow shape is the draped region's (spike_reason explains it).
+// Random-drape spikes, one of each kind found (this file's drapes with seeds 1..): the outline
+// turns back within d/2 (the geometric check fails), and the drape itself shows the narrow shape is
+// the draped region's (spike_reason explains it).
 TEST_CASE("outline checks: narrow shapes of the draped region are no defects") {
   const SpikeCase cases[] = {
       // A strip of cloth 0.18 d wide between the face's edge and a row whose cells below
@@ -187,7 +187,7 @@ TEST_CASE("outline checks: narrow shapes of the draped region are no defects") {
 }
 
 // Spikes found by more random drapes (60 per mold, other seeds) that the drape did not
-// explain: faults of the exact outline, each failed before its fix (issue 13). The outline of
+// explain: faults of the exact outline, each failed before its fix. The outline of
 // each is now free of any geometric spike, one loop, every loop holding a mapped node, and no
 // point of the mold in two places of the ply.
 TEST_CASE("outline checks: faults of the exact outline at poles and face corners") {

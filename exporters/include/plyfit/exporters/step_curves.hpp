@@ -30,16 +30,20 @@ struct StepFileInfo {
 
 /// A set of polylines through `lines` (degree-1 B-splines with chord-length parameters); a
 /// closed polyline ends where it starts (its first point is repeated at the end). Lines of
-/// fewer than two points, or with two consecutive points equal, are an error.
+/// fewer than two points, or with two consecutive points equal, are an error (the kernel's,
+/// with the set's name as its `where`).
 Result<StepCurveSet> polyline_set(std::string name, const std::vector<std::vector<Vec3>>& lines,
                                   bool closed);
 
 /// The STEP file's text: sets without curves are left out; reals are written in the shortest
-/// form that reads back bit for bit. Errors: a rational or invalid curve, a non-finite value.
+/// form that reads back bit for bit. Errors (their `where` names the set): kCurveRational,
+/// kCurveInvalid (a curve the kernel refuses, a non-finite pole among them; its error is the
+/// cause).
 Result<std::string> step_curves_text(const std::vector<StepCurveSet>& sets,
                                      const StepFileInfo& info);
 
-/// Writes step_curves_text() to `path` atomically (temporary file + rename).
+/// Writes step_curves_text() to `path` atomically (temporary file + rename); errors name `path`
+/// as their input.
 Status write_step_curves(const std::string& path, const std::vector<StepCurveSet>& sets,
                          const StepFileInfo& info);
 

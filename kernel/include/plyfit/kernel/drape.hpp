@@ -117,12 +117,26 @@ struct DrapeLink {
   LinkKind kind = LinkKind::kWeft;
 };
 
+/// The curve the base path (the seed curve) follows on the surface.
+enum class SeedCurve : std::uint8_t {
+  /// The section of the surface by the base plane (the paper, §4.2.2).
+  kPlane,
+  /// The geodesic leaving the start along the base plane's section: each path point lies in the
+  /// plane through the point before it that holds the surface normal there and the point
+  /// before that (the straightest discrete curve: great circles on a sphere, helices on a
+  /// cylinder, exactly).
+  kGeodesic,
+};
+/// "plane", "geodesic".
+const char* to_string(SeedCurve c);
+
 /// 3D initial conditions (§4.2.2) and the 2D ply with its initial conditions (§4.2.1).
 struct DrapeProblem {
   PlySpec ply;
   Vec3 start = Vec3::Zero();         ///< 3D start point; projected onto the face
   Vec3 base_normal = Vec3::UnitY();  ///< base-plane normal; the plane passes through the start
   std::vector<Vec3> sweeps;          ///< 3D sweep directions, paired in order with ply.sweeps
+  SeedCurve seed_curve = SeedCurve::kPlane;  ///< what the base path follows from the start
 };
 
 /// Initial guess of the two-sphere solver.
@@ -172,11 +186,12 @@ struct DrapeResult {
   DrapeMetrics metrics;
   Vec3 start_point = Vec3::Zero();  ///< the start on the face
   SurfaceLocation start_at;
-  double start_moved = 0.0;           ///< distance from the given 3D start to the face
-  Vec3 base_normal = Vec3::UnitY();   ///< unit base-plane normal
-  Vec3 base_tangent = Vec3::UnitX();  ///< 3D direction of the base path at the start
-  double gamma_min_limit = 0.0;       ///< gamma_min of the lock angle (radians; 0 without one)
-  double drape_ms = 0.0;              ///< wall time of drape()
+  double start_moved = 0.0;                  ///< distance from the given 3D start to the face
+  Vec3 base_normal = Vec3::UnitY();          ///< unit base-plane normal
+  Vec3 base_tangent = Vec3::UnitX();         ///< 3D direction of the base path at the start
+  SeedCurve seed_curve = SeedCurve::kPlane;  ///< what the base path followed
+  double gamma_min_limit = 0.0;  ///< gamma_min of the lock angle (radians; 0 without one)
+  double drape_ms = 0.0;         ///< wall time of drape()
 
   /// Node by id, or nullptr.
   const DrapeNode* find(const NodeId& id) const;

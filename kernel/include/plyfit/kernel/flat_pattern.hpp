@@ -43,6 +43,13 @@ struct FlatPattern {
   double cut_removed_area = 0.0;  ///< area of cloth cut away (slivers, narrow loops)
   double cut_added_area = 0.0;    ///< area of gaps closed (notches, slits, narrow holes)
   int slivers = 0;                ///< narrow features removed (loops dropped included)
+  /// Cloth laid twice, left out of the cut outline before the narrow features are removed:
+  /// the cells (or cell parts) of a piece with a node on the cloth of a larger piece, where
+  /// the cloth came round onto itself (a closed face or shell) past the drape's overlap
+  /// test. The cut area is the exact one less laid_twice_area and cut_removed_area, plus
+  /// cut_added_area.
+  int cells_laid_twice = 0;
+  double laid_twice_area = 0.0;
 };
 
 /// Options of the flat pattern (the crossings are exact to rounding and the boundary is

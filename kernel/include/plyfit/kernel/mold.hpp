@@ -26,8 +26,11 @@ struct FaceInfo {
   bool trimmed = false;   ///< bounded by trim loops other than its natural boundary
   int holes = 0;          ///< inner loops
   bool reversed = false;  ///< the face's orientation reverses its surface normal
-  double area = 0.0;      ///< area, mm^2
-  BBox3 bbox;             ///< bounding box, mm
+  double area = 0.0;      ///< area, mm^2 (0 when not measured)
+  /// False for a face whose area could not be measured (an invalid face: its boundary does not
+  /// bound a region of its surface that an integration within its work cap can measure).
+  bool area_measured = true;
+  BBox3 bbox;  ///< bounding box, mm
 };
 
 /// A mold file's content: its faces and where they come from.

@@ -35,7 +35,8 @@ constexpr double kCoverageSlack = 0.005;
 
 /// A start for a drape of one face: the point of the face nearest the (u, v) centre of its
 /// boundary (trim loops, or the domain) that lies inside the trims, the outward normal there,
-/// and the base path along the surface's u direction (v where u collapses): base-plane normal
+/// and the base path along the surface's u direction (v where u collapses or where the face
+/// closes round along u but not v, as a full cylinder): base-plane normal
 /// and sweeps n x t, so that (t, n x t) turns about +n like (base2d, sweep2d) = ((1, 0),
 /// (0, 1)) about +z.
 struct FaceStart {

@@ -53,10 +53,94 @@ namespace plyfit {
   X(StartFaceNoTangent, start_face_no_tangent)                                              \
   X(SearchNeedsOneFace, search_needs_one_face)                                              \
   X(SearchPathNormalAtSeed, search_path_normal_at_seed)                                     \
+  /* kernel: ply definition (seed, rosette, ply angle) */                                   \
+  X(SeedNotFinite, seed_not_finite)                                                         \
+  X(SeedOffMold, seed_off_mold)                                                             \
+  X(RosetteZero, rosette_zero)                                                              \
+  X(RosetteAlongNormal, rosette_along_normal)                                               \
+  X(PlyAngleRange, ply_angle_range)                                                         \
   /* kernel: geometry (NURBS), surface (faces, shells), molds, search */                    \
   /* importers and the OpenCASCADE module */                                                \
+  X(FileNotReadable, file_not_readable)                                                     \
+  X(FileNumberNotFinite, file_number_not_finite)                                            \
+  X(FileNumberTooLarge, file_number_too_large)                                              \
+  X(StepWordForNumber, step_word_for_number)                                                \
+  X(StepNestingTooDeep, step_nesting_too_deep)                                              \
+  X(StepReferenceCycle, step_reference_cycle)                                               \
+  X(StepReferencesTooDeep, step_references_too_deep)                                        \
+  X(FaceGeometryNotFinite, face_geometry_not_finite)                                        \
+  X(FaceGeometryTooLarge, face_geometry_too_large)                                          \
+  X(FaceWeightNotPositive, face_weight_not_positive)                                        \
+  X(FaceToleranceInvalid, face_tolerance_invalid)                                           \
+  X(FaceScaleInvalid, face_scale_invalid)                                                   \
+  X(FaceAreaNotMeasured, face_area_not_measured)                                            \
   /* exporters */                                                                           \
-  /* cli */
+  X(FileNotCreated, file_not_created)                                                       \
+  X(FileAlreadyClosed, file_already_closed)                                                 \
+  X(FileWriteFailed, file_write_failed)                                                     \
+  X(FileNotRenamed, file_not_renamed)                                                       \
+  X(OutputFolderNotCreated, output_folder_not_created)                                      \
+  X(UnknownOutput, unknown_output)                                                          \
+  X(CurveRational, curve_rational)                                                          \
+  X(CurveInvalid, curve_invalid)                                                            \
+  X(CurveSetNotBuilt, curve_set_not_built)                                                  \
+  X(ThreadCurveNotBuilt, thread_curve_not_built)                                            \
+  X(BoundaryLoopTooSmall, boundary_loop_too_small)                                          \
+  X(MoldWriterOtherBuild, mold_writer_other_build)                                          \
+  /* cli */                                                                                 \
+  X(UnknownCommand, unknown_command)                                                        \
+  X(UnknownOption, unknown_option)                                                          \
+  X(BadCommandLine, bad_command_line)                                                       \
+  X(OptionNeedsValue, option_needs_value)                                                   \
+  X(UnexpectedArgument, unexpected_argument)                                                \
+  X(MissingArgument, missing_argument)                                                      \
+  X(OptionRepeated, option_repeated)                                                        \
+  X(OptionsExclusive, options_exclusive)                                                    \
+  X(MissingOption, missing_option)                                                          \
+  X(EmptyValue, empty_value)                                                                \
+  X(NotANumber, not_a_number)                                                               \
+  X(NotFinite, not_finite)                                                                  \
+  X(VectorSize, vector_size)                                                                \
+  X(NotAnInteger, not_an_integer)                                                           \
+  X(NotABool, not_a_bool)                                                                   \
+  X(OutOfRange, out_of_range)                                                               \
+  X(ZeroVector, zero_vector)                                                                \
+  X(UnknownValue, unknown_value)                                                            \
+  X(EmptyList, empty_list)                                                                  \
+  X(ListedTwice, listed_twice)                                                              \
+  /* cli: scene files and the materials table (INI) */                                      \
+  X(SceneCannotOpen, scene_cannot_open)                                                     \
+  X(IniSyntax, ini_syntax)                                                                  \
+  X(UnknownKey, unknown_key)                                                                \
+  X(MaterialsCannotOpen, materials_cannot_open)                                             \
+  X(MaterialsCannotRead, materials_cannot_read)                                             \
+  X(NoMaterials, no_materials)                                                              \
+  X(KeyOutsideMaterial, key_outside_material)                                               \
+  X(MaterialNameInvalid, material_name_invalid)                                             \
+  X(MaterialRepeated, material_repeated)                                                    \
+  X(MaterialLabelEmpty, material_label_empty)                                               \
+  X(MaterialAngleNotANumber, material_angle_not_a_number)                                   \
+  X(MaterialAngleRange, material_angle_range)                                               \
+  X(MaterialAngleMissing, material_angle_missing)                                           \
+  X(WarningAboveLimit, warning_above_limit)                                                 \
+  X(LimitNotPositive, limit_not_positive)                                                   \
+  X(UnknownMaterial, unknown_material)                                                      \
+  /* cli: jobs and commands */                                                              \
+  X(BuiltinFaceGiven, builtin_face_given)                                                   \
+  X(Interrupted, interrupted)                                                               \
+  X(UnknownMoldFormat, unknown_mold_format)                                                 \
+  X(BadShard, bad_shard)                                                                    \
+  X(CannotCreateFolder, cannot_create_folder)                                               \
+  X(FolderHoldsOtherFiles, folder_holds_other_files)                                        \
+  X(CannotMoveOutputs, cannot_move_outputs)                                                 \
+  X(CannotStartDrape, cannot_start_drape)                                                   \
+  X(DrapeCrashed, drape_crashed)                                                            \
+  X(DrapeNoOutcome, drape_no_outcome)                                                       \
+  X(OutcomeUnreadable, outcome_unreadable)                                                  \
+  X(DifferentMolds, different_molds)                                                        \
+  X(OptimizeShell, optimize_shell)                                                          \
+  X(NoFeasibleDrape, no_feasible_drape)                                                     \
+  X(OptionNeedsVary, option_needs_vary)
 
 /// What went wrong (see PLYFIT_ERROR_CODES).
 enum class ErrorCode : std::uint16_t {

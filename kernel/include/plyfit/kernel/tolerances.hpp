@@ -55,6 +55,10 @@ struct Tolerances {
   /// into one side); within a degree of the path that side is a matter of the last digits
   /// given, and no drape worth making is specified that way. One degree.
   double sweep_min_angle = 0.017453292519943295;
+  /// A rosette (a ply's 0° direction) must keep at least this sine of its angle with the
+  /// surface normal at the seed: nearer the normal, its projection onto the tangent plane (the
+  /// 0° direction) turns with the last digits of the normal.
+  double rosette_min_sin = 1e-3;
   /// A 3D start farther than start_far_rel times the surface's size (bounding-box diagonal)
   /// from the surface is projected onto it but makes the drape partial with a warning: the
   /// drape starts far from where it was asked to (a wrong unit, face or frame). The paper's

@@ -125,6 +125,7 @@ class Scanner {
   // base_path.cpp
   void map_path(const Vec3& t3);
   Vec3 path_chord(const DrapeNode& a) const;
+  Vec3 path_plane(const DrapeNode& from, const Vec3& travel) const;
 
   // guesses.cpp
   SolveResult solve_two(const DrapeNode& q, const DrapeNode& a, ThreadDir da, double ra,

@@ -1,0 +1,73 @@
+// The keys of a drape job: each is a flag of plyfit drape (--key) and a scene-file key, listed
+// under its section by --dump-scene.
+
+#include "job/drape_job.hpp"
+#include "job/materials.hpp"
+
+namespace plyfit::cli {
+
+const OptionTable& drape_options() {
+  static const OptionTable list = {
+      {"mold", "FILE|builtin:NAME[:k=v,...]", "", "mold file (STEP, IGES) or a built-in mold",
+       false, "mold"},
+      {"face", "N", "0", "face index in the mold file (see plyfit info)", false, "mold"},
+      {"faces", "LIST|all", "",
+       "faces to drape as one shell (comma-separated indices, or all), sewn along their shared "
+       "edges; instead of --face",
+       false, "mold"},
+      {"format", "KEY", "", "importer to use instead of the file extension (step, iges)", false,
+       "mold"},
+      {"flip-normal", "", "false", "drape on the other side of the surface", false, "mold"},
+      {"spacing", "D", "", "thread spacing d (both directions), model units", false, "ply"},
+      {"spacing-weft", "D", "", "weft link length (spacing of the warp threads, along x)", false,
+       "ply"},
+      {"spacing-warp", "D", "", "warp link length (spacing of the weft threads, along y)", false,
+       "ply"},
+      {"ply", "W,H", "", "cloth rectangle [0,W] x [0,H] (default: unbounded)", false, "ply"},
+      {"start2d", "X,Y", "", "start point of the base path in ply coordinates", false, "start"},
+      {"base2d", "DX,DY", "", "base path direction in ply coordinates", false, "start"},
+      {"sweep2d", "DX,DY", "", "sweep direction in ply coordinates (one per half-plane)", true,
+       "start"},
+      {"start3d", "X,Y,Z", "", "start point on the mold (projected onto the face)", false, "start"},
+      {"base-normal", "NX,NY,NZ", "", "normal of the base plane (through the 3D start)", false,
+       "start"},
+      {"sweep3d", "DX,DY,DZ", "", "3D sweep direction, paired in order with --sweep2d", true,
+       "start"},
+      {"material", "NAME", kDefaultMaterial,
+       "material from the materials table: its label, warning and limit angles", false, "material"},
+      {"materials", "FILE", "", "materials table to use instead of plyfit's (data/materials.ini)",
+       false, "material"},
+      {"lock-angle", "DEG", "",
+       "largest shear (90 - thread angle) the cloth takes (default: the material's limit); 90 = "
+       "no limit",
+       false, "material"},
+      {"warn-angle", "DEG", "",
+       "shear above which cells are flagged (default: the material's warning angle, at most "
+       "lock angle - 5)",
+       false, "material"},
+      {"ply-name", "TEXT", "ply", "ply name for labels", false, "material"},
+      {"ply-angle", "DEG", "0",
+       "ply angle: the fibre (warp) direction on the part, as in the layup, for labels", false,
+       "material"},
+      {"tolerance", "T", "1e-14", "Newton tolerance relative to the spacing (eq. 9)", false,
+       "numerics"},
+      {"max-iterations", "N", "40", "Newton iteration cap per node", false, "numerics"},
+      {"guess", "extrapolated|paper|parallelogram", "extrapolated",
+       "initial guess of the two-sphere solver (paper: eqs. 10-11)", false, "numerics"},
+      {"max-nodes", "N", "50000000", "stop after reaching this many nodes", false, "numerics"},
+      {"output", "DIR", "", "output folder (-o)", false, "output", 'o'},
+      {"outputs", "LIST", "", "outputs to write, comma-separated (default: all)", false, "output"},
+      {"curve-degree", "1|3", "1", "degree of the thread curves in net.step", false, "output"},
+      {"view", "X,Y,Z", "1,1,1", "view direction of drape.svg (towards the viewer)", false,
+       "output"},
+      {"dxf-threads", "true|false", "false",
+       "THREADS layer (thread grid) in flat.dxf (a cutter would cut it)", false, "output"},
+      {"min-width", "W", "",
+       "cut outline: slivers of cloth and notches narrower than W are cut off or closed, "
+       "model units (default: half the spacing; 0: the exact outline)",
+       false, "output"},
+  };
+  return list;
+}
+
+}  // namespace plyfit::cli

@@ -1,0 +1,112 @@
+// load_surface: the surface a job drapes, from a built-in mold or shell or from a mold file
+// (one face, or faces sewn into a shell), with what the report says of the mold.
+
+#include "job/drape_job.hpp"
+
+#include <plyfit/exporters/exporters.hpp>
+#include <plyfit/importers/importers.hpp>
+#include <plyfit/kernel/builtin_molds.hpp>
+
+#include <map>
+#include <optional>
+
+namespace plyfit::cli {
+
+namespace {
+
+using BuiltinSpec = std::pair<std::string, std::map<std::string, double>>;
+
+// One face as the drape's surface, on the job's side.
+Result<MoldSurface> surface_from_face(const DrapeJob& job, FaceData data, exporters::RunInfo& run) {
+  if (job.flip_normal) data.reversed = !data.reversed;
+  auto face = MoldSurface::from_face(std::move(data), job.drape.tol);
+  if (!face) return Error(face.error()).in(job.mold).at_face(job.face);
+  run.faces.push_back(job.face);
+  return face;
+}
+
+// Faces sewn into a shell as the drape's surface, on the job's side; run.faces gets each
+// face's index in the mold file.
+Result<MoldSurface> surface_from_shell(const DrapeJob& job, ShellData data,
+                                       exporters::RunInfo& run) {
+  if (job.flip_normal)
+    for (auto& f : data.faces) f.reversed = !f.reversed;
+  const std::size_t n = data.faces.size();
+  const std::vector<int> sources = data.source_faces;
+  auto shell = MoldSurface::from_shell(std::move(data), job.drape.tol);
+  if (!shell) return Error(shell.error()).in(job.mold);
+  for (std::size_t k = 0; k < n; ++k)
+    run.faces.push_back(run.faces_info.size() > k ? run.faces_info[k].index
+                        : sources.empty()         ? static_cast<int>(k)
+                                                  : sources[k]);
+  return shell;
+}
+
+Result<MoldSurface> load_builtin(const DrapeJob& job, const BuiltinSpec& spec,
+                                 exporters::RunInfo& run) {
+  run.mold_unit = "millimetre";
+  if (is_builtin_shell(spec.first)) {
+    auto data = builtin_shell(spec.first, spec.second);
+    if (!data) return data.error();
+    for (std::size_t k = 0; k < data->faces.size(); ++k) {
+      FaceInfo fi;
+      fi.index = static_cast<int>(k);
+      fi.name = data->faces[k].name;
+      fi.kind = "builtin:" + spec.first;
+      run.faces_info.push_back(fi);
+    }
+    return surface_from_shell(job, std::move(data).value(), run);
+  }
+  auto data = builtin_mold(spec.first, spec.second);
+  if (!data) return data.error();
+  FaceInfo fi;
+  fi.name = data->name;
+  fi.kind = "builtin:" + spec.first;
+  run.faces_info.push_back(fi);
+  return surface_from_face(job, std::move(data).value(), run);
+}
+
+Result<MoldSurface> load_file(const DrapeJob& job, exporters::RunInfo& run) {
+  importers::ImportOptions io;
+  io.format = job.format;
+  io.tolerances = job.drape.tol;
+  auto file = importers::open_mold(job.mold, io);
+  if (!file) return file.error();
+  if (job.all_faces || !job.faces.empty()) {
+    const std::vector<int> indices = job.all_faces ? (*file)->all_faces() : job.faces;
+    auto data = (*file)->convert_shell(indices);
+    if (!data) return data.error();
+    for (int i : indices) {
+      auto info = (*file)->describe(i);
+      if (!info) return info.error();
+      run.faces_info.push_back(*info);
+    }
+    run.mold_unit = (*file)->summary().unit;
+    run.warnings = (*file)->summary().warnings;
+    return surface_from_shell(job, std::move(data).value(), run);
+  }
+  // Only this face is described and converted: the others are never listed.
+  auto info = (*file)->describe(job.face);
+  if (!info) return info.error();
+  run.faces_info.push_back(*info);
+  run.mold_unit = (*file)->summary().unit;
+  run.warnings = (*file)->summary().warnings;
+  auto data = (*file)->convert_face(job.face);
+  if (!data) return data.error();
+  return surface_from_face(job, std::move(data).value(), run);
+}
+
+}  // namespace
+
+Result<MoldSurface> load_surface(const DrapeJob& job, exporters::RunInfo* run_out) {
+  exporters::RunInfo scratch;
+  exporters::RunInfo& run = run_out ? *run_out : scratch;
+  if (job.mold.rfind("builtin:", 0) != 0) return load_file(job, run);
+  auto spec = parse_builtin_spec(job.mold.substr(8));
+  if (!spec) return spec.error();
+  if (job.face != 0 || !job.faces.empty())
+    return Error{ErrorCode::kBuiltinFaceGiven, job.faces.empty() ? "face" : "faces"};
+  return load_builtin(job, *spec, run);
+}
+
+}  // namespace plyfit::cli

@@ -1,0 +1,126 @@
+// run_job: a job end to end (import, drape, flat pattern, outputs) and what it reports.
+
+#include "job/drape_job.hpp"
+
+#include <plyfit/exporters/exporters.hpp>
+#include <plyfit/kernel/flat_pattern.hpp>
+
+#include <unistd.h>
+#include <chrono>
+#include <iostream>
+
+namespace plyfit::cli {
+
+namespace {
+
+constexpr double kDegToRad = 3.14159265358979323846 / 180.0;
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point t) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+// What the report says of the job's inputs (the mold's part comes with the import).
+exporters::RunInfo run_info(const DrapeJob& job) {
+  exporters::RunInfo run;
+  run.mold = job.mold;
+  run.flip_normal = job.flip_normal;
+  run.tolerance_rel = job.tolerance_rel;
+  run.max_iterations = job.max_iterations;
+  run.lock_angle_deg = job.lock_angle_deg;
+  run.warn_angle_deg = job.warn_angle_deg;
+  run.guess = to_string(job.drape.guess);
+  run.max_nodes = job.drape.max_nodes;
+  run.ply_name = job.ply_name;
+  run.material = job.material;
+  run.outputs = job.outputs;
+  return run;
+}
+
+exporters::ExportOptions export_options(const DrapeJob& job) {
+  exporters::ExportOptions eo;
+  eo.warn_shear = job.warn_angle_deg * kDegToRad;
+  eo.curve_degree = job.curve_degree;
+  eo.view = job.view;
+  eo.dxf_threads = job.dxf_threads;
+  eo.ply_angle_deg = job.ply_angle_deg;
+  eo.material_label = job.material_label;
+  eo.materials_file = job.materials_file;
+  return eo;
+}
+
+// The drape, with the node count on stderr while it runs when that is a terminal.
+Result<DrapeResult> drape_with_progress(const MoldSurface& surface, const DrapeJob& job,
+                                        const std::atomic<bool>* cancel, bool progress) {
+  DrapeOptions opt = job.drape;
+  opt.cancel = cancel;
+  const bool tty = progress && ::isatty(2);
+  if (tty) {
+    opt.progress = [](std::uint64_t n) {
+      std::cerr << "\rplyfit: " << n << " nodes solved" << std::flush;
+    };
+  }
+  auto res = drape(surface, job.problem, opt);
+  if (tty) std::cerr << "\r\033[K" << std::flush;
+  return res;
+}
+
+JobOutcome outcome_of(const DrapeJob& job, const MoldSurface& surface, const DrapeResult& res,
+                      const FlatPattern& flat) {
+  JobOutcome out;
+  out.status = res.partial ? "partial" : "ok";
+  out.mapped = res.metrics.nodes.mapped;
+  const auto& m = res.metrics;
+  out.shear_max_deg = m.shear_max / kDegToRad;
+  out.metrics = m;
+  out.face_area = surface.area();
+  out.flat_outline_area = flat.cut_area;
+  out.outline_coverage = out.face_area > 0 ? outline_surface_area(res, flat) / out.face_area : 0.0;
+  out.warnings = res.warnings;
+  for (const auto& k : job.outputs)
+    if (const auto* e = exporters::find_exporter(k))
+      for (const auto& f : e->files) out.files.push_back(f);
+  return out;
+}
+
+}  // namespace
+
+Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel, bool progress) {
+  const auto t0 = Clock::now();
+  exporters::RunInfo run = run_info(job);
+  auto loaded = load_surface(job, &run);
+  if (!loaded) return loaded.error();
+  const MoldSurface surface = std::move(loaded).value();
+  run.import_ms = ms_since(t0);
+
+  auto res = drape_with_progress(surface, job, cancel, progress);
+  if (!res) return res.error();
+  if (cancel && cancel->load()) return Error{ErrorCode::kCancelled};
+  run.drape_ms = res->drape_ms;
+  FlatPatternOptions fo;
+  fo.min_width = job.min_width;
+  const FlatPattern flat = flat_pattern(surface, *res, fo);
+  run.total_ms = ms_since(t0);
+  const exporters::ExportOptions eo = export_options(job);
+  const exporters::ExportContext ctx{job.problem, *res, surface, &flat, run, eo};
+  if (!job.outdir.empty())
+    if (auto s = exporters::write_outputs(ctx, job.outdir, job.outputs); !s) return s.error();
+  JobOutcome out = outcome_of(job, surface, *res, flat);
+  out.mold_warnings = run.warnings;
+  out.total_ms = ms_since(t0);
+  return out;
+}
+
+SearchScene search_scene(const DrapeJob& job) {
+  return {job.problem, job.drape, job.min_width};
+}
+
+DrapeJob candidate_job(const DrapeJob& scene, const MoldSurface& face, const OptimizeResult& r,
+                       const Candidate& c) {
+  DrapeJob job = scene;
+  if (auto pb = candidate_problem(search_scene(scene), face, r, c)) job.problem = *pb;
+  return job;
+}
+
+}  // namespace plyfit::cli

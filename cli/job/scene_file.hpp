@@ -1,0 +1,21 @@
+#pragma once
+// Scene files: a drape job's keys as INI text (sections for grouping, keys as the flags
+// without dashes), read into raw values and written back from a job (--dump-scene).
+
+#include "job/drape_job.hpp"
+
+#include <string>
+
+namespace plyfit::cli {
+
+/// Reads a scene file. Errors are placed in the file (Error::where "FILE:LINE") or blame a key
+/// (name them with scene_namer(path)).
+Result<RawOptions> raw_from_scene(const std::string& path);
+
+/// Names a scene file's keys in messages: "FILE: key 'key'".
+exporters::InputNamer scene_namer(const std::string& path);
+
+/// The effective scene as INI text (defaults filled in), loadable again with raw_from_scene.
+std::string dump_scene(const DrapeJob& job);
+
+}  // namespace plyfit::cli

@@ -1,0 +1,196 @@
+// drape.svg: the 3D fitting in an orthographic view along ExportOptions::view (towards the
+// viewer; Z up on the page), painter's algorithm: every cell, segment and node sorted by depth.
+#include <plyfit/kernel/mold.hpp>
+
+#include "render/text.hpp"
+#include "svg/draw.hpp"
+#include "svg/pictures.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace plyfit::exporters::svg {
+
+namespace {
+
+using render::fixed_text;
+
+// A view direction within this angle (radians) of Z looks down Z: Y is up on the page then.
+constexpr double kViewAlongZ = 1e-6;
+// Each free boundary segment is drawn in this many pieces (one on loops of many points).
+constexpr int kBoundaryPieces = 48;
+constexpr std::size_t kManyBoundaryPoints = 64;
+
+const std::string kThreadStyle = "stroke=\"#262626\" stroke-width=\"0.7\"";
+const std::string kPathStyle = "stroke=\"#1f5fd6\" stroke-width=\"2.2\"";
+const std::string kBoundaryStyle =
+    "stroke=\"#000000\" stroke-width=\"1.6\" stroke-linecap=\"round\"";
+
+struct Camera {
+  Vec3 right, up, towards;  // towards the viewer
+  static Camera from(const Vec3& view) {
+    Camera c;
+    c.towards = view.norm() > 0 ? Vec3(view.normalized()) : Vec3(1, 1, 1).normalized();
+    Vec3 world_up = Vec3::UnitZ();
+    if (world_up.cross(c.towards).norm() < kViewAlongZ) world_up = Vec3::UnitY();
+    c.right = world_up.cross(c.towards).normalized();
+    c.up = c.towards.cross(c.right);
+    return c;
+  }
+  Vec2 project(const Vec3& p) const { return {p.dot(right), p.dot(up)}; }
+  double depth(const Vec3& p) const { return p.dot(towards); }
+};
+
+using Segment3 = std::pair<Vec3, Vec3>;
+
+// The free boundary in 3D (the kernel's: seams of closed faces, collapsed pole edges and the
+// edges a shell's faces share are no boundary), each segment split into pieces.
+std::vector<Segment3> free_boundary(const MoldSurface& surface) {
+  std::vector<Segment3> boundary;
+  for (const auto& loop : surface.boundary()) {
+    const std::size_t n = loop.points.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      if (loop.kinds[k] != BoundaryLoop::kEdge) continue;
+      const SurfaceLocation& a = loop.points[k];
+      const SurfaceLocation& b = loop.points[(k + 1) % n];
+      const int pieces = n > kManyBoundaryPoints ? 1 : kBoundaryPieces;
+      Vec3 prev = surface.eval1(a).p;
+      for (int m = 1; m <= pieces; ++m) {
+        const Vec3 q =
+            surface.eval1(a.with_uv(a.uv + (b.uv - a.uv) * (static_cast<double>(m) / pieces))).p;
+        boundary.emplace_back(prev, q);
+        prev = q;
+      }
+    }
+  }
+  return boundary;
+}
+
+// The frame of the projected mapped nodes and boundary, with a margin.
+Frame view_frame(const DrapeResult& r, const std::vector<Segment3>& boundary, const Camera& cam) {
+  Box2 box;
+  for (const DrapeNode& n : r.nodes)
+    if (n.mapped()) box.add(cam.project(n.point));
+  for (const auto& [a, b] : boundary) {
+    box.add(cam.project(a));
+    box.add(cam.project(b));
+  }
+  const double ext = box.empty() ? 1.0 : std::max(box.size().x(), box.size().y());
+  return Frame::fit(padded(box, 0.03 * ext));
+}
+
+// The picture's projection: the camera, then the frame.
+struct View {
+  Camera cam;
+  Frame frame;
+  Vec2 map(const Vec3& p) const { return frame.map(cam.project(p)); }
+};
+
+// The mapped cells coloured by shear and shaded by their slope to the view.
+void add_cells(std::vector<Prim>& prims, const DrapeResult& r, const render::ShearScale& scale,
+               const View& v) {
+  for (const auto& c : detail::mapped_cells(r)) {
+    std::vector<Vec2> pts;
+    Vec3 centre = Vec3::Zero(), normal = Vec3::Zero();
+    for (std::size_t k = 0; k < c.nodes.size(); ++k) {
+      const Vec3& p = r.nodes[c.nodes[k]].point;
+      const Vec3& q = r.nodes[c.nodes[(k + 1) % c.nodes.size()]].point;
+      pts.push_back(v.map(p));
+      centre += p;
+      normal += p.cross(q);  // Newell's normal
+    }
+    centre /= static_cast<double>(c.nodes.size());
+    const double facing =
+        normal.norm() > 0 ? std::abs(normal.normalized().dot(v.cam.towards)) : 1.0;
+    const std::string fill = scale.colour(c.shear).shaded(0.55 + 0.45 * facing).hex();
+    prims.push_back({v.cam.depth(centre), polygon(pts, "cell",
+                                                  " fill=\"" + fill + "\" stroke=\"" + fill +
+                                                      "\" stroke-width=\"0.3\"")});
+  }
+}
+
+// The links, the base path and the free boundary as segments; the nodes over them. Segments
+// and nodes are drawn over the cells they border (a depth bias of half the spacing `d`).
+void add_net(std::vector<Prim>& prims, const DrapeResult& r, const std::vector<Segment3>& boundary,
+             double d, const View& v) {
+  const double bias = 0.5 * d;
+  auto segment = [&](const Vec3& a, const Vec3& b, const std::string& style) {
+    return Prim{v.cam.depth(0.5 * (a + b)) + bias, line(v.map(a), v.map(b), style)};
+  };
+  for (const DrapeLink& l : r.links())
+    prims.push_back(segment(r.nodes[l.a].point, r.nodes[l.b].point,
+                            l.kind == LinkKind::kBase ? kPathStyle : kThreadStyle));
+  // The base path's own thread links are drawn as the path too.
+  for (std::size_t k = 1; k < r.base_path.size(); ++k)
+    prims.push_back(
+        segment(r.nodes[r.base_path[k - 1]].point, r.nodes[r.base_path[k]].point, kPathStyle));
+  for (const auto& [a, b] : boundary) prims.push_back(segment(a, b, kBoundaryStyle));
+  const double node_r = std::clamp(0.06 * d * v.frame.scale, 0.5, 2.0);
+  for (const DrapeNode& n : r.nodes)
+    if (n.mapped() && !n.id.is_path_only())
+      prims.push_back({v.cam.depth(n.point) + 1.2 * bias, circle(v.map(n.point), node_r, "node")});
+  for (const std::uint32_t k : r.base_path)
+    prims.push_back({v.cam.depth(r.nodes[k].point) + 1.3 * bias,
+                     circle(v.map(r.nodes[k].point), std::max(1.6, 2 * node_r), "path-node",
+                            " fill=\"#1f5fd6\"")});
+}
+
+// The start point P_s, over the scene.
+std::string start_marker(const Vec2& s) {
+  return circle(s, 5, "", " fill=\"#ffffff\" stroke=\"#1f5fd6\" stroke-width=\"2.2\"") +
+         text(s.x() + 8, s.y() - 8, "P", "title halo", " fill=\"#1f5fd6\"") +
+         text(s.x() + 19, s.y() - 4, "s", "sub halo", " fill=\"#1f5fd6\"");
+}
+
+// The legend and, below it, the axis triad of the view.
+std::string drape_legend(const render::ShearScale& scale, double warn, const View& v) {
+  const double lx = v.frame.left + v.frame.width + kMargin;
+  double legend_end = 0.0;
+  std::string o =
+      legend(lx, v.frame.top + 10, scale, warn,
+             {{sym_line("#262626", 1.0), "threads"},
+              {sym_line("#1f5fd6", 2.2), "base path"},
+              {sym_line("#000000", 1.6), "face boundary"},
+              {"<circle cx=\"{XM}\" cy=\"{YM}\" r=\"5\" fill=\"#fff\" stroke=\"#1f5fd6\" "
+               "stroke-width=\"2\"/>",
+               "start P\u209b"}},
+             &legend_end);
+  const Vec2 origin(lx + 50, legend_end + 70);
+  for (const auto& [axis, name] :
+       {std::pair{Vec3::UnitX(), "X"}, {Vec3::UnitY(), "Y"}, {Vec3::UnitZ(), "Z"}}) {
+    const Vec2 q = v.cam.project(axis);
+    const Vec2 tip = origin + 36.0 * Vec2(q.x(), -q.y());
+    if ((tip - origin).norm() > 4) o += arrow(origin, tip, "#444", 1.4);
+    o += text(tip.x() + 3 * (q.x() >= 0 ? 1 : -3), tip.y() + (q.y() >= 0 ? -3 : 12), name, "small");
+  }
+  return o;
+}
+
+}  // namespace
+
+std::string drape_svg(const ExportContext& ctx) {
+  const DrapeResult& r = ctx.result;
+  const render::ShearScale scale = render::shear_scale(r);
+  const std::vector<Segment3> boundary = free_boundary(ctx.surface);
+  View v{Camera::from(ctx.options.view), {}};
+  v.frame = view_frame(r, boundary, v.cam);
+  const Vec3 view = ctx.options.view;
+  const TitleBlock tb =
+      title_over(v.frame,
+                 "3D fitting (orthographic, view (" + fixed_text(view.x(), 3) + ", " +
+                     fixed_text(view.y(), 3) + ", " + fixed_text(view.z(), 3) + "))",
+                 source_line(ctx) + "; " + std::to_string(r.metrics.nodes.mapped) +
+                     " mapped nodes, " + shear_summary(ctx));
+  std::vector<Prim> prims;
+  add_cells(prims, r, scale, v);
+  add_net(prims, r, boundary, std::min(ctx.problem.ply.d_weft, ctx.problem.ply.d_warp), v);
+  std::string o = svg_open(v.frame.canvas_width(), v.frame.canvas_height(), "plyfit 3D fitting");
+  o += tb.svg;
+  o += "<g id=\"scene\">\n" + draw_sorted(prims) + "</g>\n";
+  o += start_marker(v.map(r.start_point));
+  o += drape_legend(scale, ctx.options.warn_shear, v);
+  o += "</svg>\n";
+  return o;
+}
+
+}  // namespace plyfit::exporters::svg

@@ -1,0 +1,17 @@
+#pragma once
+// The three pictures of svg_exporter.cpp, each a whole SVG file.
+
+#include <plyfit/exporters/exporters.hpp>
+
+#include <string>
+
+namespace plyfit::exporters::svg {
+
+/// flat.svg: the plane development, 1:1 in millimetres (flat_svg.cpp).
+std::string flat_svg(const ExportContext& ctx);
+/// drape.svg: the 3D fitting in an orthographic view (drape_svg.cpp).
+std::string drape_svg(const ExportContext& ctx);
+/// shear.svg: the thread-angle distribution as a height field (shear_svg.cpp).
+std::string shear_svg(const ExportContext& ctx);
+
+}  // namespace plyfit::exporters::svg

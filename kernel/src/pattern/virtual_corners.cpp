@@ -1,0 +1,163 @@
+// The corners of the touched cells that the drape never reached, solved beyond the face.
+
+#include "pattern/cells.hpp"
+#include "pattern/outline_builder.hpp"
+
+#include <set>
+
+namespace plyfit::detail {
+
+// They are solved the way the drape would have: from a weft and a warp neighbour (two
+// spheres) wherever two are known, which propagates no error; a thread is continued through
+// a neighbour (solver 3) only where no two-sphere solve is left, first along segments of the
+// drape's own nodes, and only as a last resort along segments with a virtual end: continuing
+// a thread extrapolates its last segment, so an error in either end comes out doubled
+// (docs/decisions/flat-pattern-outline.md).
+void OutlineBuilder::solve_virtual_corners() {
+  std::vector<NodeId> todo;
+  std::unordered_map<std::uint64_t, std::size_t> slot;  // todo index by key
+  for_each_touched_cell(
+      r_,
+      [&](std::int32_t i, std::int32_t j) {
+        for (const NodeId& c : {NodeId::regular(i, j), NodeId::regular(i + 1, j),
+                                NodeId::regular(i + 1, j + 1), NodeId::regular(i, j + 1)})
+          if (!position(c) && slot.emplace(c.key(), todo.size()).second) todo.push_back(c);
+      },
+      1);
+  // Work lists, so that every node is tried again only when a neighbour gains a position:
+  // `queue` for two spheres; `retry` (ordered: deterministic) for a continuation along any
+  // segment. Whether a node continues along the drape's own segments depends on the drape
+  // alone, so one pass in order (`next`) tries each node once.
+  std::vector<std::size_t> queue;
+  std::set<std::size_t> retry;
+  for (std::size_t k = todo.size(); k-- > 0;) {
+    queue.push_back(k);
+    retry.insert(k);
+  }
+  auto solved = [&](const NodeId& id) {
+    for (int d = 0; d < 4; ++d)
+      if (const auto n = ply_.neighbour(id.i, id.j, static_cast<ThreadDir>(d)))
+        if (const auto it = slot.find(n->id.key());
+            it != slot.end() && !virtual_.count(n->id.key())) {
+          queue.push_back(it->second);
+          retry.insert(it->second);
+        }
+  };
+  auto known = [&](std::size_t k) { return virtual_.count(todo[k].key()) > 0; };
+  std::size_t next = 0;
+  for (;;) {  // each round solves a node or ends: at most todo.size() rounds
+    while (!queue.empty()) {
+      const std::size_t k = queue.back();
+      queue.pop_back();
+      if (!known(k) && virtual_by_spheres(todo[k])) solved(todo[k]);
+    }
+    bool progress = false;
+    for (; next < todo.size() && !progress; ++next)
+      if (!known(next) && virtual_by_continuation(todo[next], true)) {
+        solved(todo[next]);
+        progress = true;
+      }
+    while (!progress && !retry.empty()) {
+      const std::size_t k = *retry.begin();
+      retry.erase(retry.begin());
+      if (!known(k) && virtual_by_continuation(todo[k], false)) {
+        solved(todo[k]);
+        progress = true;
+      }
+    }
+    if (!progress) break;
+  }
+}
+
+// The known neighbours of a node the drape never reached, beyond the face, or none if the
+// node is a path node, known, off the ply, in an unswept half-plane (the outline stays on
+// the mapped side there), or one the drape reached and stopped for another reason than
+// leaving the face (a shear limit, an overlap, a failure, a conflict: the cloth goes no
+// further there, and a corner solved past such a node can fold its cell).
+std::vector<OutlineBuilder::Nb> OutlineBuilder::virtual_neighbours(const NodeId& id) const {
+  std::vector<Nb> nbs;
+  if (id.is_path_only() || virtual_.count(id.key())) return nbs;
+  if (const DrapeNode* n = r_.find(id);
+      n && (n->mapped() || n->has(DrapeNode::kExtended) || n->status != NodeStatus::kOutside))
+    return nbs;
+  const Vec2 q2 = ply_.pos(id);
+  if (!ply_.on_ply(q2)) return nbs;
+  if (ply_.side(q2) != 0 && ply_.sweep_for_side(ply_.side(q2)) < 0) return nbs;
+  for (int d = 0; d < 4; ++d) {
+    const auto dir = static_cast<ThreadDir>(d);
+    const auto n = ply_.neighbour(id.i, id.j, dir);
+    if (!n) continue;
+    if (auto p = position(n->id)) nbs.push_back({n->id, n->rest, *p, dir});
+  }
+  return nbs;
+}
+
+// Keeps a virtual corner only if it lands outside the face (inside, the drape stopped for
+// another reason).
+bool OutlineBuilder::accept_virtual(const NodeId& id, const SolveResult& res) {
+  if (!(res.status == SolveStatus::kLeftFace && res.extended)) return false;
+  virtual_[id.key()] = Position{res.at, res.point, false};
+  return true;
+}
+
+// False when p lies on the wrong side of the line a -> b (side > 0: to its left about the
+// outward normal) near a pole, seen about the pole's normal; true elsewhere (the solver's
+// own side test holds there).
+bool OutlineBuilder::on_side(const Vec3& a, const Vec3& b, const Vec3& p, double side) const {
+  const int q = nearest_pole(0.5 * (a + b));
+  if (q < 0) return true;
+  return pole_normals_[static_cast<std::size_t>(q)].dot((b - a).cross(p - a)) * side > 0.0;
+}
+
+// A virtual corner from a weft and a warp neighbour with positions.
+bool OutlineBuilder::virtual_by_spheres(const NodeId& id) {
+  const std::vector<Nb> nbs = virtual_neighbours(id);
+  const Vec2 q2 = ply_.pos(id);
+  for (const Nb& a : nbs)
+    for (const Nb& b : nbs) {
+      if (!is_weft(a.dir) || is_weft(b.dir)) continue;
+      const double side =
+          cross2(ply_.pos(b.id) - ply_.pos(a.id), q2 - ply_.pos(a.id)) > 0 ? 1.0 : -1.0;
+      auto solve = [&](double sd) {
+        return solve_two_spheres(
+            s_, {a.p.point, a.p.at, a.rest, b.p.point, b.p.at, b.rest, sd, std::nullopt}, st_);
+      };
+      SolveResult res = solve(side);
+      // Past a pole (u < 0 on a surface of revolution) the surface's own normal is turned
+      // over and the solver's branch with it: the corner comes out mirrored across the line
+      // a-b, on the point of the cell's opposite corner. The other branch is then the one.
+      if (res.status == SolveStatus::kLeftFace && res.extended &&
+          !on_side(a.p.point, b.p.point, res.point, side))
+        res = solve(-side);
+      if (res.status == SolveStatus::kLeftFace && res.extended &&
+          !on_side(a.p.point, b.p.point, res.point, side))
+        continue;
+      if (accept_virtual(id, res)) return true;
+    }
+  return false;
+}
+
+// A virtual corner continuing a thread through a neighbour: the neighbour's predecessor
+// beyond it, away from the node, gives the thread's last segment. With `drape_only`, both
+// ends of that segment must be the drape's own nodes.
+bool OutlineBuilder::virtual_by_continuation(const NodeId& id, bool drape_only) {
+  for (const Nb& a : virtual_neighbours(id)) {
+    std::optional<PlyNeighbour> before;
+    if (!a.id.is_path_only()) {
+      before = ply_.neighbour(a.id.i, a.id.j, a.dir);
+    } else {
+      for (const auto& tn : ply_.thread_neighbours(a.id))
+        if (tn.dir == a.dir) before = tn.n;
+    }
+    if (!before) continue;
+    if (drape_only && (virtual_.count(a.id.key()) || virtual_.count(before->id.key()))) continue;
+    const auto pb = position(before->id);
+    if (!pb) continue;
+    if (accept_virtual(
+            id, solve_plane_sphere(s_, {a.p.point, a.p.at, a.rest, a.p.point - pb->point}, st_)))
+      return true;
+  }
+  return false;
+}
+
+}  // namespace plyfit::detail
