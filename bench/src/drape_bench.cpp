@@ -657,17 +657,11 @@ Table overlap_table(int runs, std::vector<int> sizes, bool* ok) {
           "median of %d each; cost = with / without - 1 of the medians, and the median of the "
           "same ratio over the pairs of runs made one after the other (paired: it follows the "
           "machine's drift less). The closed hemisphere's ns/node is compared with the sphere "
-          "octant's (the same rational sphere, open) at the same size. The test runs in batches "
-          "(DrapeOptions::overlap_batch, %u nodes: the scan maps them, then they are tested in "
-          "order; where one lies on laid cloth the scan goes back and on node by node); *node by "
-          "node*: runs with a batch of 1 in the same rotation, paired against those without the "
-          "test; *same drape*: the two drapes' node statuses and points equal to the bit.",
-          runs, DrapeOptions{}.overlap_batch);
-  t.header = {"face",       "size",         "nodes",
-              "overlaps",   "ns/node with", "ns/node without",
-              "cost",       "cost, paired", "node by node, paired",
-              "same drape", "vs octant"};
-  t.right = {false, true, true, true, true, true, true, true, true, false, true};
+          "octant's (the same rational sphere, open) at the same size.",
+          runs);
+  t.header = {"face", "size",         "nodes",    "overlaps", "ns/node with", "ns/node without",
+              "cost", "cost, paired", "vs octant"};
+  t.right = {false, true, true, true, true, true, true, true, true};
   auto faces = report_faces();
   auto hemi = hemisphere_face();
   if (!faces || !hemi) {
@@ -686,14 +680,13 @@ Table overlap_table(int runs, std::vector<int> sizes, bool* ok) {
         if (ok) *ok = false;
         continue;
       }
-      DrapeOptions opts[3];  // with the test, without, with it node by node
+      DrapeOptions opts[2];  // with the test, without
       opts[1].overlap_test = false;
-      opts[2].overlap_batch = 1;
-      std::vector<double> secs[3];
-      DrapeResult first, first_nbn;
+      std::vector<double> secs[2];
+      DrapeResult first;
       bool failed = false;
       for (int k = 0; k < runs && !failed; ++k) {
-        for (int b = 0; b < 3; ++b) {
+        for (int b = 0; b < 2; ++b) {
           auto r = run_drape(*rf.face, *pb, opts[b]);
           if (!r) {
             print_error(rf.name, r.error());
@@ -702,7 +695,6 @@ Table overlap_table(int runs, std::vector<int> sizes, bool* ok) {
           }
           secs[b].push_back(r->seconds);
           if (k == 0 && b == 0) first = std::move(r->result);
-          if (k == 0 && b == 2) first_nbn = std::move(r->result);
         }
       }
       if (failed) {
@@ -710,18 +702,10 @@ Table overlap_table(int runs, std::vector<int> sizes, bool* ok) {
         continue;
       }
       const double n = static_cast<double>(net_nodes(first));
-      const std::vector<double>&tw = secs[0], &to = secs[1], &tn = secs[2];
+      const std::vector<double>&tw = secs[0], &to = secs[1];
       const double ns_with = median(tw) * 1e9 / n, ns_without = median(to) * 1e9 / n;
-      std::vector<double> paired, paired_nbn;
+      std::vector<double> paired;
       for (std::size_t k = 0; k < tw.size() && k < to.size(); ++k) paired.push_back(tw[k] / to[k]);
-      for (std::size_t k = 0; k < tn.size() && k < to.size(); ++k)
-        paired_nbn.push_back(tn[k] / to[k]);
-      bool same = first.nodes.size() == first_nbn.nodes.size();
-      for (std::size_t k = 0; same && k < first.nodes.size(); ++k) {
-        const DrapeNode &a = first.nodes[k], &b = first_nbn.nodes[k];
-        same = a.status == b.status && a.point == b.point;
-      }
-      if (!same && ok) *ok = false;
       const bool octant = rf.name.find("octant") != std::string::npos;
       const bool closed = rf.face->closes_on_itself();
       if (octant) octant_ns = ns_with;
@@ -729,7 +713,6 @@ Table overlap_table(int runs, std::vector<int> sizes, bool* ok) {
              fmt("%llu", (unsigned long long)first.metrics.nodes.overlap), fmt("%.0f", ns_with),
              fmt("%.0f", ns_without), fmt("%+.1f %%", (ns_with / ns_without - 1) * 100),
              fmt("%+.1f %%", (median(paired) - 1) * 100),
-             fmt("%+.1f %%", (median(paired_nbn) - 1) * 100), same ? "yes" : "**no**",
              closed && octant_ns > 0 ? fmt("%.2fx", ns_with / octant_ns) : std::string("-")});
       std::fprintf(stderr, "overlap: %s %d^2: %.0f / %.0f ns/node\n", rf.name.c_str(), size,
                    ns_with, ns_without);
@@ -746,17 +729,12 @@ namespace {
 // One face of the overlap table at one size, with and without the overlap test (runs
 // alternating), or one of the two alone (`--only on|off`, e.g. under callgrind): median wall
 // and thread CPU time per node, peak heap per node, and a digest of every node's status and
-// point (equal digests: the same drape). `--batch N` sets DrapeOptions::overlap_batch;
-// `--node-by-node` adds runs with the test on and a batch of 1 (the same drape: what the
-// batches save, paired).
+// point (equal digests: the same drape).
 int run_overlap_ab(const std::vector<std::string>& args) {
   const std::string which = option_value(args, "--face", "wave");
   const int size = std::stoi(option_value(args, "--size", "300"));
   const int runs = std::max(1, std::stoi(option_value(args, "--runs", "1")));
   const std::string only = option_value(args, "--only", "");
-  const auto batch = static_cast<std::uint32_t>(
-      std::stoul(option_value(args, "--batch", std::to_string(DrapeOptions{}.overlap_batch))));
-  const bool node_by_node = has_flag(args, "--node-by-node");
   auto faces = report_faces();
   auto hemi = hemisphere_face();
   if (!faces || !hemi) {
@@ -779,12 +757,10 @@ int run_overlap_ab(const std::vector<std::string>& args) {
   struct Mode {
     const char* name;
     bool test;
-    std::uint32_t batch;
   };
   std::vector<Mode> modes;
-  if (only != "off") modes.push_back({"on", true, batch});
-  if (only != "on") modes.push_back({"off", false, batch});
-  if (node_by_node) modes.push_back({"on, node by node", true, 1});
+  if (only != "off") modes.push_back({"on", true});
+  if (only != "on") modes.push_back({"off", false});
   const std::size_t nm = modes.size();
   std::vector<std::vector<double>> wall(nm), cpu(nm);
   std::uint64_t nodes = 0;
@@ -792,7 +768,6 @@ int run_overlap_ab(const std::vector<std::string>& args) {
     for (std::size_t m = 0; m < nm; ++m) {
       DrapeOptions o;
       o.overlap_test = modes[m].test;
-      o.overlap_batch = modes[m].batch;
       timespec c0{}, c1{};
       clock_gettime(CLOCK_THREAD_CPUTIME_ID, &c0);
       auto r = run_drape(*rf->face, *pb, o, k == 0);  // the peak heap printed: a first drape's
@@ -836,10 +811,6 @@ int run_overlap_ab(const std::vector<std::string>& args) {
                 (median(cpu[a]) / median(cpu[b]) - 1) * 100, (median(paired) - 1) * 100);
   };
   if (nm >= 2 && modes[0].test && !modes[1].test) cost("cost", 0, 1);
-  if (node_by_node && nm == 3) {
-    cost("cost node by node", 2, 1);
-    cost("batched against node by node", 0, 2);
-  }
   return 0;
 }
 

@@ -200,12 +200,8 @@ void warn_path_ends(const DrapeSurface& s, DrapeResult& res) {
   }
 }
 
-}  // namespace
-
-Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const DrapeOptions& opt) {
-  const auto t0 = std::chrono::steady_clock::now();
-  auto ply = Ply::create(pb.ply, opt.tol);
-  if (!ply) return ply.error();
+// The inputs drape() checks before it looks at the surface.
+Status check_problem(const DrapeProblem& pb, const DrapeOptions& opt) {
   if (pb.sweeps.size() != pb.ply.sweeps.size())
     return Error{ErrorCode::kSweepCountMismatch,
                  "sweep3d",
@@ -216,9 +212,14 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
     return Error{ErrorCode::kBaseNormalZero, "base-normal"};
   if (!(opt.lock_angle > 0.0) || opt.lock_angle > kPi / 2)
     return Error{ErrorCode::kLockAngleRange, "lock-angle"};
+  return ok_status();
+}
 
-  DrapeResult res;
-  res.index = std::make_shared<NodeIndex>();
+// The start projected onto the surface (res: start point, location, distance moved, base
+// normal) and the base path's 3D direction there, the base plane's section (§4.2.2); n0 the
+// normal at the start.
+Result<Vec3> place_start(const DrapeSurface& s, const DrapeProblem& pb, DrapeResult& res,
+                         Vec3& n0) {
   res.base_normal = pb.base_normal.normalized();
   const Projection pr = s.project(pb.start);
   if (!pr.ok) return Error{ErrorCode::kStartNotProjected, "start3d"};
@@ -227,14 +228,19 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
   res.start_moved = pr.distance;
   const SurfaceNormal sn = s.normal(pr.at);
   if (!sn.ok) return Error{ErrorCode::kStartNoNormal, "start3d"};
-  const Vec3 n0 = sn.n;
+  n0 = sn.n;
   Vec3 t3 = n0.cross(res.base_normal);
   if (t3.norm() < kMinPlaneCutSin) return Error{ErrorCode::kBaseNormalTangent, "base-normal"};
   t3.normalize();
-  // Pairing of 2D and 3D: (base, sweep) has the same handedness about the normal in both.
-  const Ply& P = *ply;
-  // Each sweep's part across the path, in the tangent plane: the sine of its angle with the
-  // plane of the path and the normal.
+  return t3;
+}
+
+// Pairing of 2D and 3D: (base, sweep) has the same handedness about the normal in both. Each
+// 3D sweep must point to one side of the path (its part across the path, in the tangent
+// plane: the sine of its angle with the plane of the path and the normal); t3 is turned round
+// where the first sweep's sides disagree.
+Status pair_sweeps(const DrapeProblem& pb, const Ply& P, const Tolerances& tol, const Vec3& n0,
+                   Vec3& t3) {
   const Vec3 across = n0.cross(t3);
   std::vector<double> side3;
   for (std::size_t k = 0; k < pb.sweeps.size(); ++k) {
@@ -242,12 +248,12 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
     if (!w.allFinite() || !(w.norm() > 0.0))
       return Error{ErrorCode::kSweep3dZero, "sweep3d", {static_cast<std::int64_t>(k + 1)}};
     const double c = across.dot(w) / w.norm();
-    if (!(std::abs(c) >= std::sin(opt.tol.sweep_min_angle)))
+    if (!(std::abs(c) >= std::sin(tol.sweep_min_angle)))
       return Error{
           ErrorCode::kSweep3dAlongPath,
           "sweep3d",
           {static_cast<std::int64_t>(k + 1), std::asin(std::min(std::abs(c), 1.0)) * kRadToDeg,
-           opt.tol.sweep_min_angle * kRadToDeg}};
+           tol.sweep_min_angle * kRadToDeg}};
     side3.push_back(c > 0 ? 1.0 : -1.0);
   }
   std::vector<double> side2;
@@ -258,17 +264,12 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
   }
   if (side3.size() == 2 && side3[1] != side2[1])
     return Error{ErrorCode::kSweeps3dSameSide, "sweep3d"};
-  res.base_tangent = t3;
-  res.seed_curve = pb.seed_curve;
-  auto mply = std::make_shared<Ply>(std::move(ply).value());  // the scan extends the path
-  res.ply = mply;
+  return ok_status();
+}
 
-  res.nodes.reserve(
-      expected_nodes(s, *mply, res.start_point, res.base_normal, pb.sweeps, opt.max_nodes));
-  detail::Scanner scanner(s, *mply, opt, res);
-  scanner.run(t3);
-  detail::compute_metrics(s, opt.tol, res);
-  res.metrics.nodes.off_ply += scanner.path_off_ply();
+// Warnings of the scan's stops: cancelled, the node cap, cloth on cloth, failed and
+// conflicting nodes.
+void warn_scan_stops(const detail::Scanner& scanner, const DrapeOptions& opt, DrapeResult& res) {
   if (scanner.cancelled()) {
     res.partial = true;
     res.warnings.push_back("cancelled");
@@ -298,7 +299,11 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
         "fits all their links), so the cloth cannot be laid there as one piece: a dart or a "
         "splice is needed there, or another start or base path");
   }
-  warn_path_ends(s, res);
+}
+
+// Warnings of threads that end inside the surface: outside nodes where a thread could not
+// follow it, a slit along the base path's line.
+void warn_thread_ends(const detail::Scanner& scanner, DrapeResult& res) {
   if (const auto& te = scanner.thread_ends(); te.nodes > 0)
     res.warnings.push_back(
         std::to_string(te.nodes) + " node(s), the first at ply (" + brief(te.first.x()) + ", " +
@@ -318,6 +323,40 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
         " thread link(s) across the path's line there join the two sweeps' cloth unsolved "
         "(a slit in the flat pattern)");
   }
+}
+
+// The scan (§6.2) from the base path along t3, then the metrics.
+void scan_and_measure(const DrapeSurface& s, const DrapeOptions& opt, const Vec3& t3,
+                      detail::Scanner& scanner, DrapeResult& res) {
+  scanner.run(t3);
+  detail::compute_metrics(s, opt.tol, res);
+  res.metrics.nodes.off_ply += scanner.path_off_ply();
+}
+
+}  // namespace
+
+Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const DrapeOptions& opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto ply = Ply::create(pb.ply, opt.tol);
+  if (!ply) return ply.error();
+  if (auto ok = check_problem(pb, opt); !ok) return ok.error();
+  DrapeResult res;
+  res.index = std::make_shared<NodeIndex>();
+  Vec3 n0 = Vec3::Zero();  // the normal at the start
+  auto t3 = place_start(s, pb, res, n0);
+  if (!t3) return t3.error();
+  if (auto ok = pair_sweeps(pb, *ply, opt.tol, n0, *t3); !ok) return ok.error();
+  res.base_tangent = *t3;
+  res.seed_curve = pb.seed_curve;
+  auto mply = std::make_shared<Ply>(std::move(ply).value());  // the scan extends the path
+  res.ply = mply;
+  res.nodes.reserve(
+      expected_nodes(s, *mply, res.start_point, res.base_normal, pb.sweeps, opt.max_nodes));
+  detail::Scanner scanner(s, *mply, opt, res);  // sized by the reserve
+  scan_and_measure(s, opt, *t3, scanner, res);
+  warn_scan_stops(scanner, opt, res);
+  warn_path_ends(s, res);
+  warn_thread_ends(scanner, res);
   judge_drape(s, pb, opt.tol, !scanner.cancelled() && !scanner.truncated(), res);
   if (!res.partial) warn_uncovered(s, res);
   res.drape_ms =

@@ -136,15 +136,9 @@ double geodesic_residual(const DrapeSurface& s, const DrapeResult& res) {
   return worst;
 }
 
-}  // namespace
-
-void compute_metrics(const DrapeSurface& s, const Tolerances& tol, DrapeResult& res) {
+// The stopped nodes' reasons, by status.
+void count_stop_reasons(DrapeResult& res) {
   DrapeMetrics& m = res.metrics;
-  m.faces.assign(static_cast<std::size_t>(std::max(s.face_count(), 1)), {});
-  for (std::size_t k = 0; k < m.faces.size(); ++k)
-    m.faces[k].area = s.face_area(static_cast<std::int32_t>(k));
-  thread_angles(res);
-  paper_angles(res, m.paper);
   for (const auto& [k, why] : res.failures) {
     const char* text = why && *why ? why : "unknown";
     if (res.nodes[k].status == NodeStatus::kFailed)
@@ -154,6 +148,11 @@ void compute_metrics(const DrapeSurface& s, const Tolerances& tol, DrapeResult& 
     else if (res.nodes[k].status == NodeStatus::kShearLimit)
       ++m.nodes.shear_limit_reasons[text];
   }
+}
+
+// Nodes by status, and the thread angles' range and shear energy.
+void count_nodes(DrapeResult& res) {
+  DrapeMetrics& m = res.metrics;
   bool first = true;
   for (const DrapeNode& n : res.nodes) {
     switch (n.status) {
@@ -198,9 +197,12 @@ void compute_metrics(const DrapeSurface& s, const Tolerances& tol, DrapeResult& 
     m.shear_max = std::max(std::abs(kHalfPi - m.gamma_min), std::abs(m.gamma_max - kHalfPi));
   for (const DrapeNode& n : res.nodes)
     if (n.mapped() && !n.id.is_path_only() && n.face < m.faces.size()) ++m.faces[n.face].mapped;
-  cell_areas(res);
-  m.coverage = s.area() > 0.0 ? m.surface_area / s.area() : 0.0;
-  // Independent residual checks.
+}
+
+// Independent residual checks: link lengths, distance to the surface, the base plane; the
+// rounding floor of the solves.
+void check_residuals(const DrapeSurface& s, const Tolerances& tol, DrapeResult& res) {
+  DrapeMetrics& m = res.metrics;
   const double d = res.ply->d();
   for_each_link(res, [&](std::uint32_t a, std::uint32_t b, double rest, LinkKind) {
     const double len = (res.nodes[a].point - res.nodes[b].point).norm();
@@ -223,6 +225,22 @@ void compute_metrics(const DrapeSurface& s, const Tolerances& tol, DrapeResult& 
   const BBox3 box = s.bbox();
   const Vec3 far = box.min.cwiseAbs().cwiseMax(box.max.cwiseAbs());
   m.newton_floor = residual_floor(s, tol, far, d);
+}
+
+}  // namespace
+
+void compute_metrics(const DrapeSurface& s, const Tolerances& tol, DrapeResult& res) {
+  DrapeMetrics& m = res.metrics;
+  m.faces.assign(static_cast<std::size_t>(std::max(s.face_count(), 1)), {});
+  for (std::size_t k = 0; k < m.faces.size(); ++k)
+    m.faces[k].area = s.face_area(static_cast<std::int32_t>(k));
+  thread_angles(res);
+  paper_angles(res, m.paper);
+  count_stop_reasons(res);
+  count_nodes(res);
+  cell_areas(res);
+  m.coverage = s.area() > 0.0 ? m.surface_area / s.area() : 0.0;
+  check_residuals(s, tol, res);
 }
 
 }  // namespace plyfit::detail

@@ -20,7 +20,7 @@ constexpr double kCollapsedTangentRel = 1e-9;
 
 Result<FaceStart> face_start(const MoldSurface& surface) {
   const auto* one = dynamic_cast<const Face*>(&surface.impl());
-  if (!one) return Error{"a start is suggested for one face, not a shell"};
+  if (!one) return Error{ErrorCode::kStartNeedsOneFace};
   const Face& face = *one;
   Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (const auto& loop : face.boundary_loops())
@@ -28,7 +28,7 @@ Result<FaceStart> face_start(const MoldSurface& surface) {
       lo = lo.cwiseMin(q);
       hi = hi.cwiseMax(q);
     }
-  if (!(lo.x() <= hi.x() && lo.y() <= hi.y())) return Error{"the face has no boundary"};
+  if (!(lo.x() <= hi.x() && lo.y() <= hi.y())) return Error{ErrorCode::kStartFaceNoBoundary};
   const Vec2 centre = 0.5 * (lo + hi);
   Vec2 span = hi - lo;
   for (int a = 0; a < 2; ++a)
@@ -48,7 +48,7 @@ Result<FaceStart> face_start(const MoldSurface& surface) {
           s.uv = q;
         }
       }
-    if (!std::isfinite(best)) return Error{"no point of the face found inside its trims"};
+    if (!std::isfinite(best)) return Error{ErrorCode::kStartFaceNoInsidePoint};
   }
   const SurfaceEval1 e = face.eval1(s.uv);
   s.point = e.p;
@@ -59,7 +59,7 @@ Result<FaceStart> face_start(const MoldSurface& surface) {
   const bool across_closed_u = face.closed_u() && !face.closed_v();
   Vec3 t = e.du.norm() > e.dv.norm() * kCollapsedTangentRel && !across_closed_u ? e.du : e.dv;
   t -= t.dot(s.normal) * s.normal;
-  if (!(t.norm() > 0)) return Error{"the face has no tangent plane at its middle"};
+  if (!(t.norm() > 0)) return Error{ErrorCode::kStartFaceNoTangent};
   s.tangent = t.normalized();
   // (t, n x t) turns about +n like (base2d, sweep2d) = ((1, 0), (0, 1)) about +z.
   s.base_normal = s.normal.cross(s.tangent).normalized();

@@ -145,7 +145,7 @@ Result<DrapeProblem> problem_at(const SearchScene& scene, const Face& face, cons
   // plane is the normal section along it (on a sphere, a great circle).
   Vec3 t = reference - reference.dot(n) * n;
   if (!(t.norm() >= kMinReferenceSin * reference.norm()))
-    return Error{"the scene's base-path direction is normal to the face at the seed"};
+    return Error{ErrorCode::kSearchPathNormalAtSeed};
   t.normalize();
   t = std::cos(c.path) * t + std::sin(c.path) * n.cross(t);
   pb.base_normal = t.cross(n);
@@ -493,35 +493,30 @@ double Figures::value(Objective o) const {
 Result<DrapeProblem> candidate_problem(const SearchScene& scene, const MoldSurface& surface,
                                        const OptimizeResult& r, const Candidate& c) {
   const auto* face = dynamic_cast<const Face*>(&surface.impl());
-  if (!face) return Error{"the search of initial conditions drapes one face, not a shell"};
+  if (!face) return Error{ErrorCode::kSearchNeedsOneFace};
   return problem_at(scene, *face, r.reference, c, nullptr);
 }
 
-Result<OptimizeResult> optimize(const SearchScene& scene, const MoldSurface& surface,
-                                const OptimizeOptions& o) {
-  const auto* one = dynamic_cast<const Face*>(&surface.impl());
-  if (!one) return Error{"the search of initial conditions drapes one face, not a shell"};
-  const Face& face = *one;
-  OptimizeResult r;
-  DrapeOptions dopt = scene.drape;
-  dopt.cancel = o.cancel;
-  dopt.progress = nullptr;
+namespace {
 
-  // The scene as given: the reference, and the default constraint.
-  Evaluation ref;
-  ref.phase = "scene";
-  DrapeResult scene_res;
+/// The scene as given, draped: the reference evaluation, the default constraint and the
+/// reference direction carried to every seed.
+Status drape_scene(const Face& face, const SearchScene& scene, const DrapeOptions& dopt,
+                   DrapeResult& scene_res) {
   try {
     auto res = drape(face, scene.problem, dopt);
     if (!res) return res.error();
     scene_res = std::move(res).value();
   } catch (const std::exception& e) {
-    return Error{std::string("internal error: ") + e.what()};
+    return Error{ErrorCode::kInternal, {}, {std::string(e.what())}};
   }
-  if (o.cancel && o.cancel->load()) {
-    r.cancelled = true;
-    return r;
-  }
+  return ok_status();
+}
+
+void record_scene(const Face& face, const SearchScene& scene, const DrapeResult& scene_res,
+                  const OptimizeOptions& o, OptimizeResult& r) {
+  Evaluation ref;
+  ref.phase = "scene";
   ref.status = scene_res.partial ? "partial" : "ok";
   for (const auto& w : scene_res.warnings) ref.note += (ref.note.empty() ? "partial: " : "; ") + w;
   ref.figures = figures_of(face, scene_res, scene);
@@ -532,7 +527,30 @@ Result<OptimizeResult> optimize(const SearchScene& scene, const MoldSurface& sur
   if (o.min_coverage) r.min_coverage = *o.min_coverage;
   update_constraint(r);
   r.reference = scene_res.base_tangent;
+}
 
+/// The seeds' box: the face's samples (within the radius), one sample step wider; the scene's
+/// seed alone where the start does not vary.
+void seed_box(const Face& face, const Space& sp, const Vec2& uv0, bool vary_start, Vec2& lo,
+              Vec2& hi) {
+  const ParamDomain& dom = face.domain();
+  lo = uv0;
+  hi = uv0;
+  if (!vary_start) return;
+  for (const auto& [uv, p] : sample_face(face, kSeedBoxSamples)) {
+    if (sp.radius && (p - sp.start0).norm() > *sp.radius) continue;
+    lo = lo.cwiseMin(uv);
+    hi = hi.cwiseMax(uv);
+  }
+  const Vec2 step(dom.width_u() / kSeedBoxSamples, dom.width_v() / kSeedBoxSamples);
+  lo = Vec2(std::max(dom.u0, lo.x() - step.x()), std::max(dom.v0, lo.y() - step.y()));
+  hi = Vec2(std::min(dom.u1, hi.x() + step.x()), std::min(dom.v1, hi.y() + step.y()));
+}
+
+/// The search space around the scene's drape: the seeds' box, the angles' periods and ranges,
+/// each axis's smallest refinement step, the axes that vary.
+Space search_space(const SearchScene& scene, const Face& face, const DrapeResult& scene_res,
+                   const OptimizeOptions& o, OptimizeResult& r) {
   Space sp;
   sp.scene = &scene;
   sp.face = &face;
@@ -540,20 +558,8 @@ Result<OptimizeResult> optimize(const SearchScene& scene, const MoldSurface& sur
   sp.start0 = scene_res.start_point;
   sp.radius = o.radius;
   r.radius = o.radius;
-  // The seeds' box: the face's samples (within the radius), one sample step wider.
-  const ParamDomain& dom = face.domain();
-  const Vec2 uv0 = scene_res.start_at.uv;
-  Vec2 lo = uv0, hi = uv0;
-  if (o.vary_start) {
-    for (const auto& [uv, p] : sample_face(face, kSeedBoxSamples)) {
-      if (sp.radius && (p - sp.start0).norm() > *sp.radius) continue;
-      lo = lo.cwiseMin(uv);
-      hi = hi.cwiseMax(uv);
-    }
-    const Vec2 step(dom.width_u() / kSeedBoxSamples, dom.width_v() / kSeedBoxSamples);
-    lo = Vec2(std::max(dom.u0, lo.x() - step.x()), std::max(dom.v0, lo.y() - step.y()));
-    hi = Vec2(std::min(dom.u1, hi.x() + step.x()), std::min(dom.v1, hi.y() + step.y()));
-  }
+  Vec2 lo, hi;
+  seed_box(face, sp, scene_res.start_at.uv, o.vary_start, lo, hi);
   r.uv_lo = lo;
   r.uv_hi = hi;
   // The cloth's symmetry: a square weave turned by 90 degrees on a fixed base path is the same
@@ -581,22 +587,24 @@ Result<OptimizeResult> optimize(const SearchScene& scene, const MoldSurface& sur
   if (o.vary_start) sp.dims = {0, 1};
   if (o.vary_angle) sp.dims.push_back(2);
   if (o.vary_path) sp.dims.push_back(3);
+  return sp;
+}
 
-  Search search(sp, o, dopt, r);
-  // The design: the scene's seed and directions first; then Halton points over the varying
-  // axes (bases 2, 3, 5, 7), the first kLatticeShare of them with the ply at the lattice
-  // angles in turn instead of the Halton angle. Seeds off the face or beyond the radius are
-  // skipped.
+/// The design: the scene's seed and directions first; then Halton points over the varying
+/// axes (bases 2, 3, 5, 7), the first kLatticeShare of them with the ply at the lattice
+/// angles in turn instead of the Halton angle. Seeds off the face or beyond the radius are
+/// skipped (counted in r.skipped).
+std::vector<Candidate> design(const Space& sp, const SearchScene& scene, const Vec2& uv0,
+                              const OptimizeOptions& o, int n_design, OptimizeResult& r) {
   const int dims = static_cast<int>(sp.dims.size());
-  const int n_design = std::max(1, static_cast<int>(std::ceil(o.evaluations * kDesignShare)));
   const int n_lattice = o.vary_angle ? static_cast<int>(std::ceil(n_design * kLatticeShare)) : 0;
   Candidate c0;
   c0.uv = uv0;
-  std::vector<Candidate> design = {c0};
+  std::vector<Candidate> out = {c0};
   const UnitPoint x0 = sp.unit(c0);
   const std::uint64_t bases[kAxes] = {2, 3, 5, 7};
   const long tries = static_cast<long>(n_design) * kDesignTriesPerDrape;
-  for (long k = 1; static_cast<int>(design.size()) < n_design && k <= tries; ++k) {
+  for (long k = 1; static_cast<int>(out.size()) < n_design && k <= tries; ++k) {
     UnitPoint x = x0;
     for (int a = 0; a < dims; ++a)
       x[static_cast<std::size_t>(sp.dims[static_cast<std::size_t>(a)])] =
@@ -606,26 +614,18 @@ Result<OptimizeResult> optimize(const SearchScene& scene, const MoldSurface& sur
       ++r.skipped;
       continue;
     }
-    if (static_cast<int>(design.size()) < n_lattice) {
-      const auto angles = lattice_angles(ply, c.path, r.angle_range, r.angle_period);
-      c.angle = angles[design.size() % angles.size()];
+    if (static_cast<int>(out.size()) < n_lattice) {
+      const auto angles = lattice_angles(scene.problem.ply, c.path, r.angle_range, r.angle_period);
+      c.angle = angles[out.size() % angles.size()];
     }
-    design.push_back(c);
+    out.push_back(c);
   }
-  search.run(design, "design", n_design);
-  r.design = search.spent();
-  // Refinement per objective, the remaining budget shared equally; the first steps are half
-  // the design's spacing.
-  const double h0 =
-      0.5 * std::pow(static_cast<double>(std::max(1, r.design)), -1.0 / std::max(1, dims));
-  for (std::size_t k = 0; k < o.objectives.size() && !r.cancelled; ++k) {
-    const int left = o.evaluations - search.spent();
-    const int share = left / static_cast<int>(o.objectives.size() - k);
-    if (share > 0) refine(sp, search, r, o.objectives[k], share, h0);
-  }
-  if (r.cancelled) return r;
+  return out;
+}
 
-  // The best per objective and the Pareto front, over every feasible drape (the scene's too).
+/// The best drape per objective and the Pareto front, over every feasible drape (the
+/// scene's too).
+void best_and_front(OptimizeResult& r) {
   for (int k = 0; k < kObjectiveCount; ++k) {
     const auto obj = static_cast<Objective>(k);
     for (const auto& ev : r.evaluations)
@@ -656,6 +656,43 @@ Result<OptimizeResult> optimize(const SearchScene& scene, const MoldSurface& sur
     return better(r.evaluations[static_cast<std::size_t>(a)],
                   r.evaluations[static_cast<std::size_t>(b)], Objective::kEnergy);
   });
+}
+
+}  // namespace
+
+Result<OptimizeResult> optimize(const SearchScene& scene, const MoldSurface& surface,
+                                const OptimizeOptions& o) {
+  const auto* one = dynamic_cast<const Face*>(&surface.impl());
+  if (!one) return Error{ErrorCode::kSearchNeedsOneFace};
+  const Face& face = *one;
+  OptimizeResult r;
+  DrapeOptions dopt = scene.drape;
+  dopt.cancel = o.cancel;
+  dopt.progress = nullptr;
+  DrapeResult scene_res;
+  if (auto ok = drape_scene(face, scene, dopt, scene_res); !ok) return ok.error();
+  if (o.cancel && o.cancel->load()) {
+    r.cancelled = true;
+    return r;
+  }
+  record_scene(face, scene, scene_res, o, r);
+  const Space sp = search_space(scene, face, scene_res, o, r);
+  Search search(sp, o, dopt, r);
+  const int n_design = std::max(1, static_cast<int>(std::ceil(o.evaluations * kDesignShare)));
+  search.run(design(sp, scene, scene_res.start_at.uv, o, n_design, r), "design", n_design);
+  r.design = search.spent();
+  // Refinement per objective, the remaining budget shared equally; the first steps are half
+  // the design's spacing.
+  const int dims = static_cast<int>(sp.dims.size());
+  const double h0 =
+      0.5 * std::pow(static_cast<double>(std::max(1, r.design)), -1.0 / std::max(1, dims));
+  for (std::size_t k = 0; k < o.objectives.size() && !r.cancelled; ++k) {
+    const int left = o.evaluations - search.spent();
+    const int share = left / static_cast<int>(o.objectives.size() - k);
+    if (share > 0) refine(sp, search, r, o.objectives[k], share, h0);
+  }
+  if (r.cancelled) return r;
+  best_and_front(r);
   return r;
 }
 

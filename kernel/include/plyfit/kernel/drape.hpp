@@ -163,12 +163,6 @@ struct DrapeOptions {
   /// Test every mapped node for landing on cloth already laid (status kOverlap). false skips
   /// the test (the cloth may then lie on itself unflagged): only to measure its cost.
   bool overlap_test = true;
-  /// The scan maps up to this many nodes ahead of the overlap test, then tests them in the
-  /// order they were mapped (nodes tested together cost the drape 1-4 % less at 10^6 nodes);
-  /// where one lies on laid cloth the scan goes back to the batch's start and on node by node
-  /// for the rest of the drape. The drape is the same whatever the value, to the bit; 1 tests
-  /// each node as it is mapped. The batch's undo log and a copy of the frontier grow with it.
-  std::uint32_t overlap_batch = 4096;
   /// Stop (status partial) once this many nodes have been reached.
   std::uint64_t max_nodes = 50'000'000;
   /// Set by another thread to stop the drape (status partial, "cancelled").

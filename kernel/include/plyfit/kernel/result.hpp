@@ -46,6 +46,13 @@ namespace plyfit {
   X(TooManySweeps, too_many_sweeps)                                                         \
   X(SweepsSameSide, sweeps_same_side)                                                       \
   X(Start2dOffPly, start2d_off_ply)                                                         \
+  /* kernel: search (optimize, face_start) */                                               \
+  X(StartNeedsOneFace, start_needs_one_face)                                                \
+  X(StartFaceNoBoundary, start_face_no_boundary)                                            \
+  X(StartFaceNoInsidePoint, start_face_no_inside_point)                                     \
+  X(StartFaceNoTangent, start_face_no_tangent)                                              \
+  X(SearchNeedsOneFace, search_needs_one_face)                                              \
+  X(SearchPathNormalAtSeed, search_path_normal_at_seed)                                     \
   /* kernel: ply definition (seed, rosette, ply angle) */                                   \
   X(SeedNotFinite, seed_not_finite)                                                         \
   X(SeedOffMold, seed_off_mold)                                                             \

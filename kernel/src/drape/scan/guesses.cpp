@@ -14,19 +14,53 @@ namespace {
 constexpr double kFoldMeanNormalMin = 0.1;
 }  // namespace
 
-// Solver 2 for q from neighbours a (direction da from q) and b (db).
+// Solver 2 for q from neighbours a (direction da from q) and b (db): the step on the branch
+// that keeps the ply's orientation, its initial guess, the solve, then the stops the solver
+// cannot see (fronts that disagree, a cell that folds).
 SolveResult Scanner::solve_two(const DrapeNode& q, const DrapeNode& a, ThreadDir da, double ra,
                                const DrapeNode& b, ThreadDir db, double rb) {
-  // Branch: the triangle (a, b, q) keeps its 2D orientation about the normal.
+  TwoSphereStep step = two_sphere_step(q, a, ra, b, rb);
+  const DrapeNode* corner = guess_two(q, a, da, ra, b, db, rb, step);
+  SolverSettings st = st_;
+  if (is_weft(da) == is_weft(db)) st.gamma_min = 0.0;  // same thread: no thread angle
+  SolveResult r = solve_two_spheres(s_, step, st);
+  // Two mapped nodes on one thread farther apart than the two links between them, or so
+  // little closer that the links would pass below the face (SolveResult::no_point): fronts
+  // of cloth that met from both sides of the node, and no point joins them (a conflict).
+  if (is_weft(da) == is_weft(db) && r.status == SolveStatus::kFailed &&
+      ((b.point - a.point).norm() > ra + rb || r.no_point)) {
+    r.reason = "the fronts disagree: the thread between them would stretch";
+    r.fronts_disagree = true;
+  }
+  if (corner && (r.status == SolveStatus::kConverged || r.status == SolveStatus::kShearLimit) &&
+      r.point.allFinite() && cell_folds(r, a, b, *corner)) {
+    r.status = SolveStatus::kShearLimit;
+    r.shear_stop = ShearStop::kCellFolds;
+    r.reason = "the cell would fold (the cloth is sheared flat)";
+  }
+  return r;
+}
+
+// The two-sphere step for q: the branch where the triangle (a, b, q) keeps its 2D orientation
+// about the normal (where q lies on the line a-b in the ply, its sweep's side).
+TwoSphereStep Scanner::two_sphere_step(const DrapeNode& q, const DrapeNode& a, double ra,
+                                       const DrapeNode& b, double rb) const {
   const Vec2 e2 = b.ply - a.ply;
   double c2 = cross2(e2, q.ply - a.ply);
   if (std::abs(c2) <= opt_.tol.ply_merge_rel * ply_.d() * e2.norm()) {
     const int k = ply_.sweep_for_side(ply_.side(q.ply));
     c2 = cross2(e2, ply_.spec().sweeps[k]);
   }
-  TwoSphereStep step{a.point,      a.at(),      ra, b.point, b.at(), rb, c2 > 0 ? 1.0 : -1.0,
-                     std::nullopt, std::nullopt};
-  // Initial guess.
+  return TwoSphereStep{a.point,      a.at(),      ra, b.point, b.at(), rb, c2 > 0 ? 1.0 : -1.0,
+                       std::nullopt, std::nullopt};
+}
+
+// The initial guess of step by the rule of DrapeOptions::guess (extrapolated, the paper's
+// eqs. 10-11 or the parallelogram), and the cell's fourth corner, if mapped (returned, and
+// step.corner).
+const DrapeNode* Scanner::guess_two(const DrapeNode& q, const DrapeNode& a, ThreadDir da, double ra,
+                                    const DrapeNode& b, ThreadDir db, double rb,
+                                    TwoSphereStep& step) const {
   const DrapeNode* ap = mapped_nb(a, da);  // a's predecessor on q's thread
   const DrapeNode* bp = mapped_nb(b, db);
   const DrapeNode* c = nullptr;  // the cell's fourth corner
@@ -61,48 +95,30 @@ SolveResult Scanner::solve_two(const DrapeNode& q, const DrapeNode& a, ThreadDir
     else if (ap && bp)
       paper();
   }
-  SolverSettings st = st_;
-  if (is_weft(da) == is_weft(db)) st.gamma_min = 0.0;  // same thread: no thread angle
-  SolveResult r = solve_two_spheres(s_, step, st);
-  // Two mapped nodes on one thread farther apart than the two links between them, or so
-  // little closer that the links would pass below the face (SolveResult::no_point): fronts
-  // of cloth that met from both sides of the node, and no point joins them (a conflict).
-  if (is_weft(da) == is_weft(db) && r.status == SolveStatus::kFailed &&
-      ((b.point - a.point).norm() > ra + rb || r.no_point)) {
-    r.reason = "the fronts disagree: the thread between them would stretch";
-    r.fronts_disagree = true;
-  }
-  // The cell (a, c, b, q) must not fold: q lies across the line a-b from the fourth corner
-  // c, about the normal. The solver kept the ply's orientation of (a, b, q); if c lies on
-  // that side too, the net around c is already sheared past flat, and no unfolded cell
-  // exists: the cloth stops there as at the shear limit.
-  // (Sides compared by the parts of q - a and c - a across the line: a cell is not bent
-  // by 90 degrees, and no surface evaluation is needed.)
-  if (corner && (r.status == SolveStatus::kConverged || r.status == SolveStatus::kShearLimit) &&
-      r.point.allFinite()) {
-    const Vec3 e = (b.point - a.point).normalized();
-    Vec3 u = r.point - a.point, w = corner->point - a.point;
-    u -= u.dot(e) * e;
-    w -= w.dot(e) * e;
-    // A cell sheared nearly flat on a curved face has q and c both below the chord a-b by
-    // about its sag, which can outweigh their offsets across it (sphere-8, 80 degrees of
-    // shear: 0.14 below, 0.19 across): there the sides are told by the offsets along the
-    // sideways direction, across the mean of the normals at q and c (two evaluations, only
-    // for the cells that seem folded; not where the normals nearly cancel, at a knife edge).
-    auto folded = [&] {
-      if (u.dot(w) < 0.0) return false;
-      const SurfaceNormal nq = s_.normal(r.at), nc = s_.normal(corner->at());
-      const Vec3 side = (nq.n + nc.n).cross(e);
-      if (!nq.ok || !nc.ok || !(side.norm() > kFoldMeanNormalMin)) return true;
-      return u.dot(side) * w.dot(side) >= 0.0;
-    };
-    if (folded()) {
-      r.status = SolveStatus::kShearLimit;
-      r.shear_stop = ShearStop::kCellFolds;
-      r.reason = "the cell would fold (the cloth is sheared flat)";
-    }
-  }
-  return r;
+  return corner;
+}
+
+// The cell (a, c, b, q) must not fold: q lies across the line a-b from the fourth corner c,
+// about the normal. The solver kept the ply's orientation of (a, b, q); if c lies on that side
+// too, the net around c is already sheared past flat, and no unfolded cell exists: the cloth
+// stops there as at the shear limit. (Sides compared by the parts of q - a and c - a across
+// the line: a cell is not bent by 90 degrees, and no surface evaluation is needed.)
+bool Scanner::cell_folds(const SolveResult& r, const DrapeNode& a, const DrapeNode& b,
+                         const DrapeNode& corner) const {
+  const Vec3 e = (b.point - a.point).normalized();
+  Vec3 u = r.point - a.point, w = corner.point - a.point;
+  u -= u.dot(e) * e;
+  w -= w.dot(e) * e;
+  if (u.dot(w) < 0.0) return false;
+  // A cell sheared nearly flat on a curved face has q and c both below the chord a-b by about
+  // its sag, which can outweigh their offsets across it (sphere-8, 80 degrees of shear: 0.14
+  // below, 0.19 across): there the sides are told by the offsets along the sideways
+  // direction, across the mean of the normals at q and c (two evaluations, only for the cells
+  // that seem folded; not where the normals nearly cancel, at a knife edge).
+  const SurfaceNormal nq = s_.normal(r.at), nc = s_.normal(corner.at());
+  const Vec3 side = (nq.n + nc.n).cross(e);
+  if (!nq.ok || !nc.ok || !(side.norm() > kFoldMeanNormalMin)) return true;
+  return u.dot(side) * w.dot(side) >= 0.0;
 }
 
 // GuessRule::kExtrapolated for the node across the cell (a, c, b) from c, a and b its weft

@@ -18,16 +18,6 @@ class NodeIndex {
   std::int64_t find(const NodeId& id) const;
   /// Inserts id -> index (id must be absent).
   void insert(const NodeId& id, std::uint32_t index);
-  /// Removes `id`; false if it is absent. (A regular node's block stays: see truncate().)
-  bool erase(const NodeId& id);
-  /// What the index has allocated, for truncate().
-  struct Mark {
-    std::size_t blocks = 0, block_slots = 0, cells_capacity = 0;
-  };
-  Mark mark() const { return {block_count_, blocks_.size(), cells_.capacity()}; }
-  /// Drops the blocks of regular nodes added since `m` (their ids erased already) and gives
-  /// back the memory they took: the index allocates as if they had never been added.
-  void truncate(const Mark& m);
   std::size_t size() const { return size_; }
   std::size_t memory_bytes() const;
 
@@ -44,7 +34,6 @@ class NodeIndex {
   static std::int64_t probe(const std::vector<Slot>& slots, std::uint64_t key);
   static void put(std::vector<Slot>& slots, std::size_t& count, std::uint64_t key,
                   std::uint32_t value);
-  static bool remove(std::vector<Slot>& slots, std::size_t& count, std::uint64_t key);
   std::vector<Slot> blocks_;  // block key -> block number
   std::size_t block_count_ = 0;
   std::vector<std::int32_t> cells_;  // kBlock^2 entries per block, -1 = absent

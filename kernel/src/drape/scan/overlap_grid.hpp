@@ -27,16 +27,9 @@ inline std::uint64_t mix(std::uint64_t k) {  // splitmix64 finaliser
 
 // Spatial hash of mapped nodes for the overlap test "is there a recorded node within
 // `radius` (3D) of p that the caller's exact test accepts? If not, record p". The test runs
-// on every mapped node, so what it costs per node is what matters (issue 13: at most 10 % of
-// the drape): a few hundred instructions, few unpredictable branches, little memory, and
-// little code (the scan's loop fills the instruction cache: callgrind counts more misses
-// that the test causes in the scan's code than in its own). Within the drape, at 1000^2
-// nodes, the test cost about 10 %: 5 points in the test itself, 1 in page faults of its
-// fresh memory (a thread's next grid now reuses it: Spare), the rest spread over the scan;
-// tested in batches (Scanner::scan, DrapeOptions::overlap_batch), 6-8 %.
-// Neither half the lines (byte coordinates), nor fewer instructions (a box per chunk), nor
-// independent loads (no chunk chain, no probing) moved it beyond the machine's noise
-// (BENCHMARKS.md, sessions 9 and 10).
+// on every mapped node, so what it costs per node is what matters: a few hundred
+// instructions, few unpredictable branches, little memory, and little code (the scan's loop
+// fills the instruction cache). What was measured: docs/decisions/overlap-grid.md.
 // - Points are rounded to integer units, kCellUnits (a power of two) to a cell's edge of
 //   kCellRadii * radius: a point's cell and its place in it are a shift and a mask.
 // - A node is recorded in its own cell. A test reads the cells p's ball (radius and two
@@ -46,10 +39,8 @@ inline std::uint64_t mix(std::uint64_t k) {  // splitmix64 finaliser
 // - Open addressing on a cell key linear in the cell's coordinates (a neighbour's key is
 //   the cell's plus a step; cells 2^21 apart share a key: that only adds candidates). The
 //   cells of a block of 4 x 4 x 4 have neighbouring slots (multiplicative hashing of the
-//   block): with a slot per cell hashed apart, the slot's load was the test's main stall in
-//   the drape (perf annotate: a third of its samples on the instruction after it; the table
-//   is megabytes and a row of the scan touches a slot on a different page per cell). With
-//   blocks, a fifth (octant, CAD, wave 1000^2: 22-31 % fewer samples in the test).
+//   block): the table is megabytes, and with a slot per cell hashed apart a row of the scan
+//   touches a slot on a different page per cell.
 // - A cell's nodes lie in chunks of kLanes, two cache lines each: the nodes' points as 16-bit
 //   integers relative to the cell's centre (structure of arrays, unused lanes far away) and
 //   a pointer to the cell's previous chunk; the node indices lie apart, read only on a hit.
@@ -62,13 +53,8 @@ inline std::uint64_t mix(std::uint64_t k) {  // splitmix64 finaliser
 class OverlapGrid {
  public:
   // Cell edge over the test radius (>= 2: the ball meets at most two cells per axis). Larger
-  // cells mean fewer cells visited, more nodes per cell. The test alone, timed over the
-  // nodes of the drapes of the overlap table in scan order (wave, octant, CAD, closed
-  // hemisphere at 300^2 and 1000^2, interleaved runs): 12 with two-line chunks of 16 lanes
-  // takes 6 to 10 % less time than 8 with one-line chunks of 8 at 300^2, 16 to 21 % less at
-  // 1000^2 (fewer cache lines per cell of the scan's front), and the drape 3 % less peak
-  // heap; 16 is no better than 12. Within the drape the difference is below the machine's
-  // noise.
+  // cells mean fewer cells visited, more nodes per cell: 12, with two-line chunks of 16
+  // lanes, took the test least time (fewer cache lines per cell of the scan's front).
   static constexpr int kCellRadii = 12;
   // A cell's edge in integer units: the radius is kCellUnits / kCellRadii = 1365.3 units. A
   // coordinate relative to its cell's centre is at most kCellUnits / 2 + 1368 = 9560 units,
@@ -219,12 +205,10 @@ class OverlapGrid {
     Chunk chunk[kPage];
     std::uint32_t node[kPage][kLanes];  // the nodes of chunk[c], lane by lane
   };
-  // What a grid leaves to the next one on its thread. optimize's workers and library loops
-  // drape again and again on a thread (batch runs a process per scene: each drape there is a
-  // first): fresh pages cost a drape about 1 % (octant, 1000^2: the grid's 15-19 MB faulted
-  // in and zeroed by the system on every drape, 3 600 faults, perf stat). Retained up to
-  // kRetainBytes of pages (a drape of about 3.5 M nodes; more are freed) and a slot table of as
-  // much.
+  // What a grid leaves to the next one on its thread: optimize's workers and library loops
+  // drape again and again on a thread, and fresh pages are faulted in and zeroed by the
+  // system on every drape. Retained up to kRetainBytes of pages (a drape of about 3.5 M
+  // nodes; more are freed) and a slot table of as much.
   struct Spare {
     std::vector<Slot> slots;
     std::vector<std::unique_ptr<Page>> pages;

@@ -75,10 +75,6 @@ std::uint32_t Scanner::node_for(const NodeId& id, const Vec2& pos) {
     n.nb[d] = static_cast<std::int32_t>(m);
     const auto mi = static_cast<std::uint32_t>(m);
     std::int32_t& back = res_.nodes[mi].nb[static_cast<int>(opposite(static_cast<ThreadDir>(d)))];
-    if (speculating_ && mi < cp_.nodes) {
-      if (back >= 0) keep(mi);  // a link replaced: kept whole
-      linked_.push_back(mi);
-    }
     back = static_cast<std::int32_t>(idx);
   }
   if (res_.nodes.size() == res_.nodes.capacity())  // beyond the estimate: grow by half
@@ -196,7 +192,6 @@ void Scanner::push_neighbours(std::uint32_t idx) {
     }
     const std::uint32_t qi = node_for(*q, qp);
     if (!ply_.on_ply(qp)) {
-      keep(qi);
       node(qi).status = NodeStatus::kOffPly;
       node(qi).order = order_++;
       continue;
@@ -242,42 +237,14 @@ bool Scanner::behind_lock(const DrapeNode& q) const {
   return false;
 }
 
-// The scan. The overlap test almost never finds cloth (only where the cloth comes round onto
-// itself), and nodes tested in batches, one after the other, cost the drape less than testing
-// each as it is mapped (1000^2, the four faces of BENCHMARKS.md's overlap table: 0.6 to 3.8 %
-// less drape time, paired runs; the test's code and the grid's lines stay in the caches
-// while a batch is tested, the scan's while it maps). So while it speculates, the scan goes
-// on as if every node passed
-// the test, keeping what it needs to go back: its state at a checkpoint (the frontier,
-// counters) and every node there that it changes since, as it was (keep()). settle() tests
-// the batch in the order the nodes were resolved, which is the order the test node by node
-// takes them in, against the same recorded nodes: if none lies on laid cloth, the scan is
-// the one that test gives, and a new batch begins. If one does (and folds_back() has not
-// stopped it already), the scan goes back to the checkpoint and on from there testing node
-// by node for the rest of the drape (where the cloth came round once it is likely to
-// again), without testing again the batch's nodes before that one (recorded already). A
-// node about to be solved a second time (a frontier entry twice) settles the batch first:
-// the test sees every node where it was when it was resolved. The drape is the same bit for
-// bit either way.
+// The scan: the frontier's nodes in sweep order, until none is left or it is cancelled.
 void Scanner::scan() {
-  speculating_ = opt_.overlap_test && opt_.overlap_batch > 1;
-  if (speculating_) checkpoint();
-  for (;;) {
-    while (!heap_.empty()) {
-      if (speculating_ &&
-          (pending_.size() >= opt_.overlap_batch ||
-           node(heap_.top().node).status != NodeStatus::kPending) &&
-          !settle())
-        continue;  // back at the checkpoint
-      const FrontierEntry e = heap_.top();
-      heap_.pop();
-      if (++popped_ % kCancelEvery == 0 && cancelled_now()) break;
-      if (opt_.progress && popped_ % kProgressEvery == 0) opt_.progress(res_.metrics.solves);
-      step(e.node);
-    }
-    // The last batch. Back at the checkpoint, the scan goes on from there (cancelled, it
-    // stops there: the checkpoint's scan is a whole one).
-    if (!speculating_ || settle() || cancelled_) break;
+  while (!heap_.empty()) {
+    const FrontierEntry e = heap_.top();
+    heap_.pop();
+    if (++popped_ % kCancelEvery == 0 && cancelled_now()) break;
+    if (opt_.progress && popped_ % kProgressEvery == 0) opt_.progress(res_.metrics.solves);
+    step(e.node);
   }
   while (!heap_.empty()) heap_.pop();  // cancelled: pending nodes stay unresolved
 }
@@ -285,75 +252,12 @@ void Scanner::scan() {
 // Solves frontier node qi from its known neighbours and, if the cloth goes on from it,
 // adds its neighbours to the frontier.
 void Scanner::step(std::uint32_t qi) {
-  if (speculating_ && qi < cp_.nodes) solved_.push_back(qi);  // pending (scan())
   const DrapeNode& qn = node(qi);
-  // Known neighbours, weft and warp.
-  struct Known {
-    ThreadDir dir;
-    const DrapeNode* n;
-  };
   Known known[4];
-  int nk = 0;
-  for (int d = 0; d < 4; ++d)
-    if (const DrapeNode* m = mapped_nb(qn, static_cast<ThreadDir>(d)))
-      known[nk++] = {static_cast<ThreadDir>(d), m};
+  const int nk = known_neighbours(qn, known);
   SolveResult r;
   if (nk >= 2) {
-    // Prefer a weft-warp pair whose cell's fourth corner is mapped, then any weft-warp
-    // pair, then two neighbours on one thread.
-    int best_a = 0, best_b = 1, best_score = -1;
-    for (int x = 0; x < nk; ++x) {
-      for (int y = x + 1; y < nk; ++y) {
-        int score = 0;
-        if (is_weft(known[x].dir) != is_weft(known[y].dir)) {
-          score = 1;
-          const DrapeNode* a = known[x].n;
-          const DrapeNode* b = known[y].n;
-          if (!a->id.is_path_only() && !b->id.is_path_only()) {
-            const DrapeNode* c = mapped_nb(*a, known[y].dir);
-            if (c &&
-                c->id == NodeId::regular(a->id.i + b->id.i - qn.id.i, a->id.j + b->id.j - qn.id.j))
-              score = 2;
-          }
-        }
-        if (score > best_score) {
-          best_score = score;
-          best_a = x;
-          best_b = y;
-        }
-      }
-    }
-    // Weft neighbour first, so that guesses and branches are reproducible.
-    Known ka = known[best_a], kb = known[best_b];
-    if (!is_weft(ka.dir) && is_weft(kb.dir)) std::swap(ka, kb);
-    if (is_weft(ka.dir) != is_weft(kb.dir)) node(qi).set_solved_from(ka.dir, kb.dir);  // eq. 12
-    r = solve_two(qn, *ka.n, ka.dir, res_.rest_length(qn, ka.dir), *kb.n, kb.dir,
-                  res_.rest_length(qn, kb.dir));
-    // The solver tests eq. (12) on the face only; under a hole the cloth stops at the shear
-    // limit as it would on the face without the hole.
-    if (is_weft(ka.dir) != is_weft(kb.dir) && r.status == SolveStatus::kLeftFace && r.extended &&
-        st_.gamma_min > 0.0 &&
-        (r.thread_angle < st_.gamma_min || r.thread_angle > kPi - st_.gamma_min) &&
-        s_.in_hole(r.at)) {
-      r.status = SolveStatus::kShearLimit;
-      r.shear_stop = ShearStop::kLock;
-      r.reason = "thread angle beyond the shear limit (under a hole of the face)";
-    }
-    // Links to further known neighbours (fronts that met around a hole in the net) are
-    // not solved for: a node that breaks one is no point of the cloth (three links on a
-    // 2-D surface: in general no point fits them all; a conflict, not a solver failure).
-    const bool landed = r.status == SolveStatus::kConverged ||
-                        (r.status == SolveStatus::kLeftFace && r.extended && s_.in_hole(r.at));
-    for (int x = 0; x < nk && landed && r.status != SolveStatus::kFailed; ++x) {
-      if (known[x].n == ka.n || known[x].n == kb.n) continue;
-      const double rest = res_.rest_length(qn, known[x].dir);
-      const double err = std::abs((r.point - known[x].n->point).norm() - rest);
-      if (err > kFrontMismatchRel * ply_.d()) {
-        r.status = SolveStatus::kFailed;
-        r.reason = "the fronts disagree: a third link is off";
-        r.fronts_disagree = true;
-      }
-    }
+    r = solve_from_two(qi, known, nk);
   } else if (nk == 1 && behind_lock(qn)) {
     r.status = SolveStatus::kShearLimit;
     r.shear_stop = ShearStop::kBehindStop;
@@ -368,105 +272,84 @@ void Scanner::step(std::uint32_t qi) {
   // net sheared nearly flat), or fold its threads back (folds_back()). In a hole the cloth
   // under the hole stops there (the node stays outside).
   if (!node(qi).carries()) return;
-  bool over = false;
-  if (speculating_) {
-    pending_.push_back(qi);
-  } else if (replayed_ < replay_.size() && replay_[replayed_] == qi) {
-    ++replayed_;  // tested before the roll-back: recorded, on no laid cloth
-  } else {
-    // Past the replay, or off its order (never: the scan is deterministic), which ends it: a
-    // node recorded twice would only add candidates the exact test rejects.
-    replay_.clear();
-    over = opt_.overlap_test && overlaps(qi);
-  }
+  const bool over = opt_.overlap_test && overlaps(qi);
   if (over || folds_back(qi)) stop_overlap(qi);
   if (node(qi).carries()) push_neighbours(qi);
 }
 
-void Scanner::checkpoint() {
-  cp_.heap = heap_;
-  cp_.nodes = res_.nodes.size();
-  cp_.capacity = res_.nodes.capacity();
-  cp_.index = res_.index->mark();
-  cp_.failures = res_.failures.size();
-  cp_.order = order_;
-  cp_.popped = popped_;
-  cp_.thread_ends = thread_ends_;
-  cp_.truncated = truncated_;
-  cp_.solves = res_.metrics.solves;
-  cp_.iterations = res_.metrics.iterations;
-  cp_.evaluations = res_.metrics.evaluations;
-  cp_.residual_max = res_.metrics.solve_residual_max_rel;
-  undo_.clear();
-  solved_.clear();
-  linked_.clear();
-  pending_.clear();
+// The neighbours of q the cloth goes on from (Scanner::mapped_nb), weft and warp.
+int Scanner::known_neighbours(const DrapeNode& q, Known known[4]) const {
+  int nk = 0;
+  for (int d = 0; d < 4; ++d)
+    if (const DrapeNode* m = mapped_nb(q, static_cast<ThreadDir>(d)))
+      known[nk++] = {static_cast<ThreadDir>(d), m};
+  return nk;
 }
 
-// Tests the batch's nodes in turn (recording those on no laid cloth). True if none is on laid
-// cloth where the scan went on from it; a new batch begins. Else rolls back (false).
-bool Scanner::settle() {
-  for (std::size_t t = 0; t < pending_.size(); ++t) {
-    const std::uint32_t k = pending_[t];
-    // A node folds_back() stopped already is stopped as the test would have stopped it.
-    if (overlaps(k) && node(k).carries()) {
-      roll_back(t);
-      return false;
+// The pair of known neighbours to solve from: a weft-warp pair whose cell's fourth corner is
+// mapped, then any weft-warp pair, then two neighbours on one thread.
+void Scanner::best_pair(const DrapeNode& q, const Known known[4], int nk, int& best_a,
+                        int& best_b) const {
+  int best_score = -1;
+  for (int x = 0; x < nk; ++x) {
+    for (int y = x + 1; y < nk; ++y) {
+      int score = 0;
+      if (is_weft(known[x].dir) != is_weft(known[y].dir)) {
+        score = 1;
+        const DrapeNode* a = known[x].n;
+        const DrapeNode* b = known[y].n;
+        if (!a->id.is_path_only() && !b->id.is_path_only()) {
+          const DrapeNode* c = mapped_nb(*a, known[y].dir);
+          if (c && c->id == NodeId::regular(a->id.i + b->id.i - q.id.i, a->id.j + b->id.j - q.id.j))
+            score = 2;
+        }
+      }
+      if (score > best_score) {
+        best_score = score;
+        best_a = x;
+        best_b = y;
+      }
     }
   }
-  checkpoint();
-  return true;
 }
 
-// Back to the checkpoint, the batch's first `tested` nodes recorded; the rest of the scan tests
-// node by node.
-void Scanner::roll_back(std::size_t tested) {
-  replay_.assign(pending_.begin(), pending_.begin() + static_cast<std::ptrdiff_t>(tested));
-  replayed_ = 0;
-  // The checkpoint's nodes as they were: whole where kept; solved ones pending again as
-  // node_for() made them (id, ply position, links); no link to a node made since.
-  for (auto u = undo_.rbegin(); u != undo_.rend(); ++u) res_.nodes[u->first] = u->second;
-  for (const std::uint32_t k : solved_) {
-    DrapeNode& n = res_.nodes[k];
-    DrapeNode fresh;
-    fresh.id = n.id;
-    fresh.ply = n.ply;
-    std::copy(std::begin(n.nb), std::end(n.nb), std::begin(fresh.nb));
-    n = fresh;
+// Node qi from two of its nk >= 2 known neighbours (solver 2), the links to the others checked.
+SolveResult Scanner::solve_from_two(std::uint32_t qi, const Known known[4], int nk) {
+  const DrapeNode& qn = node(qi);
+  int best_a = 0, best_b = 1;
+  best_pair(qn, known, nk, best_a, best_b);
+  // Weft neighbour first, so that guesses and branches are reproducible.
+  Known ka = known[best_a], kb = known[best_b];
+  if (!is_weft(ka.dir) && is_weft(kb.dir)) std::swap(ka, kb);
+  if (is_weft(ka.dir) != is_weft(kb.dir)) node(qi).set_solved_from(ka.dir, kb.dir);  // eq. 12
+  SolveResult r = solve_two(qn, *ka.n, ka.dir, res_.rest_length(qn, ka.dir), *kb.n, kb.dir,
+                            res_.rest_length(qn, kb.dir));
+  // The solver tests eq. (12) on the face only; under a hole the cloth stops at the shear
+  // limit as it would on the face without the hole.
+  if (is_weft(ka.dir) != is_weft(kb.dir) && r.status == SolveStatus::kLeftFace && r.extended &&
+      st_.gamma_min > 0.0 &&
+      (r.thread_angle < st_.gamma_min || r.thread_angle > kPi - st_.gamma_min) &&
+      s_.in_hole(r.at)) {
+    r.status = SolveStatus::kShearLimit;
+    r.shear_stop = ShearStop::kLock;
+    r.reason = "thread angle beyond the shear limit (under a hole of the face)";
   }
-  const auto cut = static_cast<std::int32_t>(cp_.nodes);
-  auto unlink = [this, cut](std::uint32_t k) {
-    for (std::int32_t& b : res_.nodes[k].nb)
-      if (b >= cut) b = -1;
-  };
-  for (const std::uint32_t k : linked_) unlink(k);
-  for (const auto& u : undo_) unlink(u.first);
-  for (std::size_t k = cp_.nodes; k < res_.nodes.size(); ++k) res_.index->erase(res_.nodes[k].id);
-  res_.nodes.erase(res_.nodes.begin() + static_cast<std::ptrdiff_t>(cp_.nodes), res_.nodes.end());
-  // No more memory than the scan node by node allocates: the batch may have gone on beyond
-  // the node vector's estimate and into new blocks of the index.
-  res_.index->truncate(cp_.index);
-  if (res_.nodes.capacity() > cp_.capacity) {
-    std::vector<DrapeNode> nodes;
-    nodes.reserve(cp_.capacity);
-    nodes.assign(res_.nodes.begin(), res_.nodes.end());
-    res_.nodes.swap(nodes);
+  // Links to further known neighbours (fronts that met around a hole in the net) are
+  // not solved for: a node that breaks one is no point of the cloth (three links on a
+  // 2-D surface: in general no point fits them all; a conflict, not a solver failure).
+  const bool landed = r.status == SolveStatus::kConverged ||
+                      (r.status == SolveStatus::kLeftFace && r.extended && s_.in_hole(r.at));
+  for (int x = 0; x < nk && landed && r.status != SolveStatus::kFailed; ++x) {
+    if (known[x].n == ka.n || known[x].n == kb.n) continue;
+    const double rest = res_.rest_length(qn, known[x].dir);
+    const double err = std::abs((r.point - known[x].n->point).norm() - rest);
+    if (err > kFrontMismatchRel * ply_.d()) {
+      r.status = SolveStatus::kFailed;
+      r.reason = "the fronts disagree: a third link is off";
+      r.fronts_disagree = true;
+    }
   }
-  res_.failures.resize(cp_.failures);
-  heap_ = std::move(cp_.heap);
-  order_ = cp_.order;
-  popped_ = cp_.popped;
-  thread_ends_ = cp_.thread_ends;
-  truncated_ = cp_.truncated;
-  res_.metrics.solves = cp_.solves;
-  res_.metrics.iterations = cp_.iterations;
-  res_.metrics.evaluations = cp_.evaluations;
-  res_.metrics.solve_residual_max_rel = cp_.residual_max;
-  speculating_ = false;
-  undo_ = {};
-  solved_ = {};
-  linked_ = {};
-  pending_ = {};
+  return r;
 }
 
 }  // namespace plyfit::detail

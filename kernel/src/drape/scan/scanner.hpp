@@ -1,8 +1,8 @@
 // Private to the kernel: the frontier scan of §6.2 as one class whose parts live in
-// scan.cpp (the frontier, node bookkeeping, overlap and fold tests, the overlap test in
-// batches), base_path.cpp (§5.1) and guesses.cpp (the per-node solves of §5.2 and §6.1 with
-// their initial guesses). The scan sees the surface only through DrapeSurface and its
-// SurfaceLocations: it never knows about faces.
+// scan.cpp (the frontier, node bookkeeping, overlap and fold tests), base_path.cpp (§5.1)
+// and guesses.cpp (the per-node solves of §5.2 and §6.1 with their initial guesses). The
+// scan sees the surface only through DrapeSurface and its SurfaceLocations: it never knows
+// about faces.
 #pragma once
 
 #include "drape/drape.hpp"
@@ -109,15 +109,13 @@ class Scanner {
   bool cancelled_now();
   void push_neighbours(std::uint32_t idx);
   void step(std::uint32_t qi);
-  // The overlap test speculated: see scan().
-  void checkpoint();
-  bool settle();
-  void roll_back(std::size_t tested);
-  // Node k is about to change otherwise than by being solved or linked to a new node: keeps
-  // it as it was, if the checkpoint has it.
-  void keep(std::uint32_t k) {
-    if (speculating_ && k < cp_.nodes) undo_.emplace_back(k, res_.nodes[k]);
-  }
+  struct Known {  // a neighbour the cloth goes on from, and its direction
+    ThreadDir dir;
+    const DrapeNode* n;
+  };
+  int known_neighbours(const DrapeNode& q, Known known[4]) const;
+  void best_pair(const DrapeNode& q, const Known known[4], int nk, int& best_a, int& best_b) const;
+  SolveResult solve_from_two(std::uint32_t qi, const Known known[4], int nk);
   bool folds_back(std::uint32_t k) const;
   ShearStop shear_stop(const SolveResult& r) const;
   bool behind_lock(const DrapeNode& q) const;
@@ -131,6 +129,13 @@ class Scanner {
   // guesses.cpp
   SolveResult solve_two(const DrapeNode& q, const DrapeNode& a, ThreadDir da, double ra,
                         const DrapeNode& b, ThreadDir db, double rb);
+  TwoSphereStep two_sphere_step(const DrapeNode& q, const DrapeNode& a, double ra,
+                                const DrapeNode& b, double rb) const;
+  const DrapeNode* guess_two(const DrapeNode& q, const DrapeNode& a, ThreadDir da, double ra,
+                             const DrapeNode& b, ThreadDir db, double rb,
+                             TwoSphereStep& step) const;
+  bool cell_folds(const SolveResult& r, const DrapeNode& a, const DrapeNode& b,
+                  const DrapeNode& corner) const;
   bool extrapolated_guess(const DrapeNode& q, const DrapeNode& a, ThreadDir da, const DrapeNode& b,
                           ThreadDir db, const DrapeNode& c, TwoSphereStep& step) const;
   bool in_domain(const SurfaceLocation& chart, const Vec2& uv) const;
@@ -154,27 +159,6 @@ class Scanner {
   OverlapGrid grid_;
   ThreadEnds thread_ends_;
   std::uint32_t popped_ = 0;  // frontier entries taken
-  // The overlap test speculated (scan()): the scan's state at the last checkpoint, the nodes
-  // it changed since (as they were), the nodes resolved since that await the test, and after
-  // a roll-back the nodes the batch had already tested (recorded in the grid: not again).
-  struct Checkpoint {
-    std::priority_queue<FrontierEntry, std::vector<FrontierEntry>, FrontierLater> heap;
-    std::size_t nodes = 0, capacity = 0, failures = 0;
-    NodeIndex::Mark index;
-    std::uint32_t order = 0, popped = 0;
-    ThreadEnds thread_ends;
-    bool truncated = false;
-    std::uint64_t solves = 0, iterations = 0, evaluations = 0;
-    double residual_max = 0.0;
-  };
-  bool speculating_ = false;
-  Checkpoint cp_;
-  std::vector<std::pair<std::uint32_t, DrapeNode>> undo_;
-  std::vector<std::uint32_t> solved_;  // checkpoint nodes solved since (pending there)
-  std::vector<std::uint32_t> linked_;  // checkpoint nodes linked to new nodes since
-  std::vector<std::uint32_t> pending_;
-  std::vector<std::uint32_t> replay_;
-  std::size_t replayed_ = 0;
 };
 
 }  // namespace plyfit::detail
