@@ -6,20 +6,15 @@
 
 #include <catch2/catch.hpp>
 
+#include "support/builtin_surfaces.hpp"
+
 #include <cmath>
 
 using namespace plyfit;
+using plyfit::support::builtin_surface;
 
 namespace {
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
-
-MoldSurface builtin(const std::string& name, const std::map<std::string, double>& params = {}) {
-  auto fd = builtin_mold(name, params);
-  REQUIRE(fd);
-  auto m = MoldSurface::from_face(*fd);
-  REQUIRE(m);
-  return *m;
-}
 
 PlySpec cloth(double d) {
   PlySpec s;
@@ -40,7 +35,7 @@ Vec2 outline_extent(const FlatPattern& f) {
 }  // namespace
 
 TEST_CASE("ply definition: on the plate the warp runs at the ply angle from the rosette") {
-  const MoldSurface plate = builtin("plate");  // 100 x 60 in z = 0, normal +Z
+  const MoldSurface plate = builtin_surface("plate");  // 100 x 60 in z = 0, normal +Z
   for (double deg : {0.0, 45.0, 90.0, -45.0, 180.0, 30.0}) {
     CAPTURE(deg);
     PlyDefinition def;
@@ -59,7 +54,7 @@ TEST_CASE("ply definition: on the plate the warp runs at the ply angle from the 
 }
 
 TEST_CASE("ply definition: the plate draped at 0/45/90/-45 has its outline turned by the angle") {
-  const MoldSurface plate = builtin("plate");
+  const MoldSurface plate = builtin_surface("plate");
   for (double deg : {0.0, 45.0, 90.0, -45.0}) {
     CAPTURE(deg);
     PlyDefinition def;
@@ -86,7 +81,7 @@ TEST_CASE("ply definition: the plate draped at 0/45/90/-45 has its outline turne
 }
 
 TEST_CASE("ply definition: paper conditions turned by an angle lay the warp turned by it") {
-  const MoldSurface plate = builtin("plate");
+  const MoldSurface plate = builtin_surface("plate");
   DrapeProblem pb;  // the paper's flags: base path along +X (base2d (1, 0)), sweeps +-Y
   pb.ply = cloth(1.0);
   pb.ply.base_dir = Vec2(1, 0);
@@ -111,7 +106,7 @@ TEST_CASE("ply definition: paper conditions turned by an angle lay the warp turn
 
 TEST_CASE("ply definition: on a cylinder the rosette is projected onto the tangent plane") {
   // Builtin cylinder: x^2 + y^2 = R^2, outward normal radial.
-  const MoldSurface cyl = builtin("cylinder", {{"R", 10.0}, {"H", 20.0}, {"angle", 90.0}});
+  const MoldSurface cyl = builtin_surface("cylinder", {{"R", 10.0}, {"H", 20.0}, {"angle", 90.0}});
   PlyDefinition def;
   const double a = 30 * kDeg;
   def.seed = Vec3(10 * std::cos(a), 10 * std::sin(a), 10);
@@ -127,7 +122,7 @@ TEST_CASE("ply definition: on a cylinder the rosette is projected onto the tange
 }
 
 TEST_CASE("ply definition: bad seeds, rosettes and angles are errors naming the input") {
-  const MoldSurface plate = builtin("plate");
+  const MoldSurface plate = builtin_surface("plate");
   PlyDefinition def;
   def.seed = Vec3(50, 30, 0);
   SECTION("a seed far from the mold") {

@@ -6,20 +6,15 @@
 
 #include <catch2/catch.hpp>
 
+#include "support/builtin_surfaces.hpp"
+
 #include <cmath>
 
 using namespace plyfit;
+using plyfit::support::builtin_surface;
 
 namespace {
 constexpr double kDeg = kPi / 180.0;
-
-MoldSurface builtin(const std::string& name, const std::map<std::string, double>& params) {
-  auto fd = builtin_mold(name, params);
-  REQUIRE(fd);
-  auto m = MoldSurface::from_face(*fd);
-  REQUIRE(m);
-  return *m;
-}
 
 DrapeResult drape_ply(const MoldSurface& mold, const PlyDefinition& def, double d, SeedCurve c) {
   PlySpec cloth;
@@ -56,7 +51,7 @@ void check_links(const std::vector<Vec3>& p, double d, double rel) {
 
 TEST_CASE("seed curve: on the sphere the geodesic is the great circle, the plane section") {
   const double R = 10.0, d = 0.25;
-  const MoldSurface sphere = builtin("hemisphere", {{"R", R}});
+  const MoldSurface sphere = builtin_surface("hemisphere", {{"R", R}});
   PlyDefinition def;
   const double th = 50 * kDeg, ph = 20 * kDeg;
   def.seed = R * Vec3(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th));
@@ -82,7 +77,7 @@ TEST_CASE("seed curve: on the sphere the geodesic is the great circle, the plane
 
 TEST_CASE("seed curve: on the cylinder the geodesic is a helix and the ply lies unsheared") {
   const double R = 10.0, H = 40.0;
-  const MoldSurface cyl = builtin("cylinder", {{"R", R}, {"H", H}, {"angle", 180.0}});
+  const MoldSurface cyl = builtin_surface("cylinder", {{"R", R}, {"H", H}, {"angle", 180.0}});
   PlyDefinition def;
   def.seed = Vec3(0, R, H / 2);
   def.rosette = Vec3(0, 0, 1);  // 0 deg along the axis
@@ -122,7 +117,8 @@ TEST_CASE("seed curve: on the cylinder the geodesic is a helix and the ply lies 
 TEST_CASE("seed curve: on the cone the geodesic is straight in the development, to order d^2") {
   // Cone about Z: radius 20 at z = 0, 10 at z = 15; apex at z = 30.
   const double r0 = 20.0, r1 = 10.0, H = 15.0;
-  const MoldSurface cone = builtin("cone", {{"r0", r0}, {"r1", r1}, {"H", H}, {"angle", 180.0}});
+  const MoldSurface cone =
+      builtin_surface("cone", {{"r0", r0}, {"r1", r1}, {"H", H}, {"angle", 180.0}});
   const double za = r0 * H / (r0 - r1);
   const double sin_b = r0 / std::hypot(r0, za);
   auto developed = [&](const Vec3& x) {

@@ -5,25 +5,19 @@
 
 #include <catch2/catch.hpp>
 
+#include "support/builtin_surfaces.hpp"
+
 #include <cmath>
 
 using namespace plyfit;
+using plyfit::support::builtin_surface;
 
-namespace {
-MoldSurface builtin(const std::string& name, const std::map<std::string, double>& params) {
-  auto fd = builtin_mold(name, params);
-  REQUIRE(fd);
-  auto m = MoldSurface::from_face(*fd);
-  REQUIRE(m);
-  return *m;
-}
-}  // namespace
 
 TEST_CASE("search: on a face closed round along u only, the suggested base path runs along v") {
   // A tube closed round its own circle (u: t from 0 to 360 degrees), open along the ring (v).
   // A path along u would run round the tube and come back onto its start.
-  const MoldSurface tube =
-      builtin("torus", {{"R", 50.0}, {"r", 10.0}, {"t0", 0.0}, {"t1", 360.0}, {"angle", 90.0}});
+  const MoldSurface tube = builtin_surface(
+      "torus", {{"R", 50.0}, {"r", 10.0}, {"t0", 0.0}, {"t1", 360.0}, {"angle", 90.0}});
   auto s = face_start(tube);
   REQUIRE(s);
   const SurfaceEval1 e = tube.eval1(SurfaceLocation(s->uv));
@@ -32,8 +26,8 @@ TEST_CASE("search: on a face closed round along u only, the suggested base path 
 }
 
 TEST_CASE("search: on an open face the suggested base path runs along u") {
-  const MoldSurface part =
-      builtin("torus", {{"R", 50.0}, {"r", 10.0}, {"t0", -60.0}, {"t1", 60.0}, {"angle", 90.0}});
+  const MoldSurface part = builtin_surface(
+      "torus", {{"R", 50.0}, {"r", 10.0}, {"t0", -60.0}, {"t1", 60.0}, {"angle", 90.0}});
   auto s = face_start(part);
   REQUIRE(s);
   const SurfaceEval1 e = part.eval1(SurfaceLocation(s->uv));
@@ -41,8 +35,8 @@ TEST_CASE("search: on an open face the suggested base path runs along u") {
 }
 
 TEST_CASE("search: the suggested start drapes a closed tube without a slit along its base path") {
-  const MoldSurface tube =
-      builtin("torus", {{"R", 50.0}, {"r", 10.0}, {"t0", 0.0}, {"t1", 360.0}, {"angle", 60.0}});
+  const MoldSurface tube = builtin_surface(
+      "torus", {{"R", 50.0}, {"r", 10.0}, {"t0", 0.0}, {"t1", 360.0}, {"angle", 60.0}});
   auto s = face_start(tube);
   REQUIRE(s);
   DrapeProblem pb;
