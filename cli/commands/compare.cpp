@@ -19,7 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-
 const OptionTable& compare_options() {
   static const OptionTable table = {
       help_option(),

@@ -22,7 +22,6 @@ std::string note_of(const Evaluation& e) {
 
 namespace {
 
-
 std::string vary_text(const OptimizeOptions& o) {
   std::string s;
   for (const auto& [on, name] :

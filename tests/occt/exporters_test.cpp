@@ -36,7 +36,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-
 // ---------------------------------------------------------------------------------------
 // VTK, read by a small parser of the legacy BINARY format (big-endian data blocks).
 

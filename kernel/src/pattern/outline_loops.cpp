@@ -10,7 +10,6 @@ namespace plyfit::detail {
 
 namespace {
 
-
 // The directed edges of the union of `polys` and the `extra` edges, with their counts:
 // edges shared by two polygons (in opposite directions) cancel. Ordered: deterministic
 // output.

@@ -17,7 +17,6 @@ using detail::ClothCorner;
 
 namespace {
 
-
 // A unit square of cloth: corners at height z on the mold, at ply offset (x0, 0).
 std::vector<ClothCorner> square(double x0, double z, bool nodes = true) {
   std::vector<ClothCorner> c;

@@ -12,7 +12,6 @@
 using namespace plyfit;
 using plyfit::support::builtin_surface;
 
-
 TEST_CASE("search: on a face closed round along u only, the suggested base path runs along v") {
   // A tube closed round its own circle (u: t from 0 to 360 degrees), open along the ring (v).
   // A path along u would run round the tube and come back onto its start.

@@ -1,7 +1,7 @@
 // The surface near a known point as the solvers use it: normals, tangent directions in (u, v)
 // (at poles and degenerate edges too), nearest points.
-#include "geometry/numeric.hpp"
 #include "drape/solvers/tangent.hpp"
+#include "geometry/numeric.hpp"
 
 #include "drape/solvers/newton.hpp"
 #include "surface/poles.hpp"
