@@ -83,7 +83,7 @@ void mold_and_ply_values(const DrapeJob& job, SceneValues& v) {
   }
   if (p.ply.rect) v["ply"] = {fmt(*p.ply.rect)};
   v["start2d"] = {fmt(p.ply.start)};
-  v["rosette"] = {fmt(job.rosette)};
+  if (job.rosette_given) v["rosette"] = {fmt(job.rosette)};  // else the start keys' own 0 deg
   v["seed-curve"] = {to_string(p.seed_curve)};
   if (job.seed) {  // the directions follow from the seed on the mold
     v["seed"] = {fmt(*job.seed)};

@@ -107,3 +107,37 @@ TEST_CASE("cli: bad ply definitions are one-line errors naming the option") {
     CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
   }
 }
+
+TEST_CASE("cli: --dump-scene of a ply keeps its meaning: the scene drapes the same ply") {
+  Scratch tmp("ply_definition_dump");
+  // Start keys on a face whose normal at the start is +X (the default rosette's direction):
+  // without --rosette their own warp is 0 deg, and the dumped scene must say the same.
+  const std::string start =
+      "--mold builtin:cylinder --spacing 1 --start2d 0,0 --base2d 1,0 --sweep2d 0,1 "
+      "--start3d 10,0,10 --base-normal 0,0,1 --sweep3d 0,0,1 --ply-angle 30";
+  // A seed with its rosette and a geodesic seed curve.
+  const std::string seed =
+      "--mold builtin:cylinder:angle=180 --spacing 1 --seed 0,10,10 --rosette 0,0,1 "
+      "--ply-angle -30 --seed-curve geodesic";
+  for (const std::string& flags : {start, seed}) {
+    CAPTURE(flags);
+    const CliRun d = plyfit_run("drape " + flags + " --dump-scene", tmp);
+    INFO(d.err);
+    REQUIRE(d.code == 0);
+    spit(tmp.file("scene.ini"), d.out);
+    const CliRun a = plyfit_run(
+        "drape " + flags + " --outputs json --quiet -o '" + tmp.file("direct") + "'", tmp);
+    const CliRun b = plyfit_run("drape '" + tmp.file("scene.ini") +
+                                    "' --outputs json --quiet -o '" + tmp.file("scene") + "'",
+                                tmp);
+    INFO(a.err << b.err);
+    REQUIRE(a.code == 0);
+    REQUIRE(b.code == 0);
+    const json ja = json::parse(slurp(tmp.file("direct/report.json")));
+    const json jb = json::parse(slurp(tmp.file("scene/report.json")));
+    CHECK(ja["ply"] == jb["ply"]);
+    CHECK(ja["nodes"] == jb["nodes"]);
+    CHECK(ja["ply"]["laid_angle_deg"].get<double>() ==
+          Approx(flags == start ? 30.0 : -30.0).margin(1e-9));
+  }
+}
