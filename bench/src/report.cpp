@@ -9,9 +9,8 @@
 
 #include "bench.hpp"
 #include "memory.hpp"
+#include "occt_util.hpp"
 #include "tables.hpp"
-
-#include <Standard_Version.hxx>
 
 #include <array>
 #include <chrono>
@@ -87,7 +86,7 @@ std::string machine_text() {
       cpuinfo_field("model\t").c_str(), cpuinfo_field("cpu MHz").c_str(), cpuinfo_processors(),
       std::thread::hardware_concurrency(), os.c_str(), capture("uname -m").c_str(),
       capture("uname -r").c_str(), "g++ " __VERSION__, PLYFIT_BUILD_TYPE, PLYFIT_CXX_FLAGS,
-      OCC_VERSION_COMPLETE);
+      occt_version().c_str());
 }
 
 // Replaces every "{{key}}" of the template.

@@ -12,7 +12,8 @@
 // integration (BRepGProp::SurfaceProperties with a tolerance) is far slower at equal accuracy
 // and, on the shared test files, misses its requested tolerance by orders of magnitude.
 //
-// Private to plyfit_importers (OpenCASCADE types in the interface).
+// Private to the OpenCASCADE module (OpenCASCADE types in the interface): the library
+// plyfit_occt_measure, linked by the module and by the tests and benchmarks that call it.
 
 #include <plyfit/kernel/nurbs.hpp>
 #include <plyfit/kernel/types.hpp>

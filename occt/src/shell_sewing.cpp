@@ -143,6 +143,227 @@ TopAbs_Orientation use_in(const std::vector<std::pair<TopoDS_Shape, TopAbs_Orien
   return TopAbs_EXTERNAL;
 }
 
+// The faces to sew (all of the file's when none are given), described, and their common box.
+struct Selection {
+  std::vector<int> indices;
+  std::vector<FaceInfo> infos;
+  BBox3 box;
+};
+
+Result<Selection> select_faces(const ShellInput& in, const std::vector<int>& given) {
+  Selection sel;
+  sel.indices = given;
+  if (sel.indices.empty()) {
+    sel.indices.resize(static_cast<size_t>(in.faces.Extent()));
+    std::iota(sel.indices.begin(), sel.indices.end(), 0);
+  }
+  std::set<int> seen;
+  for (int i : sel.indices) {
+    auto info = in.describe(i);  // an index out of range is an error naming the file here
+    if (!info) return info.error();
+    if (!seen.insert(i).second)
+      return Error{in.source + ": face " + std::to_string(i) + " is listed twice"};
+    if (!info->bbox.empty) {
+      sel.box.add(info->bbox.min);
+      sel.box.add(info->bbox.max);
+    }
+    sel.infos.push_back(std::move(info).value());
+  }
+  return sel;
+}
+
+// Each face as the sewn shell holds it (orientation included), and every edge's faces.
+struct Sewn {
+  std::vector<TopoDS_Face> faces;
+  TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
+};
+
+// The sewing tolerance: the one asked for, else the file's precision or the largest edge
+// tolerance of the faces, within [kSewingMinTolerance, kSewingMaxRel x size].
+double sewing_tolerance(const ShellInput& in, const std::vector<int>& indices, double size) {
+  double tol = in.options.sewing_tolerance;
+  if (tol != 0.0) return tol;
+  tol = in.precision;
+  for (int i : indices)
+    for (TopExp_Explorer ex(in.faces(i + 1), TopAbs_EDGE); ex.More(); ex.Next())
+      tol = std::max(tol, BRep_Tool::Tolerance(TopoDS::Edge(ex.Current())));
+  return std::clamp(tol, kSewingMinTolerance, std::max(kSewingMinTolerance, kSewingMaxRel * size));
+}
+
+// Sews the faces (OpenCASCADE calls: run guarded).
+Status sew(const ShellInput& in, const std::vector<int>& indices, double size,
+           const std::string& what, Sewn& out) {
+  const size_t n = indices.size();
+  const double tol = sewing_tolerance(in, indices, size);
+  BRepBuilderAPI_Sewing sew(tol, Standard_True, Standard_True, Standard_True, Standard_False);
+  sew.SetNonManifoldMode(Standard_False);
+  for (int i : indices) sew.Add(in.faces(i + 1));
+  Handle(Deadline) deadline = new Deadline(in.options.time_limit_s);
+  sew.Perform(deadline->Start());
+  if (deadline->expired())
+    return Error{what + ": sewing took longer than the time limit (" +
+                 std::to_string(static_cast<int>(in.options.time_limit_s)) + " s)"};
+  const TopoDS_Shape& shape = sew.SewedShape();
+  if (shape.IsNull()) return Error{what + ": the sewing gave no shape"};
+  // The faces as the sewn shape holds them: TopExp_Explorer gives each with the orientation
+  // the sewing chose for it within its shell.
+  TopTools_IndexedMapOfShape oriented;
+  for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) oriented.Add(ex.Current());
+  for (size_t k = 0; k < n; ++k) {
+    const TopoDS_Shape& f = in.faces(indices[k] + 1);
+    const TopoDS_Shape g = sew.IsModifiedSubShape(f) ? sew.ModifiedSubShape(f) : f;
+    const int found = g.IsNull() ? 0 : oriented.FindIndex(g);
+    if (found == 0 || g.ShapeType() != TopAbs_FACE)
+      return Error{in.source + ": face " + std::to_string(indices[k]) +
+                   ": the sewing removed it (smaller than the sewing tolerance, " + mm(tol) + "?)"};
+    out.faces[k] = TopoDS::Face(oriented(found));
+  }
+  TopExp::MapShapesAndAncestors(shape, TopAbs_EDGE, TopAbs_FACE, out.edge_faces);
+  return ok_status();
+}
+
+// Shared edges: exactly two uses by two different faces, numbered in the order the faces (as
+// given) and their edges meet them; an edge of more than two faces is tagged free.
+struct SharedEdges {
+  TopTools_DataMapOfShapeInteger tag;
+  std::vector<TopoDS_Edge> edges;
+  std::vector<std::pair<int, int>> faces;  // positions of each shared edge's faces
+  int non_manifold = 0;
+};
+
+SharedEdges find_shared_edges(const Sewn& sewn, Parts& parts) {
+  const size_t n = sewn.faces.size();
+  // Which position in the faces each sewn face has.
+  TopTools_DataMapOfShapeInteger position;
+  for (size_t k = 0; k < n; ++k) position.Bind(sewn.faces[k], static_cast<int>(k));
+  SharedEdges shared;
+  for (size_t k = 0; k < n; ++k) {
+    for (TopExp_Explorer ex(sewn.faces[k], TopAbs_EDGE); ex.More(); ex.Next()) {
+      const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
+      if (shared.tag.IsBound(e) || BRep_Tool::Degenerated(e)) continue;
+      const TopTools_ListOfShape* faces = sewn.edge_faces.Seek(e);
+      if (!faces) continue;
+      if (faces->Extent() > 2) {
+        // Counted once: marked as seen with a free tag.
+        shared.tag.Bind(e, TrimLoop::kFreeEdge);
+        ++shared.non_manifold;
+        continue;
+      }
+      if (faces->Extent() != 2 || faces->First().IsSame(faces->Last())) continue;  // free, seam
+      const int *a = position.Seek(faces->First()), *b = position.Seek(faces->Last());
+      if (!a || !b) continue;
+      shared.tag.Bind(e, static_cast<int>(shared.edges.size()));
+      shared.edges.push_back(e);
+      shared.faces.emplace_back(*a, *b);
+      parts.join(*a, *b);
+    }
+  }
+  return shared;
+}
+
+// What orient_parts() did: the faces it reversed against the file, the number of parts.
+struct Orientation {
+  std::vector<int> reoriented;
+  int part_count = 0;
+};
+
+// The sewing oriented each connected part consistently; a part keeps the file's orientation on
+// most of its faces (ties: on its first face as given).
+Orientation orient_parts(const ShellInput& in, const std::vector<int>& indices, Parts& parts,
+                         std::vector<TopoDS_Face>& sewn) {
+  const size_t n = indices.size();
+  std::vector<int> agree(n, 0), total(n, 0), first(n, -1);
+  for (size_t k = 0; k < n; ++k) {
+    const int p = parts.find(static_cast<int>(k));
+    const TopAbs_Orientation file_o = in.faces(indices[k] + 1).Orientation();
+    agree[static_cast<size_t>(p)] += sewn[k].Orientation() == file_o ? 1 : 0;
+    total[static_cast<size_t>(p)] += 1;
+    if (first[static_cast<size_t>(p)] < 0) first[static_cast<size_t>(p)] = static_cast<int>(k);
+  }
+  Orientation o;
+  for (size_t k = 0; k < n; ++k) {
+    const size_t p = static_cast<size_t>(parts.find(static_cast<int>(k)));
+    if (static_cast<int>(p) == static_cast<int>(k)) ++o.part_count;
+    const int a = agree[p], t = total[p];
+    const bool first_agrees = sewn[static_cast<size_t>(first[p])].Orientation() ==
+                              in.faces(indices[static_cast<size_t>(first[p])] + 1).Orientation();
+    const bool flip = 2 * a < t || (2 * a == t && !first_agrees);
+    if (flip) sewn[k].Reverse();
+    if (sewn[k].Orientation() != in.faces(indices[k] + 1).Orientation())
+      o.reoriented.push_back(indices[k]);
+  }
+  return o;
+}
+
+// A shared edge is used in opposite directions by its two faces when they are oriented alike;
+// the sewing guarantees it for the shells it builds. Checked, not assumed: the shared edges
+// whose faces use them in the same direction.
+int count_disagreeing(const std::vector<TopoDS_Face>& sewn, const SharedEdges& shared) {
+  int disagreeing = 0;
+  std::vector<std::vector<std::pair<TopoDS_Shape, TopAbs_Orientation>>> uses(sewn.size());
+  for (size_t k = 0; k < sewn.size(); ++k) uses[k] = edge_uses(sewn[k]);
+  for (size_t s = 0; s < shared.edges.size(); ++s) {
+    const auto [a, b] = shared.faces[s];
+    if (use_in(uses[static_cast<size_t>(a)], shared.edges[s]) ==
+        use_in(uses[static_cast<size_t>(b)], shared.edges[s]))
+      ++disagreeing;
+  }
+  return disagreeing;
+}
+
+// The largest gap between the two faces of any shared edge (OpenCASCADE calls: run guarded).
+double largest_gap(const std::vector<TopoDS_Face>& sewn, const SharedEdges& shared) {
+  double gap = 0.0;
+  for (size_t s = 0; s < shared.edges.size(); ++s)
+    gap = std::max(gap, edge_gap(shared.edges[s], sewn[static_cast<size_t>(shared.faces[s].first)],
+                                 sewn[static_cast<size_t>(shared.faces[s].second)]));
+  return gap;
+}
+
+// Each sewn face converted, its trim loop segments tagged with the shared edge they lie on.
+Status convert_faces(const ShellInput& in, const Selection& sel,
+                     const std::vector<TopoDS_Face>& sewn, const SharedEdges& shared,
+                     ShellData& shell) {
+  const EdgeTag tag = [&](const TopoDS_Edge& e) -> std::int32_t {
+    const int* t = shared.tag.Seek(e);
+    return t ? *t : TrimLoop::kFreeEdge;
+  };
+  for (size_t k = 0; k < sewn.size(); ++k) {
+    const std::string face_what = in.source + ": face " + std::to_string(sel.indices[k]);
+    auto fd = guarded(face_what, [&]() -> Result<FaceData> {
+      return convert_face(sewn[k], sel.infos[k], in.options.tolerances, &tag);
+    });
+    if (!fd) {
+      if (legacy_text(fd.error()).rfind(face_what, 0) == 0) return fd.error();
+      return Error{face_what}.because(fd.error());
+    }
+    shell.faces.push_back(std::move(fd).value());
+  }
+  return ok_status();
+}
+
+// The sewing's warnings: separate shells, non-manifold edges, faces reversed, a shell that
+// cannot be oriented.
+void add_sewing_warnings(size_t n, const Orientation& o, int non_manifold, int disagreeing,
+                         std::vector<std::string>& warnings) {
+  if (o.part_count > 1)
+    warnings.push_back("sewing: the " + std::to_string(n) + " faces form " +
+                       std::to_string(o.part_count) +
+                       " separate shells that no shared edge joins; a drape stays on the one it "
+                       "starts on");
+  if (non_manifold > 0)
+    warnings.push_back("sewing: " + count(non_manifold, "edge") +
+                       (non_manifold == 1 ? " bounds" : " bound") +
+                       " more than two faces (non-manifold), treated as free");
+  if (!o.reoriented.empty())
+    warnings.push_back("sewing: " + face_list(o.reoriented) +
+                       " reversed to orient the shell consistently");
+  if (disagreeing > 0)
+    warnings.push_back("sewing: " + count(disagreeing, "shared edge") +
+                       (disagreeing == 1 ? " joins" : " join") +
+                       " faces oriented against each other (a non-orientable shell)");
+}
+
 }  // namespace
 
 double file_precision(XSControl_Reader& reader) {
@@ -175,190 +396,37 @@ double file_precision(XSControl_Reader& reader) {
 
 Result<ShellData> sew_faces(const ShellInput& in, const std::vector<int>& given,
                             std::vector<std::string>& warnings) {
-  std::vector<int> indices = given;
-  if (indices.empty()) {
-    indices.resize(static_cast<size_t>(in.faces.Extent()));
-    std::iota(indices.begin(), indices.end(), 0);
-  }
+  auto selected = select_faces(in, given);
+  if (!selected) return selected.error();
+  const Selection& sel = selected.value();
+  const std::vector<int>& indices = sel.indices;
   const size_t n = indices.size();
-  std::vector<FaceInfo> infos;
-  std::set<int> seen;
-  BBox3 box;
-  for (int i : indices) {
-    auto info = in.describe(i);  // an index out of range is an error naming the file here
-    if (!info) return info.error();
-    if (!seen.insert(i).second)
-      return Error{in.source + ": face " + std::to_string(i) + " is listed twice"};
-    if (!info->bbox.empty) {
-      box.add(info->bbox.min);
-      box.add(info->bbox.max);
-    }
-    infos.push_back(std::move(info).value());
-  }
   const std::string what = in.source + ": sewing " + face_list(indices);
-  const double size = box.diagonal();
+  const double size = sel.box.diagonal();
   if (!(size > 0.0)) return Error{what + ": the faces have zero size"};
   if (!(in.options.sewing_tolerance >= 0.0) || !std::isfinite(in.options.sewing_tolerance))
     return Error{what + ": invalid sewing tolerance " + mm(in.options.sewing_tolerance)};
 
-  // Each face as the sewn shell holds it (orientation included), and every edge's faces.
-  std::vector<TopoDS_Face> sewn(n);
-  TopTools_IndexedDataMapOfShapeListOfShape edge_faces;
-  auto sewing = guarded(what, [&]() -> Status {
-    double tol = in.options.sewing_tolerance;
-    if (tol == 0.0) {
-      tol = in.precision;
-      for (int i : indices)
-        for (TopExp_Explorer ex(in.faces(i + 1), TopAbs_EDGE); ex.More(); ex.Next())
-          tol = std::max(tol, BRep_Tool::Tolerance(TopoDS::Edge(ex.Current())));
-      tol =
-          std::clamp(tol, kSewingMinTolerance, std::max(kSewingMinTolerance, kSewingMaxRel * size));
-    }
-    BRepBuilderAPI_Sewing sew(tol, Standard_True, Standard_True, Standard_True, Standard_False);
-    sew.SetNonManifoldMode(Standard_False);
-    for (int i : indices) sew.Add(in.faces(i + 1));
-    Handle(Deadline) deadline = new Deadline(in.options.time_limit_s);
-    sew.Perform(deadline->Start());
-    if (deadline->expired())
-      return Error{what + ": sewing took longer than the time limit (" +
-                   std::to_string(static_cast<int>(in.options.time_limit_s)) + " s)"};
-    const TopoDS_Shape& shape = sew.SewedShape();
-    if (shape.IsNull()) return Error{what + ": the sewing gave no shape"};
-    // The faces as the sewn shape holds them: TopExp_Explorer gives each with the orientation
-    // the sewing chose for it within its shell.
-    TopTools_IndexedMapOfShape oriented;
-    for (TopExp_Explorer ex(shape, TopAbs_FACE); ex.More(); ex.Next()) oriented.Add(ex.Current());
-    for (size_t k = 0; k < n; ++k) {
-      const TopoDS_Shape& f = in.faces(indices[k] + 1);
-      const TopoDS_Shape g = sew.IsModifiedSubShape(f) ? sew.ModifiedSubShape(f) : f;
-      const int found = g.IsNull() ? 0 : oriented.FindIndex(g);
-      if (found == 0 || g.ShapeType() != TopAbs_FACE)
-        return Error{in.source + ": face " + std::to_string(indices[k]) +
-                     ": the sewing removed it (smaller than the sewing tolerance, " + mm(tol) +
-                     "?)"};
-      sewn[k] = TopoDS::Face(oriented(found));
-    }
-    TopExp::MapShapesAndAncestors(shape, TopAbs_EDGE, TopAbs_FACE, edge_faces);
-    return ok_status();
-  });
+  Sewn sewn;
+  sewn.faces.resize(n);
+  auto sewing = guarded(what, [&]() -> Status { return sew(in, indices, size, what, sewn); });
   if (!sewing) return sewing.error();
 
-  // Which position in `indices` each sewn face has.
-  TopTools_DataMapOfShapeInteger position;
-  for (size_t k = 0; k < n; ++k) position.Bind(sewn[k], static_cast<int>(k));
-
-  // Shared edges: exactly two uses by two different faces. Numbered in the order the faces
-  // (as given) and their edges meet them.
-  TopTools_DataMapOfShapeInteger shared;
-  std::vector<std::pair<int, int>> shared_faces;  // positions of each shared edge's faces
-  std::vector<TopoDS_Edge> shared_edges;
-  int non_manifold = 0;
   Parts parts(n);
-  for (size_t k = 0; k < n; ++k) {
-    for (TopExp_Explorer ex(sewn[k], TopAbs_EDGE); ex.More(); ex.Next()) {
-      const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
-      if (shared.IsBound(e) || BRep_Tool::Degenerated(e)) continue;
-      const TopTools_ListOfShape* faces = edge_faces.Seek(e);
-      if (!faces) continue;
-      if (faces->Extent() > 2) {
-        // Counted once: marked as seen with a free tag.
-        shared.Bind(e, TrimLoop::kFreeEdge);
-        ++non_manifold;
-        continue;
-      }
-      if (faces->Extent() != 2 || faces->First().IsSame(faces->Last())) continue;  // free, seam
-      const int *a = position.Seek(faces->First()), *b = position.Seek(faces->Last());
-      if (!a || !b) continue;
-      shared.Bind(e, static_cast<int>(shared_edges.size()));
-      shared_edges.push_back(e);
-      shared_faces.emplace_back(*a, *b);
-      parts.join(*a, *b);
-    }
-  }
-
-  // Orientation: the sewing oriented each connected part consistently; a part keeps the
-  // file's orientation on most of its faces (ties: on its first face as given).
-  std::vector<int> agree(n, 0), total(n, 0), first(n, -1);
-  for (size_t k = 0; k < n; ++k) {
-    const int p = parts.find(static_cast<int>(k));
-    const TopAbs_Orientation file_o = in.faces(indices[k] + 1).Orientation();
-    agree[static_cast<size_t>(p)] += sewn[k].Orientation() == file_o ? 1 : 0;
-    total[static_cast<size_t>(p)] += 1;
-    if (first[static_cast<size_t>(p)] < 0) first[static_cast<size_t>(p)] = static_cast<int>(k);
-  }
-  std::vector<int> reoriented;
-  int part_count = 0;
-  for (size_t k = 0; k < n; ++k) {
-    const size_t p = static_cast<size_t>(parts.find(static_cast<int>(k)));
-    if (static_cast<int>(p) == static_cast<int>(k)) ++part_count;
-    const int a = agree[p], t = total[p];
-    const bool first_agrees = sewn[static_cast<size_t>(first[p])].Orientation() ==
-                              in.faces(indices[static_cast<size_t>(first[p])] + 1).Orientation();
-    const bool flip = 2 * a < t || (2 * a == t && !first_agrees);
-    if (flip) sewn[k].Reverse();
-    if (sewn[k].Orientation() != in.faces(indices[k] + 1).Orientation())
-      reoriented.push_back(indices[k]);
-  }
-  // A shared edge is used in opposite directions by its two faces when they are oriented
-  // alike; the sewing guarantees it for the shells it builds. Checked, not assumed.
-  int disagreeing = 0;
-  {
-    std::vector<std::vector<std::pair<TopoDS_Shape, TopAbs_Orientation>>> uses(n);
-    for (size_t k = 0; k < n; ++k) uses[k] = edge_uses(sewn[k]);
-    for (size_t s = 0; s < shared_edges.size(); ++s) {
-      const auto [a, b] = shared_faces[s];
-      if (use_in(uses[static_cast<size_t>(a)], shared_edges[s]) ==
-          use_in(uses[static_cast<size_t>(b)], shared_edges[s]))
-        ++disagreeing;
-    }
-  }
+  const SharedEdges shared = find_shared_edges(sewn, parts);
+  const Orientation orientation = orient_parts(in, indices, parts, sewn.faces);
+  const int disagreeing = count_disagreeing(sewn.faces, shared);
 
   ShellData shell;
-  shell.edge_count = static_cast<std::int32_t>(shared_edges.size());
+  shell.edge_count = static_cast<std::int32_t>(shared.edges.size());
   shell.source_faces = indices;
-  auto gaps = guarded(what, [&]() -> Result<double> {
-    double gap = 0.0;
-    for (size_t s = 0; s < shared_edges.size(); ++s)
-      gap =
-          std::max(gap, edge_gap(shared_edges[s], sewn[static_cast<size_t>(shared_faces[s].first)],
-                                 sewn[static_cast<size_t>(shared_faces[s].second)]));
-    return gap;
-  });
-  if (!gaps) return gaps.error();
-  shell.tolerance = gaps.value();
+  auto gap = guarded(what, [&]() -> Result<double> { return largest_gap(sewn.faces, shared); });
+  if (!gap) return gap.error();
+  shell.tolerance = gap.value();
+  if (auto converted = convert_faces(in, sel, sewn.faces, shared, shell); !converted)
+    return converted.error();
 
-  const EdgeTag tag = [&](const TopoDS_Edge& e) -> std::int32_t {
-    const int* t = shared.Seek(e);
-    return t ? *t : TrimLoop::kFreeEdge;
-  };
-  for (size_t k = 0; k < n; ++k) {
-    const std::string face_what = in.source + ": face " + std::to_string(indices[k]);
-    auto fd = guarded(face_what, [&]() -> Result<FaceData> {
-      return convert_face(sewn[k], infos[k], in.options.tolerances, &tag);
-    });
-    if (!fd) {
-      if (legacy_text(fd.error()).rfind(face_what, 0) == 0) return fd.error();
-      return Error{face_what}.because(fd.error());
-    }
-    shell.faces.push_back(std::move(fd).value());
-  }
-
-  if (part_count > 1)
-    warnings.push_back("sewing: the " + std::to_string(n) + " faces form " +
-                       std::to_string(part_count) +
-                       " separate shells that no shared edge joins; a drape stays on the one it "
-                       "starts on");
-  if (non_manifold > 0)
-    warnings.push_back("sewing: " + count(non_manifold, "edge") +
-                       (non_manifold == 1 ? " bounds" : " bound") +
-                       " more than two faces (non-manifold), treated as free");
-  if (!reoriented.empty())
-    warnings.push_back("sewing: " + face_list(reoriented) +
-                       " reversed to orient the shell consistently");
-  if (disagreeing > 0)
-    warnings.push_back("sewing: " + count(disagreeing, "shared edge") +
-                       (disagreeing == 1 ? " joins" : " join") +
-                       " faces oriented against each other (a non-orientable shell)");
+  add_sewing_warnings(n, orientation, shared.non_manifold, disagreeing, warnings);
   return shell;
 }
 

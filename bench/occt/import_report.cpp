@@ -10,7 +10,7 @@
 #include <plyfit/importers/importers.hpp>
 
 #include "bench.hpp"
-#include "face_measure.hpp"  // importers/src: the integration itself, in both directions
+#include "face_measure.hpp"  // occt/src: the integration itself, in both directions
 #include "tables.hpp"
 
 #include <BRepGProp.hxx>

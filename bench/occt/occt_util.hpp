@@ -1,10 +1,12 @@
 #pragma once
-// An independent point-to-surface distance for plyfit-bench, computed with OpenCASCADE's
-// evaluator on the same NURBS (converted by exporters/src/occt_geometry).
+// What the benchmarks outside bench/occt/ ask of OpenCASCADE, without its headers: an
+// independent point-to-surface distance (OpenCASCADE's evaluator on the same NURBS, converted
+// by occt/src/nurbs_conversion) and the version of the OpenCASCADE linked.
 
 #include <plyfit/kernel/nurbs.hpp>
 
-#include <Geom_BSplineSurface.hxx>
+#include <memory>
+#include <string>
 
 namespace plyfit::bench {
 
@@ -15,12 +17,16 @@ namespace plyfit::bench {
 class OcctDistance {
  public:
   explicit OcctDistance(const NurbsSurfaceData& d);
+  ~OcctDistance();
   /// Distance from p to the surface near `seed` (u, v).
   double operator()(const Vec3& p, const Vec2& seed) const;
 
  private:
-  Handle(Geom_BSplineSurface) s_;
-  double u0_, u1_, v0_, v1_;
+  struct Surface;  // the OpenCASCADE surface and its parameter bounds
+  std::unique_ptr<const Surface> s_;
 };
+
+/// OpenCASCADE's version as its headers state it (OCC_VERSION_COMPLETE), e.g. "7.6.3".
+std::string occt_version();
 
 }  // namespace plyfit::bench
