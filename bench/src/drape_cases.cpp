@@ -1,5 +1,6 @@
 #include "drape_cases.hpp"
 
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/importers/importers.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
 
@@ -133,9 +134,7 @@ NetErrors net_errors(const DrapeResult& r,
 
 std::string drape_status(const DrapeResult& r) {
   if (!r.partial) return "complete";
-  std::string s = "partial (";
-  for (std::size_t k = 0; k < r.warnings.size(); ++k) s += (k ? "; " : "") + r.warnings[k];
-  return s + ")";
+  return "partial (" + exporters::messages(r.warnings) + ")";
 }
 
 }  // namespace plyfit::bench

@@ -7,6 +7,7 @@
 #include "report/drape_report.hpp"
 
 #include <plyfit/exporters/atomic_file.hpp>
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
 
 #include <algorithm>
@@ -87,9 +88,11 @@ int drape_job(const DrapeJob& job, bool quiet, const OutcomeFile& outcome) {
     return outcome.fail(kExitInterrupted, Error{ErrorCode::kInterrupted}, {});
   if (!out) return outcome.fail(kExitFailure, out.error(), job.name_input);
   std::cout << drape_summary(*out, job.outdir);
-  if (!quiet)
-    for (const auto* list : {&out->mold_warnings, &out->warnings})
-      for (const auto& w : *list) std::cerr << "plyfit: warning: " << w << "\n";
+  if (!quiet) {
+    for (const auto& w : out->mold_warnings) std::cerr << "plyfit: warning: " << w << "\n";
+    for (const auto& w : out->warnings)
+      std::cerr << "plyfit: warning: " << exporters::message(w) << "\n";
+  }
   return outcome.write(kExitOk, *out);
 }
 

@@ -80,7 +80,7 @@ struct JobOutcome {
   double flat_outline_area = 0.0;  ///< area of the cut outline (FlatPattern::cut_area)
   /// The share of the surface the flat pattern's outline covers (outline_coverage.hpp).
   double outline_coverage = 0.0;
-  std::vector<std::string> warnings;  ///< the drape's (why partial, and notes)
+  std::vector<Warning> warnings;  ///< the drape's (why partial, and notes)
   /// The mold's (reading and sewing it: report.json's mold.warnings, e.g. faces that share
   /// no edge form separate shells).
   std::vector<std::string> mold_warnings;

@@ -3,6 +3,7 @@
 #include "commands/commands.hpp"
 #include "report/text_format.hpp"
 
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/kernel/optimize.hpp>
 
 #include <algorithm>
@@ -69,7 +70,7 @@ void print_notes(const std::vector<Row>& rows, std::ostream& os) {
       os << r.name << ": error: " << error_line(r.error, r.error_code) << "\n";
     } else if (r.partial) {
       os << r.name << ": partial, not compared";
-      for (std::size_t k = 0; k < r.warnings.size(); ++k) os << (k ? "; " : ": ") << r.warnings[k];
+      if (!r.warnings.empty()) os << ": " << exporters::messages(r.warnings);
       os << "\n";
     } else if (!r.compared) {
       os << r.name << ": not compared: its outline covers "
@@ -190,7 +191,7 @@ void print_compare_csv(const std::vector<Row>& rows, std::ostream& os) {
     // The note: the error, or a partial drape's warnings.
     std::string note = r.error.empty() ? "" : error_line(r.error, r.error_code);
     for (const auto& w : r.warnings)
-      if (r.partial) note += (note.empty() ? "" : "; ") + w;
+      if (r.partial) note += (note.empty() ? "" : "; ") + exporters::message(w);
     for (char& ch : note)
       if (ch == '"') ch = '\'';
     os << "," << best << "," << (note.empty() ? "" : "\"" + note + "\"") << "\n";

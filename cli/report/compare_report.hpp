@@ -2,6 +2,8 @@
 // What plyfit compare prints: the figures of the paper's Tables 2 and 4 per scene, the best
 // scene per criterion marked, as a text table, Markdown or CSV.
 
+#include <plyfit/kernel/result.hpp>
+
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -36,7 +38,7 @@ struct Row {
   bool ok = false;                ///< draped (status ok or partial)
   bool partial = false;           ///< draped, status partial
   std::string error, error_code;  ///< why it failed (text and code)
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
   std::vector<double> values;  ///< one per criterion
   std::vector<bool> best;
   bool compared = false;  ///< status ok and covers the face: its figures compete for best

@@ -17,7 +17,11 @@
 namespace plyfit::cli {
 
 std::string note_of(const Evaluation& e) {
-  return e.error ? exporters::describe(*e.error) : e.note;
+  if (e.error) return exporters::describe(*e.error);
+  // A partial drape is not judged (judge() leaves its note empty): its warnings say why.
+  if (e.note.empty() && e.status == "partial" && !e.warnings.empty())
+    return "partial: " + exporters::messages(e.warnings);
+  return e.note;
 }
 
 namespace {

@@ -84,8 +84,8 @@ int file_index(const ExportContext& ctx, std::size_t k) {
 }
 
 // The one place that turns warnings into report.json's text: a warning code through
-// exporters::message(); a warning still in words (DrapeResult::warnings and the readers' until
-// they become codes) as it is.
+// exporters::message(); a warning still in words (the mold readers' until they become codes) as
+// it is.
 template <typename W>
 nlohmann::json warning_texts(const std::vector<W>& warnings) {
   nlohmann::json out = nlohmann::json::array();

@@ -1,6 +1,7 @@
 // plyfit drape from the command line: bad input is one line on stderr, a non-zero exit and
 // no output. Drapes on the real CAD files of ../shared/cad: drape_corpus_test.cpp.
 
+#include <plyfit/exporters/messages.hpp>
 #include <plyfit/importers/importers.hpp>
 
 #include <nlohmann/json.hpp>
@@ -89,7 +90,7 @@ TEST_CASE("cli: a drape's input checked against the mold names the option; nonse
   off_face.replace(off_face.find("--sweep3d 0,1,0"), 15, "--sweep3d 0,-1,0");
   const std::vector<Partial> cases = {
       {with("start3d", "0,0,866"), "846 mm from the surface"},
-      {off_face, "maps no cell"},
+      {off_face, exporters::message(Warning{WarningCode::kNoCellMapped, {}})},
   };
   for (const auto& c : cases) {
     const std::string& args = c.args;
@@ -133,7 +134,8 @@ TEST_CASE(
   }
   CHECK(counted == conflict);
   CHECK(j.at("status") == "partial");
-  const std::string warning = std::to_string(conflict) + " conflict node(s)";
+  const std::string warning = exporters::message(
+      Warning{WarningCode::kConflictNodes, {static_cast<std::int64_t>(conflict)}});
   CHECK(j.at("warnings").dump().find(warning) != std::string::npos);
   CHECK(r.err.find("plyfit: warning: " + warning) != std::string::npos);
   CHECK(r.out.find(", " + std::to_string(conflict) + " in conflict;") != std::string::npos);

@@ -19,6 +19,7 @@
 #include "drape/drape.hpp"
 #include "pattern/flat_pattern.hpp"
 #include "support/face_of.hpp"
+#include "support/warnings.hpp"
 #include "surface/face.hpp"
 
 using namespace plyfit;
@@ -356,7 +357,7 @@ TEST_CASE("drape: a base path whose plane nearly touches the face ahead ends the
       path_end += n.status == NodeStatus::kPathEnd;
       if (n.status == NodeStatus::kPathEnd) CHECK(n.id.is_path_only());
     }
-    for (const auto& w : r->warnings) ended += w.find("the base path ends at ply") == 0;
+    ended = static_cast<int>(support::with_code(r->warnings, WarningCode::kPathEnds).size());
     CHECK(static_cast<std::uint64_t>(path_end) == r->metrics.nodes.path_end);
     CHECK(r->partial);
     if (ends) {

@@ -77,4 +77,11 @@ std::string message(const Warning& w) {
   return text_of(kWarningTexts, w.code, w.values);
 }
 
+std::string messages(const std::vector<Warning>& warnings, const std::string& separator) {
+  std::string s;
+  for (std::size_t k = 0; k < warnings.size(); ++k)
+    s += (k ? separator : std::string()) + message(warnings[k]);
+  return s;
+}
+
 }  // namespace plyfit::exporters

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <sstream>
 
 namespace plyfit {
 
@@ -71,12 +70,9 @@ std::size_t expected_nodes(const DrapeSurface& s, const Ply& ply, const Vec3& st
   return static_cast<std::size_t>(std::min(n, static_cast<double>(cap)));
 }
 
-// x in the shortest of 3 significant digits (messages).
-std::string brief(double x) {
-  std::ostringstream os;
-  os.precision(3);
-  os << x;
-  return os.str();
+// A count as a warning's value.
+MessageValue count(std::uint64_t n) {
+  return static_cast<std::int64_t>(n);
 }
 
 // Warnings of a drape that ran but is not what was asked for: a start far from the surface, no
@@ -88,20 +84,13 @@ void judge_drape(const DrapeSurface& s, const DrapeProblem& pb, const Tolerances
   if (res.start_moved > far) {
     res.partial = true;
     const Vec3& p = res.start_point;
-    res.warnings.push_back(
-        "the 3D start lies " + brief(res.start_moved) + " mm from the surface, more than " +
-        brief(tol.start_far_rel) + " times its size (" + brief(s.size()) +
-        " mm, the bounding-box diagonal): the drape starts at the nearest point of the surface, (" +
-        brief(p.x()) + ", " + brief(p.y()) + ", " + brief(p.z()) +
-        "), far from where it was asked to; check the start, the face and "
-        "the unit");
+    res.warnings.push_back({WarningCode::kStartFar,
+                            {res.start_moved, tol.start_far_rel, s.size(), p.x(), p.y(), p.z()}});
   }
   if (!complete) return;
   if (!(res.metrics.flat_area > 0.0)) {
     res.partial = true;
-    res.warnings.push_back(
-        "the drape maps no cell: the cloth leaves the face at the base path on every swept side "
-        "(do the sweep directions point into the face from the base path?)");
+    res.warnings.push_back({WarningCode::kNoCellMapped, {}});
     return;
   }
   const Ply& P = *res.ply;
@@ -112,10 +101,7 @@ void judge_drape(const DrapeSurface& s, const DrapeProblem& pb, const Tolerances
     if (k >= 0 && static_cast<std::size_t>(k) < per_sweep.size()) ++per_sweep[k];
   }
   for (std::size_t k = 0; k < per_sweep.size(); ++k)
-    if (per_sweep[k] == 0)
-      res.warnings.push_back("sweep direction " + std::to_string(k + 1) +
-                             " maps no node: the cloth leaves the face at the base path on its "
-                             "side (the start on the face's edge?)");
+    if (per_sweep[k] == 0) res.warnings.push_back({WarningCode::kSweepMapsNoNode, {count(k + 1)}});
 }
 
 // Length of the surface's free boundary: its loops' segments in 3D, each followed in its
@@ -158,21 +144,9 @@ void warn_uncovered(const DrapeSurface& s, DrapeResult& res) {
   const double uncovered = s.area() * (1.0 - std::min(m.coverage, 1.0));
   if (!(uncovered > band) || spec.rect) return;  // a ply rectangle covers what it covers
   const NodeCounts& c = m.nodes;
-  std::string stops;
-  auto add = [&](std::uint64_t count, const char* what) {
-    if (count) stops += (stops.empty() ? "" : ", ") + std::to_string(count) + " " + what;
-  };
-  add(c.shear_limit, "at the shear limit");
-  add(c.overlap, "overlapping");
-  add(c.failed, "failed");
-  add(c.conflict, "in conflict");
-  add(c.path_end, "past the base path's end");
-  res.warnings.push_back(
-      "the mapped cells cover " + std::to_string(static_cast<int>(std::lround(100 * m.coverage))) +
-      "% of the surface, less than the cells along its boundary explain: " +
-      (stops.empty() ? std::string("the sweeps do not reach the rest (another start, base path "
-                                   "or sweep may)")
-                     : "the cloth stops inside it (" + stops + ")"));
+  res.warnings.push_back({WarningCode::kUncoveredArea,
+                          {m.coverage, count(c.shear_limit), count(c.overlap), count(c.failed),
+                           count(c.conflict), count(c.path_end)}});
 }
 
 // A warning for each end of the base path (one for a path of one point) where the base
@@ -192,11 +166,7 @@ void warn_path_ends(const DrapeSurface& s, DrapeResult& res) {
     const double sine = std::min(sn.n.cross(res.base_normal).norm(), 1.0);
     res.partial = true;
     res.warnings.push_back(
-        "the base path ends at ply (" + brief(last.ply.x()) + ", " + brief(last.ply.y()) +
-        "): the base plane lies " + brief(std::asin(sine) * kRadToDeg) +
-        " deg from the surface's tangent plane there and its section turns back (or ends where "
-        "the plane touches the surface) within one link ahead, so the path cannot go on; a "
-        "base-plane normal more nearly along the surface there carries the path further");
+        {WarningCode::kPathEnds, {last.ply.x(), last.ply.y(), std::asin(sine) * kRadToDeg}});
   }
 }
 
@@ -272,32 +242,23 @@ Status pair_sweeps(const DrapeProblem& pb, const Ply& P, const Tolerances& tol, 
 void warn_scan_stops(const detail::Scanner& scanner, const DrapeOptions& opt, DrapeResult& res) {
   if (scanner.cancelled()) {
     res.partial = true;
-    res.warnings.push_back("cancelled");
+    res.warnings.push_back({WarningCode::kCancelled, {}});
   }
   if (scanner.truncated()) {
     res.partial = true;
-    res.warnings.push_back("stopped at the node cap of " + std::to_string(opt.max_nodes) +
-                           " nodes");
+    res.warnings.push_back({WarningCode::kNodeCap, {count(opt.max_nodes)}});
   }
   if (res.metrics.coverage > 1.0 + kCoverageSlack) {
     res.partial = true;
-    res.warnings.push_back(
-        "the mapped cells cover " +
-        std::to_string(static_cast<int>(std::lround(100 * res.metrics.coverage))) +
-        "% of the surface: the cloth lies on itself somewhere");
+    res.warnings.push_back({WarningCode::kClothOnItself, {res.metrics.coverage}});
   }
   if (res.metrics.nodes.failed > 0) {
     res.partial = true;
-    res.warnings.push_back(std::to_string(res.metrics.nodes.failed) +
-                           " node(s) where the solver found no solution");
+    res.warnings.push_back({WarningCode::kFailedNodes, {count(res.metrics.nodes.failed)}});
   }
   if (res.metrics.nodes.conflict > 0) {
     res.partial = true;
-    res.warnings.push_back(
-        std::to_string(res.metrics.nodes.conflict) +
-        " conflict node(s): two fronts of cloth met there and disagree (no point of the surface "
-        "fits all their links), so the cloth cannot be laid there as one piece: a dart or a "
-        "splice is needed there, or another start or base path");
+    res.warnings.push_back({WarningCode::kConflictNodes, {count(res.metrics.nodes.conflict)}});
   }
 }
 
@@ -306,22 +267,11 @@ void warn_scan_stops(const detail::Scanner& scanner, const DrapeOptions& opt, Dr
 void warn_thread_ends(const detail::Scanner& scanner, DrapeResult& res) {
   if (const auto& te = scanner.thread_ends(); te.nodes > 0)
     res.warnings.push_back(
-        std::to_string(te.nodes) + " node(s), the first at ply (" + brief(te.first.x()) + ", " +
-        brief(te.first.y()) +
-        "), marked outside: a thread continued from one neighbour cannot follow the surface "
-        "for one link there (the section of its plane, square to the surface, turns back: the "
-        "surface curls tighter than the thread spacing); a finer spacing follows it further");
+        {WarningCode::kThreadEnds, {count(te.nodes), te.first.x(), te.first.y()}});
   if (const auto slit = scanner.path_slits(); slit.links > 0) {
     res.partial = true;
     res.warnings.push_back(
-        "the base path stops at ply (" + brief(slit.stop.x()) + ", " + brief(slit.stop.y()) +
-        ") while the cloth goes on beyond it along the path's line (the base plane's section "
-        "ends there: at a gap in the surface that is no hole of one face, such as a missing "
-        "face or a notch outside the face's outer boundary, or where the section leaves the "
-        "face or curls back on itself): " +
-        std::to_string(slit.links) +
-        " thread link(s) across the path's line there join the two sweeps' cloth unsolved "
-        "(a slit in the flat pattern)");
+        {WarningCode::kPathSlit, {slit.stop.x(), slit.stop.y(), count(slit.links)}});
   }
 }
 

@@ -213,7 +213,7 @@ void drape_into(const Face& face, const DrapeProblem& pb, const DrapeOptions& op
       return;
     }
     ev.status = res->partial ? "partial" : "ok";
-    for (const auto& w : res->warnings) ev.note += (ev.note.empty() ? "partial: " : "; ") + w;
+    ev.warnings = res->warnings;
     ev.figures = figures_of(face, *res, scene);
   } catch (const std::exception& e) {
     ev.status = "error";
@@ -518,7 +518,7 @@ void record_scene(const Face& face, const SearchScene& scene, const DrapeResult&
   Evaluation ref;
   ref.phase = "scene";
   ref.status = scene_res.partial ? "partial" : "ok";
-  for (const auto& w : scene_res.warnings) ref.note += (ref.note.empty() ? "partial: " : "; ") + w;
+  ref.warnings = scene_res.warnings;
   ref.figures = figures_of(face, scene_res, scene);
   ref.candidate.uv = scene_res.start_at.uv;
   ref.seed = scene_res.start_point;

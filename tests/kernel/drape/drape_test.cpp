@@ -9,6 +9,7 @@
 #include "support/problems.hpp"
 #include "support/shells.hpp"
 #include "support/surfaces.hpp"
+#include "support/warnings.hpp"
 
 #include "test_util.hpp"
 
@@ -684,11 +685,6 @@ TEST_CASE("drape: a drape that covers nothing, or starts far from the face, is p
   const DrapeResult ra = run(f, a);
   REQUIRE_FALSE(ra.partial);
   REQUIRE(ra.warnings.empty());
-  auto says = [](const DrapeResult& r, const std::string& what) {
-    for (const auto& w : r.warnings)
-      if (w.find(what) != std::string::npos) return true;
-    return false;
-  };
   SECTION("a sweep pointing off the face maps no cell") {
     // Case (a) swept to -y: the base path lies on the octant's edge y = 0.
     auto pb = a;
@@ -697,7 +693,7 @@ TEST_CASE("drape: a drape that covers nothing, or starts far from the face, is p
     const DrapeResult r = run(f, pb);
     CHECK(r.metrics.flat_area == 0.0);
     CHECK(r.partial);
-    CHECK(says(r, "maps no cell"));
+    CHECK(support::with_code(r.warnings, WarningCode::kNoCellMapped).size() == 1);
   }
   SECTION("of two sweeps, one that maps nothing is a note, not partial") {
     auto pb = a;
@@ -707,7 +703,8 @@ TEST_CASE("drape: a drape that covers nothing, or starts far from the face, is p
     CHECK_FALSE(r.partial);
     CHECK(r.metrics.nodes.mapped == ra.metrics.nodes.mapped);
     REQUIRE(r.warnings.size() == 1);
-    CHECK(says(r, "sweep direction 2 maps no node"));
+    CHECK(r.warnings[0].code == WarningCode::kSweepMapsNoNode);
+    CHECK(support::value(r.warnings[0], 0) == 2);
   }
   SECTION("a start far from the face is projected, and the drape is partial") {
     // 846 mm above the octant's pole: the same net as case (a), but not what was asked for.
@@ -717,7 +714,9 @@ TEST_CASE("drape: a drape that covers nothing, or starts far from the face, is p
     CHECK(r.start_moved == 846.0);
     CHECK(r.metrics.nodes.mapped == ra.metrics.nodes.mapped);
     CHECK(r.partial);
-    CHECK(says(r, "846 mm from the surface"));
+    const auto far_start = support::with_code(r.warnings, WarningCode::kStartFar);
+    REQUIRE(far_start.size() == 1);
+    CHECK(support::value(far_start[0], 0) == 846.0);
     // The threshold: Tolerances::start_far_rel of the face's size.
     const double far = Tolerances().start_far_rel * f.size();
     pb.start = Vec3(0, 0, R + 0.99 * far);
@@ -776,10 +775,9 @@ TEST_CASE("drape: where fronts disagree no point fits: conflict nodes, counted b
   CHECK(r.metrics.nodes.failed == 0);
   CHECK(r.metrics.nodes.failed_reasons.empty());
   CHECK(r.partial);
-  CHECK(std::any_of(r.warnings.begin(), r.warnings.end(), [&](const std::string& w) {
-    return w.find(std::to_string(r.metrics.nodes.conflict) + " conflict node(s)") == 0 &&
-           w.find("dart or a splice") != std::string::npos;
-  }));
+  const auto conflict = support::with_code(r.warnings, WarningCode::kConflictNodes);
+  REQUIRE(conflict.size() == 1);
+  CHECK(support::value(conflict[0], 0) == static_cast<double>(r.metrics.nodes.conflict));
   std::uint64_t counted = 0;
   for (const auto& [why, count] : r.metrics.nodes.conflict_reasons) {
     CHECK(why.rfind("the fronts disagree: ", 0) == 0);
@@ -930,7 +928,8 @@ TEST_CASE("drape: a base plane nearly tangent to the face ends the path: partial
     CHECK(r.metrics.nodes.conflict == 0);
     CHECK(r.partial);
     int warned = 0;
-    for (const auto& w : r.warnings) warned += w.find("the base path ends at ply (0, 0)") == 0;
+    for (const Warning& w : support::with_code(r.warnings, WarningCode::kPathEnds))
+      warned += support::value(w, 0) == 0.0 && support::value(w, 1) == 0.0;
     if (theta_deg < 2) {
       CHECK(r.base_path.size() == 1);
       CHECK(r.metrics.nodes.path_end == 2);
@@ -1066,10 +1065,10 @@ TEST_CASE("drape: every shear-limit stop is counted by the guard that made it") 
 
 TEST_CASE(
     "drape: a drape that ends ok but leaves more of the face than its border uncovered says so") {
+  // The uncovered-area warnings' values: coverage, then the nodes stopped inside the face at
+  // the shear limit, overlapping, failed, in conflict, past the base path's end.
   auto uncovered = [](const DrapeResult& r) {
-    for (const auto& w : r.warnings)
-      if (w.find("less than the cells along its boundary explain") != std::string::npos) return w;
-    return std::string();
+    return support::with_code(r.warnings, WarningCode::kUncoveredArea);
   };
   // The paper's case (c) on the octant covers 94 % without a lock (the rest: cells crossing the
   // boundary); a 20 degree lock stops it at 60 %, ok but short, and the warning names the
@@ -1085,7 +1084,8 @@ TEST_CASE(
   const DrapeResult locked = run(octant, c, lock);
   REQUIRE_FALSE(locked.partial);
   CHECK(locked.metrics.coverage < 0.7);
-  CHECK(uncovered(locked).find("at the shear limit") != std::string::npos);
+  REQUIRE(uncovered(locked).size() == 1);
+  CHECK(support::value(uncovered(locked)[0], 1) > 0);
   // One sweep from a base path across the middle of a plate covers half of it: no node stops
   // inside the face, the sweep never goes the other way.
   const Face plate = builtin("plate");  // 100 x 60
@@ -1093,5 +1093,27 @@ TEST_CASE(
                                               Vec3(50, 30, 0), Vec3(0, 1, 0), {Vec3(0, 1, 0)}));
   REQUIRE_FALSE(half.partial);
   CHECK(half.metrics.coverage < 0.55);
-  CHECK(uncovered(half).find("the sweeps do not reach the rest") != std::string::npos);
+  REQUIRE(uncovered(half).size() == 1);
+  for (std::size_t k = 1; k <= 5; ++k) CHECK(support::value(uncovered(half)[0], k) == 0);
+}
+
+TEST_CASE("drape: its warnings read as sentences, with their numbers to three digits") {
+  auto text = [](WarningCode code, std::vector<MessageValue> values) {
+    return exporters::message(Warning{code, std::move(values)});
+  };
+  CHECK(text(WarningCode::kNodeCap, {std::int64_t{100}}) == "stopped at the node cap of 100 nodes");
+  CHECK(text(WarningCode::kUncoveredArea, {0.5349, std::int64_t{156}, std::int64_t{0},
+                                           std::int64_t{0}, std::int64_t{2}, std::int64_t{0}}) ==
+        "the mapped cells cover 53% of the surface, less than the cells along its boundary "
+        "explain: the cloth stops inside it (156 at the shear limit, 2 in conflict)");
+  const std::int64_t none = 0;
+  CHECK(text(WarningCode::kUncoveredArea, {0.5, none, none, none, none, none}) ==
+        "the mapped cells cover 50% of the surface, less than the cells along its boundary "
+        "explain: the sweeps do not reach the rest (another start, base path or sweep may)");
+  CHECK(text(WarningCode::kPathSlit, {12.0004, -0.0, std::int64_t{7}})
+            .find("the base path stops at ply (12, -0) while") == 0);
+  CHECK(text(WarningCode::kStartFar, {29.1234, 0.5, 3.4641, 0.0, 0.0, 1.0})
+            .find("the 3D start lies 29.1 mm from the surface, more than 0.5 times its size (3.46 "
+                  "mm, the bounding-box diagonal): the drape starts at the nearest point of the "
+                  "surface, (0, 0, 1), far from") == 0);
 }

@@ -11,6 +11,7 @@
 #include <catch2/catch.hpp>
 
 #include "support/problems.hpp"
+#include "support/warnings.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -257,10 +258,12 @@ TEST_CASE("drape: a base path stopped at a missing face warns of the slit") {
   CHECK(r.metrics.nodes.failed == 0);
   CHECK(r.metrics.nodes.conflict == 0);
   CHECK(r.partial);
-  bool named = false;
-  for (const std::string& w : r.warnings)
-    named = named || (w.find("base path stops at ply (12, 0)") != std::string::npos &&
-                      w.find("slit") != std::string::npos);
-  INFO("warnings: " << r.warnings.size() << (r.warnings.empty() ? "" : ": " + r.warnings[0]));
-  CHECK(named);
+  // The slit's warning names where the path stopped: ply (12, 0) to the three digits it shows.
+  const auto slit = support::with_code(r.warnings, WarningCode::kPathSlit);
+  INFO("warnings: " << r.warnings.size()
+                    << (r.warnings.empty() ? ""
+                                           : std::string(": ") + to_string(r.warnings[0].code)));
+  REQUIRE(slit.size() == 1);
+  CHECK(std::abs(support::value(slit[0], 0) - 12.0) < 0.05);
+  CHECK(support::value(slit[0], 1) == 0.0);
 }

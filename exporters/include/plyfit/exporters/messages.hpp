@@ -22,4 +22,7 @@ std::string describe(const Error& e, const InputNamer& name_input = {});
 /// The sentence of a warning.
 std::string message(const Warning& w);
 
+/// The sentences of warnings, in order, joined by `separator`.
+std::string messages(const std::vector<Warning>& warnings, const std::string& separator = "; ");
+
 }  // namespace plyfit::exporters

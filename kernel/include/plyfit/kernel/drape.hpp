@@ -174,7 +174,7 @@ struct DrapeOptions {
 /// Everything the drape computed.
 struct DrapeResult {
   bool partial = false;                  ///< stopped early, or some nodes failed or conflict
-  std::vector<std::string> warnings;     ///< why partial, and other notes
+  std::vector<Warning> warnings;         ///< why partial, and other notes (codes with data)
   std::vector<DrapeNode> nodes;          ///< every node reached, in resolution order
   std::shared_ptr<NodeIndex> index;      ///< NodeId -> position in `nodes` (kernel internal)
   std::vector<std::uint32_t> base_path;  ///< base-path nodes in order, mapped or kInHole

@@ -92,10 +92,11 @@ struct Evaluation {
   int index = 0;      ///< position in OptimizeResult::evaluations
   std::string phase;  ///< "scene", "design" or "refine:<objective>"
   Candidate candidate;
-  Vec3 seed = Vec3::Zero();    ///< the seed's 3D point
-  std::string status;          ///< "ok", "partial" or "error"
-  std::string note;            ///< why it is not feasible (empty when it is)
-  std::optional<Error> error;  ///< the drape's error (status "error")
+  Vec3 seed = Vec3::Zero();       ///< the seed's 3D point
+  std::string status;             ///< "ok", "partial" or "error"
+  std::string note;               ///< why it is not feasible (empty when it is)
+  std::vector<Warning> warnings;  ///< the drape's (a partial drape: why)
+  std::optional<Error> error;     ///< the drape's error (status "error")
   bool feasible = false;
   Figures figures;
 };

@@ -248,9 +248,22 @@ struct Error {
 };
 
 /// The warning codes, as PLYFIT_ERROR_CODES: X(Name, name).
-#define PLYFIT_WARNING_CODES(X) \
-  /* general */                 \
-  X(Note, note)
+#define PLYFIT_WARNING_CODES(X)          \
+  /* general */                          \
+  X(Note, note)                          \
+  /* kernel: drape */                    \
+  X(StartFar, start_far)                 \
+  X(NoCellMapped, no_cell_mapped)        \
+  X(SweepMapsNoNode, sweep_maps_no_node) \
+  X(UncoveredArea, uncovered_area)       \
+  X(PathEnds, path_ends)                 \
+  X(Cancelled, cancelled)                \
+  X(NodeCap, node_cap)                   \
+  X(ClothOnItself, cloth_on_itself)      \
+  X(FailedNodes, failed_nodes)           \
+  X(ConflictNodes, conflict_nodes)       \
+  X(ThreadEnds, thread_ends)             \
+  X(PathSlit, path_slit)
 
 /// What a run reports that is not an error (see PLYFIT_WARNING_CODES).
 enum class WarningCode : std::uint16_t {
