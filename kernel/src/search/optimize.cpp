@@ -3,6 +3,7 @@
 #include "surface/face.hpp"
 
 #include <plyfit/kernel/optimize.hpp>
+#include <plyfit/kernel/ply_definition.hpp>
 
 #include <algorithm>
 #include <array>
@@ -28,9 +29,6 @@ constexpr int kRefineStarts = 3;
 /// that far): below it the figures change by which nodes fall inside the face, not by the
 /// drape (moving the grid by d/4 changes the sphere octant's energy by up to 1.6%).
 constexpr double kRefineResolution = 0.25;
-/// A seed where the scene's base-path direction leans closer than this (sine of the angle)
-/// to the face normal has no base-path direction: it is not draped.
-constexpr double kMinReferenceSin = 1e-3;
 /// Share of the design whose ply angles are lattice angles (see lattice_angles).
 constexpr double kLatticeShare = 0.5;
 /// Design seeds tried per planned design drape before the design stops short (seeds off a
@@ -143,11 +141,9 @@ Result<DrapeProblem> problem_at(const SearchScene& scene, const Face& face, cons
   if (seed) *seed = e.p;
   // The base path: the reference projected on the tangent plane, turned by `path`; the base
   // plane is the normal section along it (on a sphere, a great circle).
-  Vec3 t = reference - reference.dot(n) * n;
-  if (!(t.norm() >= kMinReferenceSin * reference.norm()))
-    return Error{ErrorCode::kSearchPathNormalAtSeed};
-  t.normalize();
-  t = std::cos(c.path) * t + std::sin(c.path) * n.cross(t);
+  auto zero = rosette_zero(reference, n, scene.drape.tol);  // as a ply rosette
+  if (!zero) return Error{ErrorCode::kSearchPathNormalAtSeed};
+  const Vec3 t = std::cos(c.path) * *zero + std::sin(c.path) * n.cross(*zero);
   pb.base_normal = t.cross(n);
   // In the ply the base direction turns by path - angle: the threads turn by `angle` on the
   // mold, the base path by `path`.
