@@ -82,6 +82,13 @@ Status read_mold(const Options& o, DrapeJob& job) {
   job.mold = resolve(o, "mold", *o.text("mold"));
   if (o.given("faces"))
     if (auto st = read_faces(o, job); !st) return st;
+  if (o.given("faces-at")) {
+    for (const char* k : {"face", "faces"})
+      if (o.given(k)) return Error{ErrorCode::kOptionsExclusive, k, {"faces-at", std::string(k)}};
+    auto p = o.vec3("faces-at");
+    if (!p) return p.error();
+    job.faces_at = *p;
+  }
   auto face = o.integer("face", 0, kMaxFace);
   if (!face) return face.error();
   job.face = static_cast<int>(*face);

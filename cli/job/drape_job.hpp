@@ -29,9 +29,10 @@ const OptionTable& drape_options();
 struct DrapeJob {
   std::string mold;  ///< file path (resolved) or "builtin:NAME[:k=v,...]"
   int face = 0;
-  std::vector<int> faces;  ///< --faces: file faces sewn into a shell (empty: --face)
-  bool all_faces = false;  ///< --faces all
-  std::string format;      ///< importer override
+  std::vector<int> faces;        ///< --faces: file faces sewn into a shell (empty: --face)
+  std::optional<Vec3> faces_at;  ///< --faces-at: the face nearest this point (instead of face)
+  bool all_faces = false;        ///< --faces all
+  std::string format;            ///< importer override
   DrapeProblem problem;
   DrapeOptions drape;  ///< lock angle, tolerances, guess rule, node cap
   double lock_angle_deg = 90.0;

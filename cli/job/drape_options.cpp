@@ -15,6 +15,10 @@ const OptionTable& drape_options() {
        "faces to drape as one shell (comma-separated indices, or all), sewn along their shared "
        "edges; instead of --face",
        false, "mold"},
+      {"faces-at", "X,Y,Z", "",
+       "drape the face under this point: the face of the mold file nearest to it; instead of "
+       "--face",
+       false, "mold"},
       {"format", "KEY", "", "importer to use instead of the file extension (step, iges)", false,
        "mold"},
       {"flip-normal", "", "false", "drape on the other side of the surface", false, "mold"},

@@ -7,6 +7,9 @@
 #include <plyfit/importers/importers.hpp>
 #include <plyfit/kernel/builtin_molds.hpp>
 
+#include <algorithm>
+#include <cstdio>
+#include <limits>
 #include <map>
 #include <optional>
 
@@ -66,6 +69,44 @@ Result<MoldSurface> load_builtin(const DrapeJob& job, const BuiltinSpec& spec,
   return surface_from_face(job, std::move(data).value(), run);
 }
 
+Result<MoldSurface> load_face_of(const DrapeJob& job, importers::MoldFile& file,
+                                 exporters::RunInfo& run);
+
+// Distance from p to a box (0 inside; infinite for an empty box).
+double box_distance(const BBox3& b, const Vec3& p) {
+  if (b.empty) return std::numeric_limits<double>::infinity();
+  return (p - p.cwiseMax(b.min).cwiseMin(b.max)).norm();
+}
+
+// The face of the file nearest p: faces in order of their boxes' distance, each converted and
+// projected onto while its box is nearer than the best face so far (a face's box holds it).
+Result<int> face_at(importers::MoldFile& file, const Vec3& p, const Tolerances& tol) {
+  const Mold& mold = file.mold();
+  std::vector<std::pair<double, int>> order;
+  for (const FaceInfo& f : mold.faces) order.emplace_back(box_distance(f.bbox, p), f.index);
+  std::sort(order.begin(), order.end());
+  double best = std::numeric_limits<double>::infinity();
+  int best_face = -1;
+  for (const auto& [box, index] : order) {
+    if (!(box < best)) break;
+    auto data = file.convert_face(index);
+    if (!data) continue;  // a face that does not convert is not under the point
+    auto surface = MoldSurface::from_face(std::move(data).value(), tol);
+    if (!surface) continue;
+    const Projection pr = surface->project(p);
+    if (pr.ok && pr.distance < best) {
+      best = pr.distance;
+      best_face = index;
+    }
+  }
+  if (best_face < 0) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%g, %g, %g", p.x(), p.y(), p.z());
+    return Error{ErrorCode::kNoFaceAtPoint, "", {std::string(buf)}};
+  }
+  return best_face;
+}
+
 Result<MoldSurface> load_file(const DrapeJob& job, exporters::RunInfo& run) {
   importers::ImportOptions io;
   io.format = job.format;
@@ -85,13 +126,27 @@ Result<MoldSurface> load_file(const DrapeJob& job, exporters::RunInfo& run) {
     run.warnings = (*file)->summary().warnings;
     return surface_from_shell(job, std::move(data).value(), run);
   }
-  // Only this face is described and converted: the others are never listed.
-  auto info = (*file)->describe(job.face);
+  if (job.faces_at) {
+    auto face = face_at(**file, *job.faces_at, job.drape.tol);
+    if (!face) return Error(face.error()).in("faces-at");
+    DrapeJob at = job;
+    at.face = *face;
+    at.faces_at.reset();
+    return load_face_of(at, **file, run);
+  }
+  return load_face_of(job, **file, run);
+}
+
+// Face job.face of an open file: only this face is described and converted, the others are
+// never listed.
+Result<MoldSurface> load_face_of(const DrapeJob& job, importers::MoldFile& file,
+                                 exporters::RunInfo& run) {
+  auto info = file.describe(job.face);
   if (!info) return info.error();
   run.faces_info.push_back(*info);
-  run.mold_unit = (*file)->summary().unit;
-  run.warnings = (*file)->summary().warnings;
-  auto data = (*file)->convert_face(job.face);
+  run.mold_unit = file.summary().unit;
+  run.warnings = file.summary().warnings;
+  auto data = file.convert_face(job.face);
   if (!data) return data.error();
   return surface_from_face(job, std::move(data).value(), run);
 }

@@ -70,6 +70,8 @@ void mold_and_ply_values(const DrapeJob& job, SceneValues& v) {
       list += std::to_string(f);
     }
     v["faces"] = {list};
+  } else if (job.faces_at) {
+    v["faces-at"] = {fmt(*job.faces_at)};
   } else {
     v["face"] = {std::to_string(job.face)};
   }

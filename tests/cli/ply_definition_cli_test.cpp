@@ -141,3 +141,31 @@ TEST_CASE("cli: --dump-scene of a ply keeps its meaning: the scene drapes the sa
           Approx(flags == start ? 30.0 : -30.0).margin(1e-9));
   }
 }
+
+TEST_CASE("cli: --faces-at drapes the face under the point") {
+  Scratch tmp("ply_definition_faces_at");
+  // The sample shell's flange, fillet and wall: three faces; the point plyfit info gives for
+  // each face lies on it, and --faces-at finds that face again.
+  const std::string file =
+      std::string(PLYFIT_SOURCE_DIR) + "/samples/molds/flange-fillet-wall.step";
+  for (int face : {0, 1, 2}) {
+    CAPTURE(face);
+    const CliRun info =
+        plyfit_run("info '" + file + "' --face " + std::to_string(face) + " --json", tmp);
+    REQUIRE(info.code == 0);
+    const json p = json::parse(info.out)["point"];
+    const std::string at = std::to_string(p[0].get<double>()) + "," +
+                           std::to_string(p[1].get<double>()) + "," +
+                           std::to_string(p[2].get<double>());
+    const json j = drape_report(
+        "--mold '" + file + "' --faces-at " + at + " --seed " + at + " --rosette 1,1,1 --spacing 2",
+        tmp);
+    CHECK(j["inputs"]["face"] == face);
+  }
+  const CliRun both = plyfit_run("drape --mold '" + file +
+                                     "' --faces-at 0,0,0 --face 1 --seed 0,0,0 --spacing 2 -o '" +
+                                     tmp.file("o") + "'",
+                                 tmp);
+  CHECK(both.code != 0);
+  CHECK(both.err.find("[options_exclusive]") != std::string::npos);
+}

@@ -182,6 +182,11 @@ std::string text_unknown_material(const Values& x) {
 
 // ---- jobs and commands ----
 
+std::string text_no_face_at_point(const Values& x) {
+  return "no face of the mold could be converted to find the face under the point (" + x.text(0) +
+         ")";
+}
+
 std::string text_builtin_face_given(const Values&) {
   return "a built-in mold is draped whole (no --face or --faces list)";
 }

@@ -180,6 +180,7 @@ namespace plyfit {
   X(UnknownMaterial, unknown_material)                                                      \
   /* cli: jobs and commands */                                                              \
   X(BuiltinFaceGiven, builtin_face_given)                                                   \
+  X(NoFaceAtPoint, no_face_at_point)                                                        \
   X(Interrupted, interrupted)                                                               \
   X(UnknownMoldFormat, unknown_mold_format)                                                 \
   X(BadShard, bad_shard)                                                                    \
