@@ -2,6 +2,8 @@
 
 #include "net_util.hpp"
 
+#include <plyfit/kernel/polygon2d.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,28 +11,12 @@
 namespace plyfit::exporters::render {
 
 bool inside_outline(const std::vector<OutlineLoop>& loops, const Vec2& p) {
-  bool in = false;
-  for (const auto& l : loops) {
-    const std::size_t n = l.points.size();
-    for (std::size_t k = 0, m = n - 1; k < n; m = k++) {
-      const Vec2& a = l.points[k];
-      const Vec2& b = l.points[m];
-      if ((a.y() > p.y()) != (b.y() > p.y()) &&
-          p.x() < a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y()))
-        in = !in;
-    }
-  }
+  bool in = false;  // even-odd over all loops
+  for (const auto& l : loops) in = in != inside_polygon(l.points, p);
   return in;
 }
 
 namespace {
-
-double segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 d = b - a;
-  const double len2 = d.squaredNorm();
-  const double t = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
-  return (a + t * d - p).norm();
-}
 
 // Signed distance: positive inside the outline.
 double signed_distance(const std::vector<OutlineLoop>& loops, const Vec2& p) {

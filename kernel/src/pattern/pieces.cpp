@@ -17,13 +17,6 @@ namespace plyfit::detail {
 
 namespace {
 
-double segment_distance(const Vec3& q, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double t = len2 > 0.0 ? std::clamp((q - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return (a + t * ab - q).norm();
-}
-
 // Distance from q to triangle abc: to its plane where q projects inside it, else to its
 // nearest edge (a triangle of no area has only edges).
 double triangle_distance(const Vec3& q, const Vec3& a, const Vec3& b, const Vec3& c) {

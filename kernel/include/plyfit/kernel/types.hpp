@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cstdint>
 
@@ -56,6 +57,15 @@ inline double cross2(const Vec2& a, const Vec2& b) {
 /// a turned by +90 degrees (counter-clockwise).
 inline Vec2 perp(const Vec2& a) {
   return Vec2(-a.y(), a.x());
+}
+
+/// Distance from p to the segment ab (2D or 3D); |p - a| when a == b.
+template <typename V>
+inline double segment_distance(const V& p, const V& a, const V& b) {
+  const V d = b - a;
+  const double len2 = d.squaredNorm();
+  const double t = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (a + t * d - p).norm();
 }
 
 /// True when every component of v is finite.
