@@ -134,10 +134,10 @@ Vtk read_vtk(const fs::path& file) {
 
 }  // namespace
 
-TEST_CASE("exporters: the registry holds dxf, step, json, svg, vtk") {
+TEST_CASE("exporters: the registry holds dxf, step, json, svg, vtk, glb") {
   std::vector<std::string> keys;
   for (const auto& e : exporters::registry()) keys.push_back(e.key);
-  CHECK(keys == std::vector<std::string>{"dxf", "step", "json", "svg", "vtk"});
+  CHECK(keys == std::vector<std::string>{"dxf", "step", "json", "svg", "vtk", "glb"});
   CHECK(exporters::find_exporter("SVG") != nullptr);
   CHECK(exporters::find_exporter("svg")->files ==
         std::vector<std::string>{"flat.svg", "drape.svg", "shear.svg"});
@@ -365,7 +365,7 @@ TEST_CASE("exporters: equal inputs give equal bytes") {
       CHECK(slurp(entry.path()) == slurp(b / entry.path().filename()));
       ++files;
     }
-    CHECK(files == 7);
+    CHECK(files == 8);
   }
 }
 
