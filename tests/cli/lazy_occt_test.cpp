@@ -56,7 +56,7 @@ TEST_CASE("cli: a drape of a built-in mold with every output loads no OpenCASCAD
   INFO(run.err);
   REQUIRE(run.code == 0);
   for (const char* f : {"flat.dxf", "net.step", "flat.svg", "drape.svg", "shear.svg", "net.vtk",
-                        "net.glb", "report.json"})
+                        "view.svg", "net.glb", "report.json"})
     CHECK(fs::exists(s.path / "out" / f));
   INFO(joined(libs));
   // The listing works: the C library is always there.
