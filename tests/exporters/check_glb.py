@@ -15,7 +15,6 @@ DIR/report.json:
 
 usage: check_glb.py DIR
 """
-import json
 import math
 import os
 import re
@@ -23,7 +22,7 @@ import subprocess
 import sys
 import tempfile
 
-from check_report import finish  # same folder
+from check_report import Case, finish  # same folder
 
 MM_PER_M = 1000.0
 FLOAT32_EPS = 2.0 ** -23  # the float32 positions' relative rounding
@@ -73,15 +72,8 @@ def norm(a):
 
 
 def main():
-    d = sys.argv[1]
-    path = os.path.join(d, "net.glb")
-    with open(os.path.join(d, "report.json"), encoding="utf-8") as f:
-        report = json.load(f)
-    failures = []
-
-    def check(ok, what):
-        if not ok:
-            failures.append(what)
+    case = Case(sys.argv[1], "net.glb")
+    path, report, failures, check = case.path, case.report, case.failures, case.check
 
     mapped = report["nodes"]["mapped"] + report["nodes"]["auxiliary"]
     meshes = assimp_meshes(path)

@@ -23,19 +23,6 @@ const std::string kBoundaryStyle =
 // Each free boundary segment is drawn in this many pieces.
 constexpr int kBoundaryPieces = 48;
 
-// The frame of the projected mapped nodes and boundary, with a margin.
-Frame view_frame(const DrapeResult& r, const std::vector<Segment3>& boundary, const Camera& cam) {
-  Box2 box;
-  for (const DrapeNode& n : r.nodes)
-    if (n.mapped()) box.add(cam.project(n.point));
-  for (const auto& [a, b] : boundary) {
-    box.add(cam.project(a));
-    box.add(cam.project(b));
-  }
-  const double ext = box.empty() ? 1.0 : std::max(box.size().x(), box.size().y());
-  return Frame::fit(padded(box, 0.03 * ext));
-}
-
 // The links, the base path and the free boundary as segments; the nodes over them. Segments
 // and nodes are drawn over the cells they border (a depth bias of half the spacing `d`).
 void add_net(std::vector<Prim>& prims, const DrapeResult& r, const std::vector<Segment3>& boundary,
@@ -100,7 +87,7 @@ std::string drape_svg(const ExportContext& ctx) {
   const render::ShearScale scale = render::shear_scale(r);
   const std::vector<Segment3> boundary = free_boundary(ctx.surface, kBoundaryPieces);
   View v{Camera::from(ctx.options.view), {}};
-  v.frame = view_frame(r, boundary, v.cam);
+  v.frame = Frame::fit(scene_box(r, boundary, v.cam));
   const Vec3 view = ctx.options.view;
   const TitleBlock tb =
       title_over(v.frame,

@@ -43,6 +43,18 @@ std::vector<Segment3> free_boundary(const MoldSurface& surface, int pieces_per_s
   return boundary;
 }
 
+Box2 scene_box(const DrapeResult& r, const std::vector<Segment3>& boundary, const Camera& cam) {
+  Box2 box;
+  for (const DrapeNode& n : r.nodes)
+    if (n.mapped()) box.add(cam.project(n.point));
+  for (const auto& [a, b] : boundary) {
+    box.add(cam.project(a));
+    box.add(cam.project(b));
+  }
+  const double ext = box.empty() ? 1.0 : std::max(box.size().x(), box.size().y());
+  return padded(box, kScenePad * ext);
+}
+
 void add_cells(std::vector<Prim>& prims, const DrapeResult& r,
                const std::vector<detail::NetCell>& cells, const render::ShearScale& scale,
                const View& v, CellEdges edges) {

@@ -29,6 +29,11 @@ struct View {
 
 using Segment3 = std::pair<Vec3, Vec3>;
 
+/// What a 3D picture shows, projected: the mapped nodes and `boundary`, with a margin of
+/// kScenePad of its extent.
+constexpr double kScenePad = 0.03;
+Box2 scene_box(const DrapeResult& r, const std::vector<Segment3>& boundary, const Camera& cam);
+
 /// The free boundary in 3D (the kernel's: seams of closed faces, collapsed pole edges and the
 /// edges a shell's faces share are no boundary), each segment split into `pieces` (one on
 /// loops of many points).

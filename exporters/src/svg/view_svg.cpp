@@ -20,7 +20,6 @@ namespace {
 
 constexpr double kViewSize = 360.0;       // px: the longer side of the drawing
 constexpr double kViewMarginUnit = 0.25;  // of the pictures' margin: 10 px
-constexpr double kViewPad = 0.03;         // of the drawing's extent, around it
 constexpr std::size_t kViewMaxCells = 1500;
 constexpr double kViewTilt = 35.0 * kDegToRad;
 constexpr int kViewBoundaryPieces = 8;
@@ -103,17 +102,9 @@ ViewCells view_cells(const DrapeResult& r) {
 
 // The frame of the projected mapped nodes and boundary, kViewSize on its longer side.
 Frame view_frame(const DrapeResult& r, const std::vector<Segment3>& boundary, const Camera& cam) {
-  Box2 box;
-  for (const DrapeNode& n : r.nodes)
-    if (n.mapped()) box.add(cam.project(n.point));
-  for (const auto& [a, b] : boundary) {
-    box.add(cam.project(a));
-    box.add(cam.project(b));
-  }
-  const double ext = box.empty() ? 1.0 : std::max(box.size().x(), box.size().y());
-  const Box2 framed = padded(box, kViewPad * ext);
-  const double side = std::max(framed.size().x(), framed.size().y());
-  return Frame::fit(framed, side > 0 ? kViewSize / side : 1.0, kViewMarginUnit);
+  const Box2 box = scene_box(r, boundary, cam);
+  const double side = std::max(box.size().x(), box.size().y());
+  return Frame::fit(box, side > 0 ? kViewSize / side : 1.0, kViewMarginUnit);
 }
 
 // The base path and the free boundary, over the cells they border (a depth bias of
