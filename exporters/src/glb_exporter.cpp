@@ -297,7 +297,10 @@ std::string build_glb(const ExportContext& ctx) {
   const Mesh m = build_mesh(ctx, cells);
   Binary bin;
   const json prims = primitives(bin, ctx, m, vertex_shear(ctx.result, m, cells));
-  return glb(gltf_json(ctx, bin, prims).dump(), bin.bytes());
+  // A name that is not UTF-8 (a Latin-1 ply name) gets U+FFFD where its bytes are invalid.
+  const std::string text =
+      gltf_json(ctx, bin, prims).dump(-1, ' ', false, json::error_handler_t::replace);
+  return glb(text, bin.bytes());
 }
 
 }  // namespace
