@@ -136,7 +136,8 @@ std::string view_svg(const ExportContext& ctx) {
   std::string o = svg_open(
       w, h,
       "plyfit 3D view" + (ctx.run.ply_name.empty() ? std::string() : ": " + ctx.run.ply_name));
-  o += "<g id=\"scene\" " + kEdgeStyle + ">\n" + draw_sorted(prims) + "</g>\n";
+  // No id: the ply book inlines many of these in one page.
+  o += "<g " + kEdgeStyle + ">\n" + draw_sorted(prims) + "</g>\n";
   o += "</svg>\n";
   return o;
 }
