@@ -30,5 +30,7 @@ Exporter make_step_exporter();
 Exporter make_svg_exporter();
 /// net.vtk (vtk_exporter.cpp).
 Exporter make_vtk_exporter();
+/// net.glb (glb_exporter.cpp).
+Exporter make_glb_exporter();
 
 }  // namespace plyfit::exporters

@@ -14,7 +14,7 @@ const std::vector<Exporter>& registry() {
   // One registration line per format.
   static const std::vector<Exporter> list = {
       make_dxf_exporter(), make_step_exporter(), make_json_exporter(),
-      make_svg_exporter(), make_vtk_exporter(),
+      make_svg_exporter(), make_vtk_exporter(),  make_glb_exporter(),
   };
   return list;
 }

@@ -55,8 +55,8 @@ TEST_CASE("cli: a drape of a built-in mold with every output loads no OpenCASCAD
   const auto libs = libraries_of(kHemisphereDrape + " -o '" + s.file("out") + "'", s, run);
   INFO(run.err);
   REQUIRE(run.code == 0);
-  for (const char* f :
-       {"flat.dxf", "net.step", "flat.svg", "drape.svg", "shear.svg", "net.vtk", "report.json"})
+  for (const char* f : {"flat.dxf", "net.step", "flat.svg", "drape.svg", "shear.svg", "net.vtk",
+                        "view.svg", "net.glb", "report.json"})
     CHECK(fs::exists(s.path / "out" / f));
   INFO(joined(libs));
   // The listing works: the C library is always there.

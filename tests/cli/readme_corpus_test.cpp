@@ -94,7 +94,7 @@ TEST_CASE("cli: the README's first drape on a shared CAD file runs as the README
   }
   // The files the README says the drape writes into first/: all there, and nothing else.
   std::set<std::string> said, written;
-  const std::regex file("`([a-z]+\\.(dxf|step|svg|vtk|json))`");
+  const std::regex file("`([a-z]+\\.(dxf|step|svg|vtk|glb|json))`");
   const std::string after = section.substr(section.rfind("```"));
   for (auto it = std::sregex_iterator(after.begin(), after.end(), file);
        it != std::sregex_iterator(); ++it)

@@ -1,4 +1,22 @@
-"""The verdict of a check_*.py script: its first failures and their count, or a one-line ok."""
+"""What the check_*.py scripts share: the file checked with report.json beside it, a list of
+failures, and the verdict: the first failures and their count, or a one-line ok."""
+import json
+import os
+
+
+class Case:
+    """DIR/`name` (path), DIR/report.json (report) and the failures found (check() adds one)."""
+
+    def __init__(self, d, name):
+        self.path = os.path.join(d, name)
+        with open(os.path.join(d, "report.json"), encoding="utf-8") as f:
+            self.report = json.load(f)
+        self.failures = []
+
+    def check(self, ok, what):
+        if not ok:
+            self.failures.append(what)
+
 
 
 def finish(tool, path, failures, summary):

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""Parses DIR/flat.svg, drape.svg and shear.svg with Python's XML parser and checks them
-against DIR/report.json:
+"""Parses DIR/flat.svg, drape.svg, shear.svg and view.svg with Python's XML parser and checks
+them against DIR/report.json:
 
 - well-formed SVG with a viewBox, self-contained (no external references, images or
   scripts), and one element of class "node" per mapped regular node (flat.svg, drape.svg:
@@ -13,7 +13,9 @@ against DIR/report.json:
 - titles and subtitles (the group id "title") are wrapped, not cut: every line fits the
   picture's width (at 0.62 em a character, wider than DejaVu Sans's average), and the
   subtitle lines put together hold the whole subtitle (the mold's file name, never its folder, and the shear summary);
-- shear.svg has one unit, degrees: no pi in any text, the gamma axis labelled in degrees.
+- shear.svg has one unit, degrees: no pi in any text, the gamma axis labelled in degrees;
+- view.svg is small: well-formed and self-contained, at most VIEW_PX wide and high, no text,
+  between 1 and VIEW_MAX_CELLS cells (polygons of class "cell"), the base path drawn.
 
 usage: check_svg.py DIR
 """
@@ -28,6 +30,8 @@ WRITTEN_MM = 0.01      # flat.svg coordinates have two decimals
 CHAR_EM = 0.62         # a generous average character width of the pictures' sans-serif font
 FONT_PX = {"title": 17.0, "sub": 12.0, "small": 11.0}
 MARGIN_PX = 40.0       # the pictures' margin
+VIEW_PX = 400.0        # view.svg: its largest size
+VIEW_MAX_CELLS = 1500  # view.svg: the most cells (or blocks of cells) it draws
 
 
 def number(s):
@@ -53,6 +57,44 @@ def text_lines(root):
     return out
 
 
+def foreign(root, path):
+    """What makes the picture not self-contained: images, scripts, external references."""
+    out = []
+    for el in root.iter():
+        tag = el.tag.replace(SVG, "")
+        if tag in ("image", "script", "foreignObject", "use"):
+            out.append("%s: has a <%s> element" % (path, tag))
+        for k, v in el.attrib.items():
+            if k.endswith("href") and not v.startswith("#"):
+                out.append("%s: external reference %s=%s" % (path, k, v))
+            if "url(" in v and "url(#" not in v:
+                out.append("%s: external url in %s" % (path, k))
+    return out
+
+
+def check_view(d):
+    """view.svg's failures, and prints its verdict."""
+    path = os.path.join(d, "view.svg")
+    try:
+        root = ET.parse(path).getroot()
+    except ET.ParseError as e:
+        return ["%s: not well-formed XML: %s" % (path, e)]
+    out = foreign(root, path)
+    vb = [float(x) for x in root.get("viewBox", "0 0 0 0").split()]
+    if root.tag != SVG + "svg" or not (0 < vb[2] <= VIEW_PX and 0 < vb[3] <= VIEW_PX):
+        out.append("%s: root %s, viewBox %r: not a picture of at most %g px" % (path, root.tag, vb, VIEW_PX))
+    cells = sum(1 for el in root.iter(SVG + "polygon") if el.get("class") == "cell")
+    if not 0 < cells <= VIEW_MAX_CELLS:
+        out.append("%s: %d cells, expected 1 to %d" % (path, cells, VIEW_MAX_CELLS))
+    if any(True for _ in root.iter(SVG + "text")):
+        out.append("%s: has text" % path)
+    if not any(el.get("stroke") == "#1f5fd6" for el in root.iter(SVG + "line")):
+        out.append("%s: no base path" % path)
+    if not out:
+        print("check_svg: %s: ok (%d cells, %g x %g px)" % (path, cells, vb[2], vb[3]))
+    return out
+
+
 def main():
     d = sys.argv[1]
     with open(os.path.join(d, "report.json"), encoding="utf-8") as f:
@@ -72,18 +114,8 @@ def main():
         if root.tag != SVG + "svg" or "viewBox" not in root.attrib:
             failures.append("%s: root is %s, viewBox %s" % (path, root.tag, root.get("viewBox")))
             continue
-        nodes = 0
-        for el in root.iter():
-            tag = el.tag.replace(SVG, "")
-            if tag in ("image", "script", "foreignObject", "use"):
-                failures.append("%s: has a <%s> element" % (path, tag))
-            for k, v in el.attrib.items():
-                if k.endswith("href") and not v.startswith("#"):
-                    failures.append("%s: external reference %s=%s" % (path, k, v))
-                if "url(" in v and "url(#" not in v:
-                    failures.append("%s: external url in %s" % (path, k))
-            if "node" in el.get("class", "").split():
-                nodes += 1
+        failures += foreign(root, path)
+        nodes = sum(1 for el in root.iter() if "node" in el.get("class", "").split())
         if nodes != want or want <= 0:
             failures.append("%s: %d node marks, report.json says %d" % (path, nodes, want))
 
@@ -156,6 +188,7 @@ def main():
                     failures.append("%s: no gamma axis label %r" % (path, v))
         if not any(f.startswith(path + ":") for f in failures):
             print("check_svg: %s: ok (%d nodes%s)" % (path, nodes, ", 1:1 in mm" if name == "flat.svg" else ""))
+    failures += check_view(d)
     for f in failures:
         print("check_svg: " + f)
     return 1 if failures else 0

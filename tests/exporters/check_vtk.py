@@ -15,29 +15,20 @@ Debian python3-vtk9) and checks it against DIR/report.json:
 
 usage: check_vtk.py DIR
 """
-import json
 import math
-import os
 import sys
 
 import vtk
 
-from check_report import finish  # same folder
+from check_report import Case, finish  # same folder
 
 REL = 1e-9       # areas and angle extremes as in report.json
 ROUNDOFF = 1e-9  # degrees: shear against |90 - angle|
 
 
 def main():
-    d = sys.argv[1]
-    path = os.path.join(d, "net.vtk")
-    with open(os.path.join(d, "report.json"), encoding="utf-8") as f:
-        report = json.load(f)
-    failures = []
-
-    def check(ok, what):
-        if not ok:
-            failures.append(what)
+    case = Case(sys.argv[1], "net.vtk")
+    path, report, failures, check = case.path, case.report, case.failures, case.check
 
     reader = vtk.vtkPolyDataReader()
     reader.SetFileName(path)

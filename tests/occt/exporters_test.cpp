@@ -134,13 +134,13 @@ Vtk read_vtk(const fs::path& file) {
 
 }  // namespace
 
-TEST_CASE("exporters: the registry holds dxf, step, json, svg, vtk") {
+TEST_CASE("exporters: the registry holds dxf, step, json, svg, vtk, glb") {
   std::vector<std::string> keys;
   for (const auto& e : exporters::registry()) keys.push_back(e.key);
-  CHECK(keys == std::vector<std::string>{"dxf", "step", "json", "svg", "vtk"});
+  CHECK(keys == std::vector<std::string>{"dxf", "step", "json", "svg", "vtk", "glb"});
   CHECK(exporters::find_exporter("SVG") != nullptr);
   CHECK(exporters::find_exporter("svg")->files ==
-        std::vector<std::string>{"flat.svg", "drape.svg", "shear.svg"});
+        std::vector<std::string>{"flat.svg", "drape.svg", "shear.svg", "view.svg"});
   CHECK(exporters::find_exporter("pdf") == nullptr);
 }
 
@@ -365,7 +365,7 @@ TEST_CASE("exporters: equal inputs give equal bytes") {
       CHECK(slurp(entry.path()) == slurp(b / entry.path().filename()));
       ++files;
     }
-    CHECK(files == 7);
+    CHECK(files == 9);
   }
 }
 
@@ -446,6 +446,33 @@ TEST_CASE("exporters: flat.svg is sized in millimetres, one user unit per millim
   CHECK(w.substr(w.size() - 2) == "mm");
   CHECK(h.substr(h.size() - 2) == "mm");
   CHECK(attr("viewBox") == "0 0 " + w.substr(0, w.size() - 2) + " " + h.substr(0, h.size() - 2));
+}
+
+TEST_CASE(
+    "exporters: view.svg draws every cell of a small net, at most 1500 blocks of a large one") {
+  auto cell_count = [](const Case& c) {
+    const fs::path dir = fresh_dir("view");
+    REQUIRE(exporters::find_exporter("svg")->write(c.ctx(), dir.string()).ok());
+    const std::string text = slurp(dir / "view.svg");
+    std::size_t n = 0;
+    for (auto at = text.find("class=\"cell\""); at != std::string::npos;
+         at = text.find("class=\"cell\"", at + 1))
+      ++n;
+    return n;
+  };
+  const auto all = cases();
+  const Case& small = *all.front();
+  REQUIRE(plyfit::mapped_cells(small.result).size() <= 1500);
+  CHECK(cell_count(small) == plyfit::mapped_cells(small.result).size());
+  // A hemisphere of more than 1500 cells: blocks of s x s cells, s the smallest that leaves at
+  // most 1500, so more than a quarter of that ((s - 1)^2 < cells / 1500).
+  const auto big = make_case("hemisphere", {{"R", 20}},
+                             problem(1, {0, 0}, {0, 1}, {{-1, 0}, {1, 0}}, {0, 0, 20}, {1, 0, 0},
+                                     {{1, 0, 0}, {-1, 0, 0}}));
+  REQUIRE(plyfit::mapped_cells(big->result).size() > 1500);
+  const std::size_t blocks = cell_count(*big);
+  CHECK(blocks <= 1500);
+  CHECK(blocks > 1500 / 4);
 }
 
 // The interior point the DXF labels sit on, on outlines with known answers.

@@ -23,6 +23,16 @@ Rgb Rgb::shaded(double f) const {
   return {r * f, g * f, b * f};
 }
 
+Rgb Rgb::linear() const {
+  // The sRGB transfer function (IEC 61966-2-1): a linear toe, then a 2.4 power.
+  constexpr double kToe = 0.04045, kToeSlope = 12.92, kOffset = 0.055, kGamma = 2.4;
+  auto channel = [&](double v) {
+    v = std::clamp(v, 0.0, 1.0);
+    return v <= kToe ? v / kToeSlope : std::pow((v + kOffset) / (1.0 + kOffset), kGamma);
+  };
+  return {channel(r), channel(g), channel(b)};
+}
+
 Rgb shear_colour(double t) {
   // Viridis sampled at nine points, linearly interpolated.
   static constexpr std::array<std::array<double, 3>, 9> kStops = {{{0.267, 0.005, 0.329},

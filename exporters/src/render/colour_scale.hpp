@@ -14,6 +14,9 @@ struct Rgb {
   std::string hex() const;
   /// This colour scaled towards black by `f` (1 = unchanged).
   Rgb shaded(double f) const;
+  /// This sRGB colour in linear light (the sRGB transfer function undone): what glTF's vertex
+  /// colours and material factors hold, so that a viewer shows the pictures' colours.
+  Rgb linear() const;
 };
 
 /// The shear colour ramp (viridis-like, dark blue at 0, yellow at the top): t in [0, 1], clamped.

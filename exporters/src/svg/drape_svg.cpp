@@ -5,6 +5,7 @@
 #include "render/text.hpp"
 #include "svg/draw.hpp"
 #include "svg/pictures.hpp"
+#include "svg/scene3d.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,99 +16,12 @@ namespace {
 
 using render::fixed_text;
 
-// A view direction within this angle (radians) of Z looks down Z: Y is up on the page then.
-constexpr double kViewAlongZ = 1e-6;
-// Each free boundary segment is drawn in this many pieces (one on loops of many points).
-constexpr int kBoundaryPieces = 48;
-constexpr std::size_t kManyBoundaryPoints = 64;
-
 const std::string kThreadStyle = "stroke=\"#262626\" stroke-width=\"0.7\"";
 const std::string kPathStyle = "stroke=\"#1f5fd6\" stroke-width=\"2.2\"";
 const std::string kBoundaryStyle =
     "stroke=\"#000000\" stroke-width=\"1.6\" stroke-linecap=\"round\"";
-
-struct Camera {
-  Vec3 right, up, towards;  // towards the viewer
-  static Camera from(const Vec3& view) {
-    Camera c;
-    c.towards = view.norm() > 0 ? Vec3(view.normalized()) : Vec3(1, 1, 1).normalized();
-    Vec3 world_up = Vec3::UnitZ();
-    if (world_up.cross(c.towards).norm() < kViewAlongZ) world_up = Vec3::UnitY();
-    c.right = world_up.cross(c.towards).normalized();
-    c.up = c.towards.cross(c.right);
-    return c;
-  }
-  Vec2 project(const Vec3& p) const { return {p.dot(right), p.dot(up)}; }
-  double depth(const Vec3& p) const { return p.dot(towards); }
-};
-
-using Segment3 = std::pair<Vec3, Vec3>;
-
-// The free boundary in 3D (the kernel's: seams of closed faces, collapsed pole edges and the
-// edges a shell's faces share are no boundary), each segment split into pieces.
-std::vector<Segment3> free_boundary(const MoldSurface& surface) {
-  std::vector<Segment3> boundary;
-  for (const auto& loop : surface.boundary()) {
-    const std::size_t n = loop.points.size();
-    for (std::size_t k = 0; k < n; ++k) {
-      if (loop.kinds[k] != BoundaryLoop::kEdge) continue;
-      const SurfaceLocation& a = loop.points[k];
-      const SurfaceLocation& b = loop.points[(k + 1) % n];
-      const int pieces = n > kManyBoundaryPoints ? 1 : kBoundaryPieces;
-      Vec3 prev = surface.eval1(a).p;
-      for (int m = 1; m <= pieces; ++m) {
-        const Vec3 q =
-            surface.eval1(a.with_uv(a.uv + (b.uv - a.uv) * (static_cast<double>(m) / pieces))).p;
-        boundary.emplace_back(prev, q);
-        prev = q;
-      }
-    }
-  }
-  return boundary;
-}
-
-// The frame of the projected mapped nodes and boundary, with a margin.
-Frame view_frame(const DrapeResult& r, const std::vector<Segment3>& boundary, const Camera& cam) {
-  Box2 box;
-  for (const DrapeNode& n : r.nodes)
-    if (n.mapped()) box.add(cam.project(n.point));
-  for (const auto& [a, b] : boundary) {
-    box.add(cam.project(a));
-    box.add(cam.project(b));
-  }
-  const double ext = box.empty() ? 1.0 : std::max(box.size().x(), box.size().y());
-  return Frame::fit(padded(box, 0.03 * ext));
-}
-
-// The picture's projection: the camera, then the frame.
-struct View {
-  Camera cam;
-  Frame frame;
-  Vec2 map(const Vec3& p) const { return frame.map(cam.project(p)); }
-};
-
-// The mapped cells coloured by shear and shaded by their slope to the view.
-void add_cells(std::vector<Prim>& prims, const DrapeResult& r, const render::ShearScale& scale,
-               const View& v) {
-  for (const auto& c : detail::mapped_cells(r)) {
-    std::vector<Vec2> pts;
-    Vec3 centre = Vec3::Zero(), normal = Vec3::Zero();
-    for (std::size_t k = 0; k < c.nodes.size(); ++k) {
-      const Vec3& p = r.nodes[c.nodes[k]].point;
-      const Vec3& q = r.nodes[c.nodes[(k + 1) % c.nodes.size()]].point;
-      pts.push_back(v.map(p));
-      centre += p;
-      normal += p.cross(q);  // Newell's normal
-    }
-    centre /= static_cast<double>(c.nodes.size());
-    const double facing =
-        normal.norm() > 0 ? std::abs(normal.normalized().dot(v.cam.towards)) : 1.0;
-    const std::string fill = scale.colour(c.shear).shaded(0.55 + 0.45 * facing).hex();
-    prims.push_back({v.cam.depth(centre), polygon(pts, "cell",
-                                                  " fill=\"" + fill + "\" stroke=\"" + fill +
-                                                      "\" stroke-width=\"0.3\"")});
-  }
-}
+// Each free boundary segment is drawn in this many pieces.
+constexpr int kBoundaryPieces = 48;
 
 // The links, the base path and the free boundary as segments; the nodes over them. Segments
 // and nodes are drawn over the cells they border (a depth bias of half the spacing `d`).
@@ -171,9 +85,9 @@ std::string drape_legend(const render::ShearScale& scale, double warn, const Vie
 std::string drape_svg(const ExportContext& ctx) {
   const DrapeResult& r = ctx.result;
   const render::ShearScale scale = render::shear_scale(r);
-  const std::vector<Segment3> boundary = free_boundary(ctx.surface);
+  const std::vector<Segment3> boundary = free_boundary(ctx.surface, kBoundaryPieces);
   View v{Camera::from(ctx.options.view), {}};
-  v.frame = view_frame(r, boundary, v.cam);
+  v.frame = Frame::fit(scene_box(r, boundary, v.cam));
   const Vec3 view = ctx.options.view;
   const TitleBlock tb =
       title_over(v.frame,
@@ -182,7 +96,7 @@ std::string drape_svg(const ExportContext& ctx) {
                  source_line(ctx) + "; " + std::to_string(r.metrics.nodes.mapped) +
                      " mapped nodes, " + shear_summary(ctx));
   std::vector<Prim> prims;
-  add_cells(prims, r, scale, v);
+  add_cells(prims, r, detail::mapped_cells(r), scale, v, CellEdges::kOwnColour);
   add_net(prims, r, boundary, std::min(ctx.problem.ply.d_weft, ctx.problem.ply.d_warp), v);
   std::string o = svg_open(v.frame.canvas_width(), v.frame.canvas_height(), "plyfit 3D fitting");
   o += tb.svg;

@@ -1,5 +1,5 @@
 #pragma once
-// The three pictures of svg_exporter.cpp, each a whole SVG file.
+// The pictures of svg_exporter.cpp, each a whole SVG file.
 
 #include <plyfit/exporters/exporters.hpp>
 
@@ -13,5 +13,7 @@ std::string flat_svg(const ExportContext& ctx);
 std::string drape_svg(const ExportContext& ctx);
 /// shear.svg: the thread-angle distribution as a height field (shear_svg.cpp).
 std::string shear_svg(const ExportContext& ctx);
+/// view.svg: a small static 3D view for the ply book (view_svg.cpp).
+std::string view_svg(const ExportContext& ctx);
 
 }  // namespace plyfit::exporters::svg

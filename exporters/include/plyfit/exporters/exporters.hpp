@@ -1,6 +1,6 @@
 #pragma once
 /// \file Output writers: a registry of one-file plugins keyed by lower-case extension
-/// (json, dxf, step, svg, vtk). Each writes its files into an output folder, atomically.
+/// (json, dxf, step, svg, vtk, glb). Each writes its files into an output folder, atomically.
 
 #include <plyfit/kernel/drape.hpp>
 #include <plyfit/kernel/mold.hpp>
