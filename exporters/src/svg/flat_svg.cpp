@@ -34,7 +34,8 @@ constexpr double kArrowRel = 0.15, kMinArrowPx = 36.0, kMarkerPx = 6.0, kMarkerS
                  kArrowStrokePx = 2.4, kLabelGapPx = 6.0, kLabelOverPartRel = 0.5;
 const Vec2 kSweepLabelAt(6.0, -4.0), kStartLabelAt(8.0, 16.0);  // baselines, px
 
-// A label: its text and its box in ply coordinates (y up).
+// A label: its text (empty for the start's label, P with a subscript s) and its box in ply
+// coordinates (y up).
 struct Label {
   std::string text;
   Vec2 lo = Vec2::Zero(), hi = Vec2::Zero();
