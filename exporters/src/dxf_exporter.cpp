@@ -17,10 +17,11 @@
 //               cell's corners that have a thread angle)
 //   LABELS      TEXT inside the outline: ply name, material, ply angle, spacing, outline
 //               area, shear, and the mold's file name (never its folder) with the face
-// The labels and the arrow form a block centred on the outline's pole of inaccessibility (the
-// centre of a largest inscribed circle, render/label_placement's place_block), as large as
-// fits inside the outline (with a generous width per character) up to a text height of 1/40
-// of the pattern.
+// The labels and the arrow form a block centred on the pole of inaccessibility of the outline
+// less the base path and the origin marker (the centre of a largest circle inside the outline
+// that neither meets, render/label_placement's place_block), as large as fits inside the
+// outline clear of both (with a generous width per character) up to a text height of
+// render::kLabelTextRel of the pattern (render/drawing_scale.hpp).
 //
 // Text: the file declares $DWGCODEPAGE ANSI_1252, the code page of R2000 text, and writes
 // U+00A0..U+00FF (the degree sign U+00B0 among them) as their single cp1252 bytes, other
@@ -36,6 +37,7 @@
 #include "dxf/document.hpp"
 #include "net_util.hpp"
 #include "plugins.hpp"
+#include "render/drawing_scale.hpp"
 #include "render/label_placement.hpp"
 #include "render/text.hpp"
 
@@ -58,10 +60,6 @@ constexpr double kLinePitch = 1.6;
 constexpr double kCharWidth = 1.0;
 constexpr double kArrowColumn = 3.0;
 constexpr double kDescent = 0.4;
-// The text height is at most this fraction of the pattern's extent.
-constexpr double kMaxTextRel = 1.0 / 40.0;
-// The origin marker's radius is the pattern's extent divided by this.
-constexpr double kMarkerParts = 80.0;
 
 // What the drawing covers: the outline, the mapped nodes and the start, and its extent (at
 // least one thread spacing).
@@ -126,18 +124,33 @@ void add_thread_grid(dxf::Writer& e, const std::vector<OutlineLoop>& loops, cons
   }
 }
 
-// BASEPATH, ORIGIN and SHEAR_WARN.
-void add_markings(dxf::Writer& e, const ExportContext& ctx, double marker) {
-  const DrapeResult& r = ctx.result;
-  const PlySpec& spec = ctx.problem.ply;
+// The base path's ply points, in path order.
+std::vector<Vec2> base_path_points(const DrapeResult& r) {
   std::vector<Vec2> path;
   for (const std::uint32_t k : r.base_path) path.push_back(r.nodes[k].ply);
+  return path;
+}
+
+// BASEPATH, ORIGIN and SHEAR_WARN.
+void add_markings(dxf::Writer& e, const ExportContext& ctx, const std::vector<Vec2>& path,
+                  double marker) {
+  const DrapeResult& r = ctx.result;
+  const PlySpec& spec = ctx.problem.ply;
   e.polyline("BASEPATH", path, false);
   e.dot("ORIGIN", spec.start);
   e.circle("ORIGIN", spec.start, marker);
   for (const auto& c : detail::mapped_cells(r))
     if (c.shear > ctx.options.warn_shear)
       e.polyline("SHEAR_WARN", detail::cell_ply_points(r, c), true);
+}
+
+// What the label block keeps clear of: the base path and the origin marker.
+render::Obstacles marking_obstacles(const std::vector<Vec2>& path, const Vec2& start,
+                                    double marker) {
+  render::Obstacles o;
+  for (std::size_t k = 1; k < path.size(); ++k) o.segments.emplace_back(path[k - 1], path[k]);
+  o.discs.emplace_back(start, marker);
+  return o;
 }
 
 // The label lines: ply, material, angles, spacing, area, shear and the mold.
@@ -166,8 +179,10 @@ std::vector<std::string> label_lines(const ExportContext& ctx) {
 // The label block's size per unit of text height: the arrow's column and the longest line
 // wide, the lines high.
 render::BlockShape label_shape(const std::vector<std::string>& lines) {
+  // Characters as the file writes them (one byte each, a \U+XXXX escape seven): a reader that
+  // shows the escape, or measures it so (ezdxf), still finds the line inside the outline.
   std::size_t chars = 0;
-  for (const auto& l : lines) chars = std::max(chars, render::utf8_length(l));
+  for (const auto& l : lines) chars = std::max(chars, dxf::dxf_text(l).size());
   return {kArrowColumn + kCharWidth * static_cast<double>(chars),
           1.0 + kLinePitch * static_cast<double>(lines.size() - 1) + kDescent};
 }
@@ -201,11 +216,14 @@ std::string build_dxf(const ExportContext& ctx) {
   add_outline(e, loops);
   if (ctx.options.dxf_threads && !loops.empty())
     add_thread_grid(e, loops, ctx.problem.ply, ext.box);
-  add_markings(e, ctx, ext.extent / kMarkerParts);
+  const std::vector<Vec2> path = base_path_points(ctx.result);
+  const double marker = render::kMarkerRel * ext.extent;
+  add_markings(e, ctx, path, marker);
   const std::vector<std::string> lines = label_lines(ctx);
   const render::BlockShape shape = label_shape(lines);
   const render::BlockPlace place =
-      render::place_block(loops, shape, ext.extent, kMaxTextRel * ext.extent, ext.box.lo);
+      render::place_block(loops, shape, ext.extent, render::label_text_height(ext.extent),
+                          ext.box.lo, marking_obstacles(path, ctx.problem.ply.start, marker));
   add_labels(e, lines, shape, place);
   ext.box.add(place.top_left);
   ext.box.add(place.top_left + Vec2(shape.width_at(place.h), -shape.height_at(place.h)));

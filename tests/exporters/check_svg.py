@@ -11,7 +11,8 @@ them against DIR/report.json:
   coordinates are written with); the scale bar (id "scale-bar") is a line as long as the
   length its label names;
 - titles and subtitles (the group id "title") are wrapped, not cut: every line fits the
-  picture's width (at 0.62 em a character, wider than DejaVu Sans's average), and the
+  picture's width (at 0.62 em a character, wider than DejaVu Sans's average; in px of the
+  title block's own scale), and the
   subtitle lines put together hold the whole subtitle (the mold's file name, never its folder, and the shear summary);
 - shear.svg has one unit, degrees: no pi in any text, the gamma axis labelled in degrees;
 - view.svg is small: well-formed and self-contained, at most VIEW_PX wide and high, no text,
@@ -95,6 +96,24 @@ def check_view(d):
     return out
 
 
+def title_scale(root):
+    """The user units per px of the title block: the scale of the transforms around the group
+    id "title" (flat.svg draws its annotation scaled to the drawing; the pixel pictures at 1)."""
+
+    def walk(el, scale):
+        for kind, args in re.findall(r"(scale)\(([^)]*)\)", el.get("transform", "")):
+            scale *= float(re.split(r"[ ,]+", args.strip())[0])
+        if el.get("id") == "title":
+            return scale
+        for c in el:
+            found = walk(c, scale)
+            if found is not None:
+                return found
+        return None
+
+    return walk(root, 1.0) or 1.0
+
+
 def main():
     d = sys.argv[1]
     with open(os.path.join(d, "report.json"), encoding="utf-8") as f:
@@ -122,9 +141,7 @@ def main():
         vb = [float(x) for x in root.get("viewBox").split()]
         # Wrapped, not cut: every title and subtitle line fits the width (in px of annotation).
         lines = text_lines(root)
-        px_per_unit = 1.0
-        if name == "flat.svg":
-            px_per_unit = 96.0 / 25.4
+        px_per_unit = 1.0 / title_scale(root)
         width_px = vb[2] * px_per_unit
         subtitle = []
         for cls, t, in_title in lines:

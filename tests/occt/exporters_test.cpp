@@ -547,6 +547,78 @@ TEST_CASE("exporters: a box lies inside an outline when no edge meets it") {
   CHECK_FALSE(box_inside_outline(loops, {11, 1}, {12, 2}));        // outside
 }
 
+TEST_CASE("exporters: a label's obstacles: distances to a line, a disc and a box") {
+  exporters::render::Obstacles o;
+  CHECK(std::isinf(o.distance({0, 0})));
+  CHECK_FALSE(o.meet({0, 0}, {1, 1}));
+  o.segments.push_back({{0, 0}, {10, 0}});
+  o.discs.push_back({{20, 0}, 2});
+  o.boxes.push_back({{0, 10}, {4, 12}});
+  CHECK(std::abs(o.distance({5, 3}) - 3.0) <= 1e-12);   // above the line
+  CHECK(std::abs(o.distance({20, 5}) - 3.0) <= 1e-12);  // 5 from the disc's centre
+  CHECK(std::abs(o.distance({2, 9}) - 1.0) <= 1e-12);   // below the box
+  CHECK(o.distance({2, 11}) < 0);                       // in the box
+  CHECK(o.meet({4, -1}, {6, 1}));                       // across the line
+  CHECK(o.meet({2, 1}, {3, 10.5}));                     // into the box
+  CHECK(o.meet({21, 1}, {30, 30}));                     // the disc's edge (1.41 from (20, 0))
+  CHECK_FALSE(o.meet({21.5, 1.5}, {30, 30}));           // 2.12 from its centre
+  CHECK_FALSE(o.meet({5, 1}, {6, 9}));                  // between the line and the box
+}
+
+TEST_CASE("exporters: the label block keeps clear of a line across the outline") {
+  using exporters::render::place_block;
+  // A 10 x 10 square cut by a line y = 5 (the base path): a block 4 h wide and h high with
+  // half a text height of gap fits in either half, at most h = 2.5 (its width), less by a grid
+  // cell's offset from the middle (a grid of 32 cells along the side: 10 / 32).
+  const auto loops = loops_of({{{0, 0}, {10, 0}, {10, 10}, {0, 10}}});
+  exporters::render::Obstacles path;
+  path.segments.push_back({{0, 5}, {10, 5}});
+  const exporters::render::BlockShape shape{4.0, 1.0};
+  const auto place = place_block(loops, shape, 10.0, 100.0, {0, 0}, path);
+  const double cell = 10.0 / exporters::render::kGridCells;
+  CHECK(place.h <= 2.5);
+  CHECK(place.h >= 2.5 * (1 - cell / 5.0) - 1e-9);
+  const Vec2 lo(place.top_left.x(), place.top_left.y() - shape.height_at(place.h));
+  const Vec2 hi(place.top_left.x() + shape.width_at(place.h), place.top_left.y());
+  CHECK(exporters::render::box_inside_outline(loops, lo, hi));
+  const Vec2 gap = Vec2::Constant(exporters::render::kObstacleGap * place.h);
+  CHECK_FALSE(path.meet(lo - gap, hi + gap));
+  // Without the line, the block is centred in the square (its pole, to kPolePrecisionRel of the
+  // square's side), 4 h <= 10.
+  const auto free = place_block(loops, shape, 10.0, 100.0, {0, 0});
+  CHECK(free.h <= 2.5);
+  CHECK(free.h >= 2.5 - 10.0 * exporters::render::kPolePrecisionRel);
+}
+
+TEST_CASE(
+    "exporters: a label goes to its preferred place, else beside its anchor where it is free") {
+  using exporters::render::place_label;
+  exporters::render::Obstacles none;
+  const Vec2 anchor(0, 0), size(4, 1), preferred(1, 1), right(1, 0);
+  CHECK(place_label(anchor, size, preferred, right, 0.5, none) == preferred);
+  // Something at the preferred place: the label moves to the right of the anchor first (the
+  // direction given), half a unit away, centred on it vertically.
+  exporters::render::Obstacles taken;
+  taken.boxes.push_back({{0.5, 0.6}, {6, 3}});
+  const Vec2 at = place_label(anchor, size, preferred, right, 0.5, taken);
+  CHECK_FALSE(taken.meet(at, at + size));
+  CHECK(at == Vec2(0.5, -0.5));
+  // A line through the anchor along x: no place across it; the first free side above or below.
+  exporters::render::Obstacles line;
+  line.segments.push_back({{-100, 0}, {100, 0}});
+  const Vec2 off = place_label(anchor, size, {-2, -0.5}, right, 0.5, line);
+  CHECK_FALSE(line.meet(off, off + size));
+  // With something to avoid as well (the drawing), a free place clear of both if there is one
+  // within reach; else clear of the obstacles alone.
+  exporters::render::Obstacles drawing;
+  drawing.boxes.push_back({{-1, -1}, {1, 1}});
+  const Vec2 both = place_label(anchor, size, preferred, right, 0.5, none, &drawing);
+  CHECK_FALSE(drawing.meet(both, both + size));
+  exporters::render::Obstacles everywhere;
+  everywhere.boxes.push_back({{-1000, -1000}, {1000, 1000}});
+  CHECK(place_label(anchor, size, preferred, right, 0.5, none, &everywhere) == preferred);
+}
+
 TEST_CASE("exporters: the writers' mapped cells are the kernel's (their area is flat_area)") {
   for (const auto& c : cases()) {
     INFO(c->name);

@@ -2,6 +2,7 @@
 // viewer; Z up on the page), painter's algorithm: every cell, segment and node sorted by depth.
 #include <plyfit/kernel/mold.hpp>
 
+#include "render/label_placement.hpp"
 #include "render/text.hpp"
 #include "svg/draw.hpp"
 #include "svg/pictures.hpp"
@@ -16,44 +17,64 @@ namespace {
 
 using render::fixed_text;
 
-const std::string kThreadStyle = "stroke=\"#262626\" stroke-width=\"0.7\"";
-const std::string kPathStyle = "stroke=\"#1f5fd6\" stroke-width=\"2.2\"";
-const std::string kBoundaryStyle =
-    "stroke=\"#000000\" stroke-width=\"1.6\" stroke-linecap=\"round\"";
 // Each free boundary segment is drawn in this many pieces.
 constexpr int kBoundaryPieces = 48;
+// Strokes (px): threads, the base path, the face boundary; the start marker's radius and
+// stroke, a label's gap from what it avoids.
+constexpr double kThreadPx = 0.7, kPathPx = 2.2, kMarkerPx = 5.0, kMarkerStrokePx = 2.2,
+                 kLabelGapPx = 6.0;
+const std::string kBoundaryStyle =
+    "stroke=\"#000000\" stroke-width=\"1.6\" stroke-linecap=\"round\"";
+// The start label's preferred place: P's baseline from the start (px).
+const Vec2 kStartLabelAt(8.0, -8.0);
+
+std::string stroke_style(const std::string& colour, double width) {
+  return "stroke=\"" + colour + "\" stroke-width=\"" + px(width) + "\"";
+}
 
 // The links, the base path and the free boundary as segments; the nodes over them. Segments
 // and nodes are drawn over the cells they border (a depth bias of half the spacing `d`).
 void add_net(std::vector<Prim>& prims, const DrapeResult& r, const std::vector<Segment3>& boundary,
              double d, const View& v) {
   const double bias = 0.5 * d;
+  const render::DrawingScale sc = render::drawing_scale(kPlotSize, d * v.frame.scale, 1.0);
+  const std::string thread_style = stroke_style("#262626", sc.net_stroke(kThreadPx));
+  const std::string path_style = stroke_style("#1f5fd6", sc.net_stroke(kPathPx));
   auto segment = [&](const Vec3& a, const Vec3& b, const std::string& style) {
     return Prim{v.cam.depth(0.5 * (a + b)) + bias, line(v.map(a), v.map(b), style)};
   };
   for (const DrapeLink& l : r.links())
     prims.push_back(segment(r.nodes[l.a].point, r.nodes[l.b].point,
-                            l.kind == LinkKind::kBase ? kPathStyle : kThreadStyle));
+                            l.kind == LinkKind::kBase ? path_style : thread_style));
   // The base path's own thread links are drawn as the path too.
   for (std::size_t k = 1; k < r.base_path.size(); ++k)
     prims.push_back(
-        segment(r.nodes[r.base_path[k - 1]].point, r.nodes[r.base_path[k]].point, kPathStyle));
+        segment(r.nodes[r.base_path[k - 1]].point, r.nodes[r.base_path[k]].point, path_style));
   for (const auto& [a, b] : boundary) prims.push_back(segment(a, b, kBoundaryStyle));
-  const double node_r = std::clamp(0.06 * d * v.frame.scale, 0.5, 2.0);
+  const double node_r = sc.sized(0.06, 0.5, 2.0, render::kNodeMarkMaxRel);
+  const double path_r = std::min(std::max(1.6, 2 * node_r), render::kPathMarkMaxRel * sc.cell);
   for (const DrapeNode& n : r.nodes)
     if (n.mapped() && !n.id.is_path_only())
       prims.push_back({v.cam.depth(n.point) + 1.2 * bias, circle(v.map(n.point), node_r, "node")});
   for (const std::uint32_t k : r.base_path)
     prims.push_back({v.cam.depth(r.nodes[k].point) + 1.3 * bias,
-                     circle(v.map(r.nodes[k].point), std::max(1.6, 2 * node_r), "path-node",
-                            " fill=\"#1f5fd6\"")});
+                     circle(v.map(r.nodes[k].point), path_r, "path-node", " fill=\"#1f5fd6\"")});
 }
 
-// The start point P_s, over the scene.
-std::string start_marker(const Vec2& s) {
-  return circle(s, 5, "", " fill=\"#ffffff\" stroke=\"#1f5fd6\" stroke-width=\"2.2\"") +
-         text(s.x() + 8, s.y() - 8, "P", "title halo", " fill=\"#1f5fd6\"") +
-         text(s.x() + 19, s.y() - 4, "s", "sub halo", " fill=\"#1f5fd6\"");
+// The start point P_s over the scene, its label clear of the base path and the marker.
+std::string start_marker(const DrapeResult& r, const View& v) {
+  const Vec2 s = v.map(r.start_point);
+  render::Obstacles avoid;
+  for (std::size_t k = 1; k < r.base_path.size(); ++k)
+    avoid.segments.emplace_back(v.map(r.nodes[r.base_path[k - 1]].point),
+                                v.map(r.nodes[r.base_path[k]].point));
+  avoid.discs.emplace_back(s, kMarkerPx + kMarkerStrokePx);
+  const Vec2 preferred = s + kStartLabelAt - Vec2(0.0, kAscentEm * kTitleEm);
+  const Vec2 at = render::place_label(s, kStartLabelSize, preferred, Vec2(1.0, -1.0).normalized(),
+                                      kLabelGapPx, avoid);
+  return circle(s, kMarkerPx, "",
+                " id=\"origin\" fill=\"#ffffff\" " + stroke_style("#1f5fd6", kMarkerStrokePx)) +
+         "<g class=\"label\">\n" + start_label(at, "#1f5fd6") + "</g>\n";
 }
 
 // The legend and, below it, the axis triad of the view.
@@ -101,7 +122,7 @@ std::string drape_svg(const ExportContext& ctx) {
   std::string o = svg_open(v.frame.canvas_width(), v.frame.canvas_height(), "plyfit 3D fitting");
   o += tb.svg;
   o += "<g id=\"scene\">\n" + draw_sorted(prims) + "</g>\n";
-  o += start_marker(v.map(r.start_point));
+  o += start_marker(r, v);
   o += drape_legend(scale, ctx.options.warn_shear, v);
   o += "</svg>\n";
   return o;

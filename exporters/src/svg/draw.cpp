@@ -13,10 +13,15 @@ using render::xml_escape;
 namespace {
 
 // The title block (px): baselines of the first title line and the first subtitle line below
-// the last title line, line pitches, the depth below the last line, font sizes, and the
-// widest average character of the DejaVu Sans/Verdana text (in em) used to wrap lines.
+// the last title line, line pitches, the depth below the last line.
 constexpr double kTitleBaseline = 28.0, kSubBelowTitle = 19.0, kTitlePitch = 21.0, kSubPitch = 16.0,
-                 kTitleDepth = 9.0, kTitleEm = 17.0, kSubEm = 12.0, kCharEm = 0.62;
+                 kTitleDepth = 9.0;
+// Decimals px() writes: the default, and at most (a double's digits below the point).
+constexpr int kDefaultDecimals = 2, kMaxDecimals = 12;
+thread_local int written_decimals = kDefaultDecimals;
+
+// The start label's subscript: its offset (px) from the "P" and its baseline's drop.
+constexpr double kSubscriptX = 11.0, kSubscriptDrop = 4.0;
 // The legend's colour bar (px) and its gradient's stops.
 constexpr double kBarWidth = 22.0, kBarHeight = 220.0;
 constexpr int kGradientStops = 16;
@@ -57,8 +62,33 @@ std::string colour_bar(double x, double y0, const render::ShearScale& scale, dou
 
 }  // namespace
 
+Vec2 text_size(const std::string& s, double em) {
+  return {kCharEm * em * static_cast<double>(render::utf8_length(s)),
+          (kAscentEm + kDescentEm) * em};
+}
+
+const Vec2 kStartLabelSize(kSubscriptX + kCharEm * kSubEm,
+                           kAscentEm* kTitleEm + kSubscriptDrop + kDescentEm * kSubEm);
+
+std::string start_label(const Vec2& top_left, const std::string& colour) {
+  const double baseline = top_left.y() + kAscentEm * kTitleEm;
+  const std::string fill = " fill=\"" + colour + "\"";
+  return text(top_left.x(), baseline, "P", "title halo", fill) +
+         text(top_left.x() + kSubscriptX, baseline + kSubscriptDrop, "s", "sub halo", fill);
+}
+
 std::string px(double v) {
-  return fixed_text(v, 2);
+  return fixed_text(v, written_decimals);
+}
+
+WrittenDecimals::WrittenDecimals(double resolution) : saved_(written_decimals) {
+  if (resolution > 0 && std::isfinite(resolution))
+    written_decimals = std::clamp(static_cast<int>(std::ceil(-std::log10(resolution))),
+                                  kDefaultDecimals, kMaxDecimals);
+}
+
+WrittenDecimals::~WrittenDecimals() {
+  written_decimals = saved_;
 }
 
 std::string pt(const Vec2& p) {
@@ -141,7 +171,10 @@ std::string svg_open(double w, double h, const std::string& title, bool mm) {
   o += "<title>" + xml_escape(title) + "</title>\n";
   o += "<style>\n"
        "text{font-family:DejaVu Sans,Verdana,Arial,sans-serif;fill:#222}\n"
-       ".title{font-size:17px;font-weight:bold}.sub{font-size:12px}.small{font-size:11px}\n"
+       ".title{font-size:" +
+       fixed_text(kTitleEm, 0) + "px;font-weight:bold}.sub{font-size:" + fixed_text(kSubEm, 0) +
+       "px}.small{font-size:" + fixed_text(kSmallEm, 0) +
+       "px}\n"
        ".node{fill:#1a1a1a}.path-node{fill:#000}\n"
        ".halo{paint-order:stroke;stroke:#ffffff;stroke-width:3px;stroke-linejoin:round}\n"
        "</style>\n";
@@ -199,6 +232,12 @@ TitleBlock title_block(const std::string& title, const std::string& sub, double 
 }
 
 TitleBlock title_over(Frame& f, const std::string& title, const std::string& sub) {
+  double longest = 0.0;  // px: a word is never cut
+  for (const auto& [s, em] : {std::pair{title, kTitleEm}, {sub, kSubEm}})
+    for (const auto& w : render::wrap_words(s, 1))
+      longest = std::max(longest, text_size(w, em).x());
+  const double room = f.canvas_width() / f.unit - 2 * kMargin;
+  if (longest > room) f.min_width = f.width + (longest - room) * f.unit;
   const TitleBlock tb = title_block(title, sub, f.canvas_width() / f.unit - 2 * kMargin);
   f.top = tb.height * f.unit + kMargin * f.unit * 0.5;
   return tb;

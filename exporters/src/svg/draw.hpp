@@ -6,6 +6,7 @@
 
 #include "net_util.hpp"
 #include "render/colour_scale.hpp"
+#include "render/drawing_scale.hpp"
 
 #include <string>
 #include <utility>
@@ -15,13 +16,36 @@ namespace plyfit::exporters::svg {
 
 using detail::Box2;
 
-constexpr double kPlotSize = 760.0;  // px: the longer side of the drawing
-constexpr double kMargin = 40.0;     // px around the drawing
+constexpr double kPlotSize = render::kViewPx;  // px: the longer side of the drawing
+constexpr double kMargin = 40.0;               // px around the drawing
 constexpr double kLegendWidth = 190.0;
 constexpr double kLegendHeight = 520.0;
+/// Font sizes (px) of the text classes title, sub and small; a text's box is estimated with
+/// characters kCharEm wide (DejaVu Sans/Verdana's widest average), kAscentEm above the
+/// baseline and kDescentEm below.
+constexpr double kTitleEm = 17.0, kSubEm = 12.0, kSmallEm = 11.0;
+constexpr double kCharEm = 0.62, kAscentEm = 0.8, kDescentEm = 0.25;
+/// The box (px) of `s` at font size `em`: width, height.
+Vec2 text_size(const std::string& s, double em);
+/// The start's label, "P" with a subscript "s", its box's top-left corner at `top_left` (px),
+/// in `colour`; kStartLabelSize is its box (px).
+std::string start_label(const Vec2& top_left, const std::string& colour);
+extern const Vec2 kStartLabelSize;
 
-/// A coordinate or length: two decimals.
+/// A coordinate or length: two decimals, or as many as a WrittenDecimals in scope says.
 std::string px(double v);
+/// While it lives, px() writes enough decimals to resolve `resolution` (at least two): a
+/// drawing of small cells in mm keeps them exact to the digits it needs (one per thread).
+class WrittenDecimals {
+ public:
+  explicit WrittenDecimals(double resolution);
+  ~WrittenDecimals();
+  WrittenDecimals(const WrittenDecimals&) = delete;
+  WrittenDecimals& operator=(const WrittenDecimals&) = delete;
+
+ private:
+  int saved_;
+};
 /// "x,y".
 std::string pt(const Vec2& p);
 /// Points for a polygon's points attribute.
@@ -58,11 +82,15 @@ struct Frame {
   double left = kMargin, top = kMargin;
   double width = 1.0, height = 1.0;  // plot area, user units
   double bottom = 0.0;               // room below the plot area (the scale bar)
+  double min_width = 0.0;            // the plot area and the room beside it, at least
+
   static Frame fit(Box2 box, double fixed_scale = 0.0, double unit = 1.0);
   Vec2 map(const Vec2& p) const {
     return {left + (p.x() - lo.x()) * scale, top + (hi.y() - p.y()) * scale};
   }
-  double canvas_width() const { return left + width + (kMargin + kLegendWidth) * unit; }
+  double canvas_width() const {
+    return left + std::max(width, min_width) + (kMargin + kLegendWidth) * unit;
+  }
   double canvas_height() const {
     return std::max(top + height + bottom + kMargin * unit, top + (kLegendHeight + kMargin) * unit);
   }
@@ -77,7 +105,8 @@ struct TitleBlock {
   double height = 0.0;
 };
 TitleBlock title_block(const std::string& title, const std::string& sub, double width);
-/// The title block across the picture of `f`, whose plot area moves below it.
+/// The title block across the picture of `f`, whose plot area moves below it; the picture
+/// widens to its longest word.
 TitleBlock title_over(Frame& f, const std::string& title, const std::string& sub);
 
 /// The subtitle's parts: the ply, material, mold and faces; the shear and thread angles.

@@ -21,6 +21,7 @@ using detail::kRadToDeg;
 constexpr double kObliqueAngle = 40.0;  // degrees: the receding y axis on the page
 constexpr double kObliqueScale = 0.75;  // the receding y axis is foreshortened to this
 constexpr double kHeightRel = 0.45;     // height of pi relative to the plane development's size
+constexpr double kCellEdgePx = 0.35;    // the cells' edges (px)
 
 // The oblique projection of (x, y, gamma) onto the page (y up), with its depth along the
 // projector (ca, -1, sa), and the frame it is drawn in.
@@ -118,6 +119,10 @@ std::vector<Prim> height_field(const ExportContext& ctx, const render::ShearScal
     if (with_angle(n))
       for (int a = -1; a <= 0; ++a)
         for (int b = -1; b <= 0; ++b) cells.insert({n.id.j + b, n.id.i + a});
+  // The cells' edges (the threads) and the node marks within the cell (px on the page).
+  const double d = std::min(ctx.problem.ply.d_weft, ctx.problem.ply.d_warp);
+  const render::DrawingScale sc = render::drawing_scale(kPlotSize, d * v.frame.scale, 1.0);
+  const std::string edge = px(sc.net_stroke(kCellEdgePx));
   std::vector<Prim> prims;
   for (const auto& [j, i] : cells) {
     std::vector<const DrapeNode*> ring;
@@ -133,14 +138,13 @@ std::vector<Prim> height_field(const ExportContext& ctx, const render::ShearScal
       shear = std::max(shear, detail::node_shear(*n));
       dsum += v.depth(n->ply, n->thread_angle);
     }
-    prims.push_back({dsum / static_cast<double>(ring.size()),
-                     polygon(pts, "cell",
-                             " fill=\"" + scale.colour(shear).hex() +
-                                 "\" stroke=\"#1a1a1a\" stroke-width=\"0.35\" "
-                                 "stroke-linejoin=\"round\"")});
+    prims.push_back(
+        {dsum / static_cast<double>(ring.size()),
+         polygon(pts, "cell",
+                 " fill=\"" + scale.colour(shear).hex() + "\" stroke=\"#1a1a1a\" stroke-width=\"" +
+                     edge + "\" stroke-linejoin=\"round\"")});
   }
-  const double d = std::min(ctx.problem.ply.d_weft, ctx.problem.ply.d_warp);
-  const double node_r = std::clamp(0.06 * d * v.frame.scale, 0.5, 1.6);
+  const double node_r = sc.sized(0.06, 0.5, 1.6, render::kNodeMarkMaxRel);
   for (const DrapeNode& n : r.nodes)
     if (with_angle(n))
       prims.push_back({v.depth(n.ply, n.thread_angle) + 0.5 * d,
