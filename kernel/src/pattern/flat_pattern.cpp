@@ -27,7 +27,8 @@ OutlineBuilder::OutlineBuilder(const DrapeSurface& s, const DrapeResult& r)
       ply_(*r.ply),
       boundary_(s.boundary()),
       index_(s, boundary_),
-      drape_vertices_(r.nodes.size(), -1) {
+      drape_vertices_(r.nodes.size(), -1),
+      cells_(touched_cells(r, 1)) {
   st_.spacing = ply_.d();
   st_.gamma_min = 0.0;
   st_.tol.extension_steps = kVirtualExtensionSteps;
@@ -122,8 +123,8 @@ int OutlineBuilder::surface_vertex(const SurfaceLocation& at, const Vec2& p2, in
 void OutlineBuilder::add_cells() {
   whole_.at.assign(r_.nodes.size(), 0);  // by the drape index of corner (i, j)
   std::vector<NodeId> ring(4);
-  for_each_touched_cell(
-      r_, [&](std::int32_t i, std::int32_t j) { add_cell(i, j, ring); }, 1);
+  for (const auto [i, j] : cells_) add_cell(i, j, ring);
+  cells_ = {};
   add_whole_cell_edges();
 }
 
@@ -131,11 +132,12 @@ void OutlineBuilder::add_cells() {
 void OutlineBuilder::add_cell(std::int32_t i, std::int32_t j, std::vector<NodeId>& ring) {
   const NodeId corner[4] = {NodeId::regular(i, j), NodeId::regular(i + 1, j),
                             NodeId::regular(i + 1, j + 1), NodeId::regular(i, j + 1)};
-  const DrapeNode* n0 = r_.find(corner[0]);
-  bool mapped = n0 && n0->mapped();
-  for (int k = 1; mapped && k < 4; ++k) {
+  Whole w{i, j, {}};
+  bool mapped = true;
+  for (int k = 0; mapped && k < 4; ++k) {
     const DrapeNode* n = r_.find(corner[k]);
     mapped = n && n->mapped();
+    w.node[k] = mapped ? static_cast<std::int32_t>(n - r_.nodes.data()) : -1;
   }
   // Cells farther than this from the base path's line are never split by it (their parts
   // are the four corners: see visit_mapped_cells).
@@ -147,8 +149,6 @@ void OutlineBuilder::add_cell(std::int32_t i, std::int32_t j, std::vector<NodeId
     for (const auto& part : cell_parts(ply_, i, j)) add_part(part);
     return;
   }
-  Whole w{i, j, {}};
-  for (int k = 0; k < 4; ++k) w.node[k] = r_.index->find(corner[k]);
   if (!cell_clear(w.node)) {
     int v[4];
     for (int k = 0; k < 4; ++k) v[k] = drape_node_vertex(w.node[k]);

@@ -12,6 +12,7 @@
 
 #include "drape/solvers/solvers.hpp"
 #include "pattern/boundary_index.hpp"
+#include "pattern/cells.hpp"
 #include "pattern/pieces.hpp"
 #include "surface/drape_surface.hpp"
 
@@ -235,6 +236,9 @@ class OutlineBuilder {
   SolverSettings st_;
   std::vector<Vertex> verts_;
   std::vector<int> drape_vertices_;  // vertex of each drape node (by index), or -1
+  // The cells within one cell of a mapped node (touched_cells): the virtual corners' and the
+  // outline's, in one order; freed once the cells are added.
+  std::vector<CellIndex> cells_;
   std::unordered_map<std::uint64_t, int> node_vertices_;  // vertex of other nodes (by key)
   std::unordered_map<std::uint64_t, Position> virtual_;
   std::map<std::pair<int, int>, std::vector<int>> crossings_;
