@@ -56,10 +56,6 @@ double loglog_slope(const std::vector<double>& x, const std::vector<double>& y) 
   return sxx > 0 ? sxy / sxx : 0.0;
 }
 
-void print_error(const std::string& what, const Error& e) {
-  std::fprintf(stderr, "plyfit-bench: %s: %s\n", what.c_str(), exporters::describe(e).c_str());
-}
-
 /// A face of the throughput and tolerance tables with its drape problem at spacing d.
 struct ReportFace {
   std::string name;

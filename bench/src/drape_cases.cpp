@@ -14,6 +14,10 @@
 
 namespace plyfit::bench {
 
+void print_error(const std::string& what, const Error& e) {
+  std::fprintf(stderr, "plyfit-bench: %s: %s\n", what.c_str(), exporters::describe(e).c_str());
+}
+
 namespace {
 // Samples per direction when looking for the middle of a face.
 constexpr int kMiddleSamples = 33;

@@ -74,6 +74,9 @@ struct NetErrors {
 NetErrors net_errors(const DrapeResult& r,
                      const std::function<double(const Vec3&, const Vec2&)>& distance = {});
 
+/// Prints "plyfit-bench: WHAT: the error's text" on stderr.
+void print_error(const std::string& what, const Error& e);
+
 /// "complete" or "partial (warnings...)".
 std::string drape_status(const DrapeResult& r);
 

@@ -3,7 +3,9 @@
 #include "pattern/mapped_cells.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <map>
+#include <unordered_set>
 
 namespace plyfit {
 
@@ -80,6 +82,60 @@ std::vector<MappedCell> mapped_cells(const DrapeResult& r) {
     if (a.j != b.j) return a.j < b.j;
     return a.i < b.i;
   });
+  return out;
+}
+
+namespace {
+
+// The cell a mapped node marks: its own (i, j), or for a path-only node the cell it lies on.
+CellIndex cell_of(const DrapeNode& n, double dx, double dy) {
+  if (!n.id.is_path_only()) return {n.id.i, n.id.j};
+  return {static_cast<std::int32_t>(std::floor(n.ply.x() / dx)),
+          static_cast<std::int32_t>(std::floor(n.ply.y() / dy))};
+}
+
+// Cells seen are marked in a byte map over the box of the touched cells when that box holds
+// at most this many cells per mapped node (a byte each: the map is freed on return), else in
+// a hash set (a thin ply along a diagonal).
+constexpr std::int64_t kByteMapCellsPerNode = 16;
+
+}  // namespace
+
+std::vector<CellIndex> touched_cells(const DrapeResult& res, int ring) {
+  std::vector<CellIndex> out;
+  const double dx = res.ply->spec().d_weft, dy = res.ply->spec().d_warp;
+  std::int64_t i0 = INT64_MAX, j0 = INT64_MAX, i1 = INT64_MIN, j1 = INT64_MIN, count = 0;
+  for (const DrapeNode& n : res.nodes) {
+    if (!n.mapped()) continue;
+    const CellIndex c = cell_of(n, dx, dy);
+    i0 = std::min<std::int64_t>(i0, c.i - 1 - ring);
+    i1 = std::max<std::int64_t>(i1, c.i + ring);
+    j0 = std::min<std::int64_t>(j0, c.j - 1 - ring);
+    j1 = std::max<std::int64_t>(j1, c.j + ring);
+    ++count;
+  }
+  if (count == 0) return out;
+  const std::int64_t w = i1 - i0 + 1, h = j1 - j0 + 1;
+  const bool bytes = w * h <= kByteMapCellsPerNode * (count + 16);
+  std::vector<std::uint8_t> seen_map(bytes ? static_cast<std::size_t>(w * h) : 0);
+  std::unordered_set<std::uint64_t> seen_set;
+  out.reserve(static_cast<std::size_t>(count) + static_cast<std::size_t>(2 * (w + h)));
+  for (const DrapeNode& n : res.nodes) {
+    if (!n.mapped()) continue;
+    const CellIndex c = cell_of(n, dx, dy);
+    for (std::int32_t a = -1 - ring; a <= ring; ++a)
+      for (std::int32_t b = -1 - ring; b <= ring; ++b) {
+        const std::int32_t i = c.i + a, j = c.j + b;
+        if (bytes) {
+          std::uint8_t& m = seen_map[static_cast<std::size_t>((j - j0) * w + (i - i0))];
+          if (m) continue;
+          m = 1;
+        } else if (!seen_set.insert(NodeId::regular(i, j).key()).second) {
+          continue;
+        }
+        out.push_back({i, j});
+      }
+  }
   return out;
 }
 

@@ -295,6 +295,28 @@ bool OutlineBuilder::cell_crossed(const int* v) {
   return crossed;
 }
 
+// True when the cell with mapped drape nodes `node[0..3]` as corners is certainly not crossed:
+// cell_crossed()'s quick test on the nodes themselves (no vertex made); false means "make the
+// vertices and ask cell_crossed()". A node's vertex is a pole only near a pole, so the test is
+// the same.
+bool OutlineBuilder::cell_clear(const std::int32_t* node) const {
+  const DrapeNode& c0 = r_.nodes[static_cast<std::size_t>(node[0])];
+  const SurfaceLocation a0 = c0.at();
+  Vec2 lo = a0.uv, hi = a0.uv;
+  for (int k = 0; k < 4; ++k) {
+    const DrapeNode& x = r_.nodes[static_cast<std::size_t>(node[k])];
+    const SurfaceLocation a = x.at();
+    if (!s_.same_chart(a0, a) || near_pole(x.point)) return false;
+    const Vec2 p = a0.uv + s_.delta(a0, a);
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  bool any = false;
+  index_.near(a0.face, lo, hi,
+              [&](const Vec2&, const Vec2&, const BoundaryIndex::Ref&) { any = true; });
+  return !any;
+}
+
 // Sets the boundary segment and parameter of a crossing found by bisection: the nearest
 // segment in its face's parameters.
 void OutlineBuilder::locate_on_boundary(Vertex& x) const {

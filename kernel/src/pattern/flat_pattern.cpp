@@ -27,7 +27,8 @@ OutlineBuilder::OutlineBuilder(const DrapeSurface& s, const DrapeResult& r)
       ply_(*r.ply),
       boundary_(s.boundary()),
       index_(s, boundary_),
-      drape_vertices_(r.nodes.size(), -1) {
+      drape_vertices_(r.nodes.size(), -1),
+      cells_(touched_cells(r, 1)) {
   st_.spacing = ply_.d();
   st_.gamma_min = 0.0;
   st_.tol.extension_steps = kVirtualExtensionSteps;
@@ -84,6 +85,17 @@ int OutlineBuilder::node_vertex(const NodeId& id) {
   return *slot;
 }
 
+// Vertex index of drape node `node` (creating it).
+int OutlineBuilder::drape_node_vertex(std::int32_t node) {
+  const int v = drape_vertices_[static_cast<std::size_t>(node)];
+  return v >= 0 ? v : node_vertex(r_.nodes[static_cast<std::size_t>(node)].id);
+}
+
+// Ply point of drape node `node` (as its vertex would have it).
+Vec2 OutlineBuilder::drape_node_p2(std::int32_t node) const {
+  return ply_.pos(r_.nodes[static_cast<std::size_t>(node)].id);
+}
+
 // A vertex on the surface at `at` (its 3D point evaluated), at ply point p2.
 int OutlineBuilder::surface_vertex(const SurfaceLocation& at, const Vec2& p2, int bloop, int bseg,
                                    double bs, const Vec3* p3) {
@@ -111,8 +123,8 @@ int OutlineBuilder::surface_vertex(const SurfaceLocation& at, const Vec2& p2, in
 void OutlineBuilder::add_cells() {
   whole_.at.assign(r_.nodes.size(), 0);  // by the drape index of corner (i, j)
   std::vector<NodeId> ring(4);
-  for_each_touched_cell(
-      r_, [&](std::int32_t i, std::int32_t j) { add_cell(i, j, ring); }, 1);
+  for (const auto [i, j] : cells_) add_cell(i, j, ring);
+  cells_ = {};
   add_whole_cell_edges();
 }
 
@@ -120,11 +132,12 @@ void OutlineBuilder::add_cells() {
 void OutlineBuilder::add_cell(std::int32_t i, std::int32_t j, std::vector<NodeId>& ring) {
   const NodeId corner[4] = {NodeId::regular(i, j), NodeId::regular(i + 1, j),
                             NodeId::regular(i + 1, j + 1), NodeId::regular(i, j + 1)};
-  const DrapeNode* n0 = r_.find(corner[0]);
-  bool mapped = n0 && n0->mapped();
-  for (int k = 1; mapped && k < 4; ++k) {
+  Whole w{i, j, {}};
+  bool mapped = true;
+  for (int k = 0; mapped && k < 4; ++k) {
     const DrapeNode* n = r_.find(corner[k]);
     mapped = n && n->mapped();
+    w.node[k] = mapped ? static_cast<std::int32_t>(n - r_.nodes.data()) : -1;
   }
   // Cells farther than this from the base path's line are never split by it (their parts
   // are the four corners: see visit_mapped_cells).
@@ -136,20 +149,17 @@ void OutlineBuilder::add_cell(std::int32_t i, std::int32_t j, std::vector<NodeId
     for (const auto& part : cell_parts(ply_, i, j)) add_part(part);
     return;
   }
-  Whole w{i, j, {}};
-  bool in = true;
-  for (int k = 0; k < 4; ++k) {
-    w.v[k] = node_vertex(corner[k]);
-    const Vertex& x = verts_[static_cast<std::size_t>(w.v[k])];
-    in = in && x.in && x.has_uv;
+  if (!cell_clear(w.node)) {
+    int v[4];
+    for (int k = 0; k < 4; ++k) v[k] = drape_node_vertex(w.node[k]);
+    if (cell_crossed(v)) {
+      ring.assign(corner, corner + 4);
+      add_part(ring);
+      return;
+    }
   }
-  if (in && !cell_crossed(w.v)) {
-    whole_.cells.push_back(w);
-    whole_.at[static_cast<std::size_t>(n0 - r_.nodes.data())] = 1;
-    return;
-  }
-  ring.assign(corner, corner + 4);
-  add_part(ring);
+  whole_.cells.push_back(w);
+  whole_.at[static_cast<std::size_t>(w.node[0])] = 1;
 }
 
 // The edges of whole cells towards cells that are not whole go to the union.
@@ -159,7 +169,7 @@ void OutlineBuilder::add_whole_cell_edges() {
     for (int k = 0; k < 4; ++k) {
       const auto nb = r_.index->find(NodeId::regular(w.i + kCellSide[k][0], w.j + kCellSide[k][1]));
       if (nb < 0 || !whole_.at[static_cast<std::size_t>(nb)]) {
-        edges_.push_back({w.v[k], w.v[(k + 1) % 4]});
+        edges_.push_back({drape_node_vertex(w.node[k]), drape_node_vertex(w.node[(k + 1) % 4])});
         edge_owner_.push_back(static_cast<int>(c));
       }
     }

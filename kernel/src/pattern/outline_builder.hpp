@@ -12,6 +12,7 @@
 
 #include "drape/solvers/solvers.hpp"
 #include "pattern/boundary_index.hpp"
+#include "pattern/cells.hpp"
 #include "pattern/pieces.hpp"
 #include "surface/drape_surface.hpp"
 
@@ -60,7 +61,7 @@ class OutlineBuilder {
   };
   /// `outline` is the exact outline (outlines()); with one outer loop it is all laid once
   /// and comes back as it is.
-  LaidOnce laid_once(const std::vector<OutlineLoop>& outline) const;
+  LaidOnce laid_once(const std::vector<OutlineLoop>& outline);
 
  private:
   // A vertex of the outline polygons: a node, an edge crossing or a boundary vertex.
@@ -132,11 +133,12 @@ class OutlineBuilder {
     std::vector<int> entry;
     std::vector<std::vector<int>> path;
   };
-  // Whole cells (inside the face, not crossed): their corner vertices, and a flag per drape
-  // node at corner (i, j) of a whole cell.
+  // Whole cells (inside the face, not crossed): their corners as drape node indices (a
+  // corner becomes an outline vertex only when an edge of the cell goes to the union), and a
+  // flag per drape node at corner (i, j) of a whole cell.
   struct Whole {
     std::int32_t i, j;
-    int v[4];
+    std::int32_t node[4];
   };
   struct WholeCells {
     std::vector<Whole> cells;
@@ -146,6 +148,8 @@ class OutlineBuilder {
   // ---- Vertices (flat_pattern.cpp)
   std::optional<Position> position(const NodeId& id) const;
   int node_vertex(const NodeId& id);
+  int drape_node_vertex(std::int32_t node);
+  Vec2 drape_node_p2(std::int32_t node) const;
   int surface_vertex(const SurfaceLocation& at, const Vec2& p2, int bloop = -1, int bseg = -1,
                      double bs = 0.0, const Vec3* p3 = nullptr);
   void add_cell(std::int32_t i, std::int32_t j, std::vector<NodeId>& ring);
@@ -155,7 +159,7 @@ class OutlineBuilder {
   std::vector<int> whole_cell_at() const;
   std::vector<int> piece_of_polygon() const;
   std::vector<std::vector<int>> pieces_by_area() const;
-  std::vector<std::pair<int, int>> whole_cell_edges(const std::vector<bool>& twice) const;
+  std::vector<std::pair<int, int>> whole_cell_edges(const std::vector<bool>& twice);
   void polygon_corners(int k, std::vector<ClothCorner>& out) const;
 
   // ---- Virtual corners (virtual_corners.cpp)
@@ -195,6 +199,7 @@ class OutlineBuilder {
                                         const Vec2& qu) const;
   bool bent(const Vertex& P, const Vertex& Q, const Vec2& pu, const Vec2& qu) const;
   bool cell_crossed(const int* v);
+  bool cell_clear(const std::int32_t* node) const;
   void locate_on_boundary(Vertex& x) const;
 
   // ---- Clipping of cell parts (clipping.cpp)
@@ -231,6 +236,9 @@ class OutlineBuilder {
   SolverSettings st_;
   std::vector<Vertex> verts_;
   std::vector<int> drape_vertices_;  // vertex of each drape node (by index), or -1
+  // The cells within one cell of a mapped node (touched_cells): the virtual corners' and the
+  // outline's, in one order; freed once the cells are added.
+  std::vector<CellIndex> cells_;
   std::unordered_map<std::uint64_t, int> node_vertices_;  // vertex of other nodes (by key)
   std::unordered_map<std::uint64_t, Position> virtual_;
   std::map<std::pair<int, int>, std::vector<int>> crossings_;

@@ -229,7 +229,9 @@ std::vector<std::vector<int>> OutlineBuilder::pieces_by_area() const {
     }
     pieces[it->second].push_back(static_cast<int>(k));
     area[it->second] += k < ne ? ring_area(exact_[k].data(), exact_[k].size(), p2)
-                               : ring_area(whole_.cells[k - ne].v, 4, p2);
+                               : ring_area(whole_.cells[k - ne].node, 4, [this](std::int32_t node) {
+                                   return drape_node_p2(node);
+                                 });
   }
   std::vector<std::size_t> order(pieces.size());
   std::iota(order.begin(), order.end(), 0);
@@ -251,14 +253,14 @@ void OutlineBuilder::polygon_corners(int k, std::vector<ClothCorner>& out) const
   if (static_cast<std::size_t>(k) < ne) {
     for (int v : exact_[static_cast<std::size_t>(k)]) push(v);
   } else {
-    for (int v : whole_.cells[static_cast<std::size_t>(k) - ne].v) push(v);
+    for (std::int32_t node : whole_.cells[static_cast<std::size_t>(k) - ne].node)
+      out.push_back({r_.nodes[static_cast<std::size_t>(node)].point, drape_node_p2(node), true});
   }
 }
 
 // The edges of the whole cells not laid twice towards cells that are not whole or are laid
 // twice (cloth polygon k is laid twice when twice[k]; the whole cells follow exact_).
-std::vector<std::pair<int, int>> OutlineBuilder::whole_cell_edges(
-    const std::vector<bool>& twice) const {
+std::vector<std::pair<int, int>> OutlineBuilder::whole_cell_edges(const std::vector<bool>& twice) {
   const std::size_t ne = exact_.size();
   std::vector<std::pair<int, int>> out;
   for (std::size_t e = 0; e < edges_.size(); ++e)
@@ -271,13 +273,13 @@ std::vector<std::pair<int, int>> OutlineBuilder::whole_cell_edges(
       const auto nb = r_.index->find(NodeId::regular(w.i + kCellSide[k][0], w.j + kCellSide[k][1]));
       if (nb >= 0 && whole_at[static_cast<std::size_t>(nb)] >= 0 &&
           twice[ne + static_cast<std::size_t>(whole_at[static_cast<std::size_t>(nb)])])
-        out.push_back({w.v[k], w.v[(k + 1) % 4]});
+        out.push_back({drape_node_vertex(w.node[k]), drape_node_vertex(w.node[(k + 1) % 4])});
     }
   }
   return out;
 }
 
-OutlineBuilder::LaidOnce OutlineBuilder::laid_once(const std::vector<OutlineLoop>& outline) const {
+OutlineBuilder::LaidOnce OutlineBuilder::laid_once(const std::vector<OutlineLoop>& outline) {
   LaidOnce out;
   out.loops = outline;
   if (std::count_if(outline.begin(), outline.end(), [](const auto& l) { return !l.hole; }) < 2)

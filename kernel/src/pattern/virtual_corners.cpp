@@ -16,14 +16,10 @@ namespace plyfit::detail {
 void OutlineBuilder::solve_virtual_corners() {
   std::vector<NodeId> todo;
   std::unordered_map<std::uint64_t, std::size_t> slot;  // todo index by key
-  for_each_touched_cell(
-      r_,
-      [&](std::int32_t i, std::int32_t j) {
-        for (const NodeId& c : {NodeId::regular(i, j), NodeId::regular(i + 1, j),
-                                NodeId::regular(i + 1, j + 1), NodeId::regular(i, j + 1)})
-          if (!position(c) && slot.emplace(c.key(), todo.size()).second) todo.push_back(c);
-      },
-      1);
+  for (const auto [i, j] : cells_)
+    for (const NodeId& c : {NodeId::regular(i, j), NodeId::regular(i + 1, j),
+                            NodeId::regular(i + 1, j + 1), NodeId::regular(i, j + 1)})
+      if (!position(c) && slot.emplace(c.key(), todo.size()).second) todo.push_back(c);
   // Work lists, so that every node is tried again only when a neighbour gains a position:
   // `queue` for two spheres; `retry` (ordered: deterministic) for a continuation along any
   // segment. Whether a node continues along the drape's own segments depends on the drape

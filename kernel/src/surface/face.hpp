@@ -62,9 +62,15 @@ class Face final : public DrapeSurface {
   Vec2 delta(const Vec2& from, const Vec2& to) const {
     Vec2 d = to - from;
     const auto& dom = domain();
-    if (closed_u_) d.x() -= dom.width_u() * std::round(d.x() / dom.width_u());
-    if (closed_v_) d.y() -= dom.width_v() * std::round(d.y() / dom.width_v());
+    if (closed_u_) d.x() = shortest(d.x(), dom.width_u());
+    if (closed_v_) d.y() = shortest(d.y(), dom.width_v());
     return d;
+  }
+  /// x less the whole periods P nearest to it. Most steps are shorter than half a period:
+  /// std::round (a call into libm) only when the quotient says otherwise; the same result.
+  static double shortest(double x, double P) {
+    const double q = x / P;
+    return std::abs(q) < 0.5 ? x : x - P * std::round(q);
   }
   /// True when uv (after wrapping) lies on the face: in the domain and inside the trims.
   bool contains(const Vec2& uv) const;

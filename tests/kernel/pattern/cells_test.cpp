@@ -53,7 +53,7 @@ double box_cells_per_node(const DrapeResult& r) {
 
 }  // namespace
 
-TEST_CASE("cells: for_each_touched_cell visits every cell near a mapped node once, in node order") {
+TEST_CASE("cells: touched_cells lists every cell near a mapped node once, in node order") {
   // A square plate (the touched cells fill their box: a bitmap) and a 1000 x 2 mm strip at
   // 45 degrees to the threads (a thin diagonal band of cells in a box hundreds of times
   // larger than the node count: a hash set). Both ways must give the definition.
@@ -75,16 +75,11 @@ TEST_CASE("cells: for_each_touched_cell visits every cell near a mapped node onc
                                    Vec3(0, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)}));
     REQUIRE(r.ok());
     REQUIRE(r->metrics.nodes.mapped > 100);
-    // The hash set is used beyond 64 cells of the box per node.
-    CHECK((box_cells_per_node(*r) > 64) == c.sparse);
+    // The hash set is used beyond 16 cells of the box per node.
+    CHECK((box_cells_per_node(*r) > 16) == c.sparse);
     for (int ring : {0, 1}) {
       std::vector<std::pair<int, int>> got;
-      for_each_touched_cell(
-          *r,
-          [&](std::int32_t i, std::int32_t j) {
-            got.push_back({i, j});
-          },
-          ring);
+      for (const auto [i, j] : touched_cells(*r, ring)) got.push_back({i, j});
       CHECK(got == touched_reference(*r, ring));
     }
   }
