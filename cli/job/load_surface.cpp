@@ -45,19 +45,23 @@ Result<MoldSurface> surface_from_shell(const DrapeJob& job, ShellData data,
   return shell;
 }
 
+// No face of the mold found under point p.
+Error no_face_at(const Vec3& p) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%g, %g, %g", p.x(), p.y(), p.z());
+  return Error{ErrorCode::kNoFaceAtPoint, "", {std::string(buf)}};
+}
+
 // --faces connected: the faces of `data` reached from the face nearest the job's point (faces-at,
 // else the seed) across shared edges no sharper than max-crease, in the shell's order.
 Result<ShellData> connected_part(const DrapeJob& job, ShellData data) {
+  if (!job.faces_at && !job.seed) return Error{ErrorCode::kConnectedNeedsPoint, "faces"};
   const ShellData all = data;
   auto shell = MoldSurface::from_shell(std::move(data), job.drape.tol);
   if (!shell) return Error(shell.error()).in(job.mold);
   const Vec3 p = job.faces_at ? *job.faces_at : *job.seed;
   const Projection at = shell->project(p);
-  if (!at.ok) {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "%g, %g, %g", p.x(), p.y(), p.z());
-    return Error{ErrorCode::kNoFaceAtPoint, job.faces_at ? "faces-at" : "seed", {std::string(buf)}};
-  }
+  if (!at.ok) return no_face_at(p).in(job.faces_at ? "faces-at" : "seed");
   std::vector<std::int32_t> faces =
       connected_faces(*shell, at.at.face, job.max_crease_deg * kDegToRad);
   std::sort(faces.begin(), faces.end());
@@ -120,11 +124,7 @@ Result<int> face_at(importers::MoldFile& file, const Vec3& p, const Tolerances& 
       best_face = index;
     }
   }
-  if (best_face < 0) {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "%g, %g, %g", p.x(), p.y(), p.z());
-    return Error{ErrorCode::kNoFaceAtPoint, "", {std::string(buf)}};
-  }
+  if (best_face < 0) return no_face_at(p);
   return best_face;
 }
 
