@@ -1,9 +1,12 @@
 // plyfit info FILE [--json] [--format F]: lists a mold file's faces without converting them.
 // plyfit info FILE --face N [--json]: converts face N alone and gives a point near its middle,
 // its outward normal, and initial conditions for a drape from there.
+// plyfit info FILE --neighbours [--json]: sews every face into one shell and lists each face's
+// neighbours (crease angles) and free boundary.
 
 #include "commands/commands.hpp"
 #include "report/info_report.hpp"
+#include "report/links_report.hpp"
 
 #include <plyfit/importers/importers.hpp>
 #include <plyfit/kernel/optimize.hpp>
@@ -24,17 +27,21 @@ const OptionTable& info_options() {
       {"format", "KEY", "", "importer to use (step, iges), overriding the extension"},
       {"face", "N", "",
        "face N alone: a point near its middle, its outward normal and drape flags from there"},
+      {"neighbours", "", "",
+       "sew every face into one shell: each face's neighbours, crease angles and free boundary"},
       {"file", "FILE", "", "mold file (STEP or IGES)"},
   };
   return table;
 }
 
 const CommandHelp kInfoHelp = {
-    "plyfit info FILE [--face N] [--json] [--format F]",
+    "plyfit info FILE [--face N | --neighbours] [--json] [--format F]",
     "Lists a mold file's faces: index, name, surface kind, degrees, poles, rational,\n"
     "trimmed (holes), reversed, area and bounding box (mm), then a summary.\n"
     "With --face N: face N alone, a point near its middle (inside its trims), the\n"
-    "outward normal there and plyfit drape flags for a start from that point.\n"};
+    "outward normal there and plyfit drape flags for a start from that point.\n"
+    "With --neighbours: every face sewn into one shell; per face, the faces it shares\n"
+    "edges with (and the crease angle there) and its free boundary (runs, length).\n"};
 
 // Face `index` converted alone, and a start near its middle.
 int describe_face(importers::MoldFile& file, const std::string& path, int index, bool json) {
@@ -50,6 +57,17 @@ int describe_face(importers::MoldFile& file, const std::string& path, int index,
   return kExitOk;
 }
 
+// Every face of the file sewn into one shell, and each face's links.
+int list_neighbours(importers::MoldFile& file, const std::string& path, bool json) {
+  auto data = file.convert_shell(file.all_faces());
+  if (!data) return error_exit(kExitFailure, data.error());
+  const std::vector<int> sources = data->source_faces;
+  auto shell = MoldSurface::from_shell(std::move(data).value());
+  if (!shell) return error_exit(kExitFailure, Error(shell.error()).in(path));
+  print_links(path, face_links(*shell, sources), file.summary().warnings, json, std::cout);
+  return kExitOk;
+}
+
 int run_info(const std::vector<std::string>& args) {
   const OptionTable& table = info_options();
   const Arguments a = read_arguments(args, table, {"file", "mold file"}, kInfoHelp);
@@ -58,12 +76,17 @@ int run_info(const std::vector<std::string>& args) {
   const std::string path = o.all("file").front();
   auto face = o.given("face") ? o.integer("face", 0, kMaxFace) : Result<long>(-1);
   if (!face) return error_exit(kExitUsage, face.error(), o.namer());
+  if (*face >= 0 && o.given("neighbours"))
+    return error_exit(kExitUsage,
+                      Error{ErrorCode::kOptionsExclusive, "neighbours", {"face", "neighbours"}},
+                      o.namer());
 
   importers::ImportOptions options;
   options.format = o.text("format").value_or("");
   auto file = importers::open_mold(path, options);
   if (!file) return error_exit(kExitFailure, file.error());
   if (*face >= 0) return describe_face(**file, path, static_cast<int>(*face), o.given("json"));
+  if (o.given("neighbours")) return list_neighbours(**file, path, o.given("json"));
   if (o.given("json"))
     std::cout << listing_json((*file)->mold());
   else

@@ -65,6 +65,15 @@ Status read_faces(const Options& o, DrapeJob& job) {
     job.all_faces = true;
     return ok_status();
   }
+  if (list == "connected") {
+    job.connected_faces = true;
+    if (!o.given("seed") && !o.given("faces-at"))
+      return Error{ErrorCode::kConnectedNeedsPoint, "faces"};
+    auto crease = o.number_in("max-crease", {0, 180, true, false, "degrees"});
+    if (!crease) return crease.error();
+    job.max_crease_deg = *crease;
+    return ok_status();
+  }
   std::stringstream ss(list);
   std::string item;
   while (std::getline(ss, item, ',')) {
@@ -82,9 +91,12 @@ Status read_mold(const Options& o, DrapeJob& job) {
   job.mold = resolve(o, "mold", *o.text("mold"));
   if (o.given("faces"))
     if (auto st = read_faces(o, job); !st) return st;
+  if (o.given("max-crease") && !job.connected_faces)
+    return Error{ErrorCode::kOptionWithout, "max-crease", {"max-crease", "faces = connected"}};
   if (o.given("faces-at")) {
     for (const char* k : {"face", "faces"})
-      if (o.given(k)) return Error{ErrorCode::kOptionsExclusive, k, {"faces-at", std::string(k)}};
+      if (o.given(k) && !job.connected_faces)
+        return Error{ErrorCode::kOptionsExclusive, k, {"faces-at", std::string(k)}};
     auto p = o.vec3("faces-at");
     if (!p) return p.error();
     job.faces_at = *p;

@@ -32,7 +32,11 @@ struct DrapeJob {
   std::vector<int> faces;        ///< --faces: file faces sewn into a shell (empty: --face)
   std::optional<Vec3> faces_at;  ///< --faces-at: the face nearest this point (instead of face)
   bool all_faces = false;        ///< --faces all
-  std::string format;            ///< importer override
+  /// --faces connected: the faces reached from the face under --faces-at (else --seed) across
+  /// shared edges whose crease is at most max_crease_deg.
+  bool connected_faces = false;
+  double max_crease_deg = 60.0;
+  std::string format;  ///< importer override
   DrapeProblem problem;
   DrapeOptions drape;  ///< lock angle, tolerances, guess rule, node cap
   double lock_angle_deg = 90.0;

@@ -11,9 +11,14 @@ const OptionTable& drape_options() {
       {"mold", "FILE|builtin:NAME[:k=v,...]", "", "mold file (STEP, IGES) or a built-in mold",
        false, "mold"},
       {"face", "N", "0", "face index in the mold file (see plyfit info)", false, "mold"},
-      {"faces", "LIST|all", "",
-       "faces to drape as one shell (comma-separated indices, or all), sewn along their shared "
+      {"faces", "LIST|all|connected", "",
+       "faces to drape as one shell (comma-separated indices, all, or connected: those reached "
+       "from the seed's face across edges no sharper than --max-crease), sewn along their shared "
        "edges; instead of --face",
+       false, "mold"},
+      {"max-crease", "DEG", "60",
+       "--faces connected stops at shared edges whose faces' normals turn by more than this, in "
+       "(0, 180]",
        false, "mold"},
       {"faces-at", "X,Y,Z", "",
        "drape the face under this point: the face of the mold file nearest to it; instead of "

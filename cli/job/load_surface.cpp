@@ -45,15 +45,40 @@ Result<MoldSurface> surface_from_shell(const DrapeJob& job, ShellData data,
   return shell;
 }
 
+// No face of the mold found under point p.
+Error no_face_at(const Vec3& p) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%g, %g, %g", p.x(), p.y(), p.z());
+  return Error{ErrorCode::kNoFaceAtPoint, "", {std::string(buf)}};
+}
+
+// --faces connected: the faces of `data` reached from the face nearest the job's point (faces-at,
+// else the seed) across shared edges no sharper than max-crease, in the shell's order.
+Result<ShellData> connected_part(const DrapeJob& job, ShellData data) {
+  if (!job.faces_at && !job.seed) return Error{ErrorCode::kConnectedNeedsPoint, "faces"};
+  const ShellData all = data;
+  auto shell = MoldSurface::from_shell(std::move(data), job.drape.tol);
+  if (!shell) return Error(shell.error()).in(job.mold);
+  const Vec3 p = job.faces_at ? *job.faces_at : *job.seed;
+  const Projection at = shell->project(p);
+  if (!at.ok) return no_face_at(p).in(job.faces_at ? "faces-at" : "seed");
+  std::vector<std::int32_t> faces =
+      connected_faces(*shell, at.at.face, job.max_crease_deg * kDegToRad);
+  std::sort(faces.begin(), faces.end());
+  return sub_shell(all, faces);
+}
+
 Result<MoldSurface> load_builtin(const DrapeJob& job, const BuiltinSpec& spec,
                                  exporters::RunInfo& run) {
   run.mold_unit = "millimetre";
   if (is_builtin_shell(spec.first)) {
     auto data = builtin_shell(spec.first, spec.second);
     if (!data) return data.error();
+    if (job.connected_faces) data = connected_part(job, std::move(data).value());
+    if (!data) return data.error();
     for (std::size_t k = 0; k < data->faces.size(); ++k) {
       FaceInfo fi;
-      fi.index = static_cast<int>(k);
+      fi.index = data->source_faces.empty() ? static_cast<int>(k) : data->source_faces[k];
       fi.name = data->faces[k].name;
       fi.kind = "builtin:" + spec.first;
       run.faces_info.push_back(fi);
@@ -99,11 +124,7 @@ Result<int> face_at(importers::MoldFile& file, const Vec3& p, const Tolerances& 
       best_face = index;
     }
   }
-  if (best_face < 0) {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "%g, %g, %g", p.x(), p.y(), p.z());
-    return Error{ErrorCode::kNoFaceAtPoint, "", {std::string(buf)}};
-  }
+  if (best_face < 0) return no_face_at(p);
   return best_face;
 }
 
@@ -113,11 +134,12 @@ Result<MoldSurface> load_file(const DrapeJob& job, exporters::RunInfo& run) {
   io.tolerances = job.drape.tol;
   auto file = importers::open_mold(job.mold, io);
   if (!file) return file.error();
-  if (job.all_faces || !job.faces.empty()) {
-    const std::vector<int> indices = job.all_faces ? (*file)->all_faces() : job.faces;
-    auto data = (*file)->convert_shell(indices);
+  if (job.all_faces || job.connected_faces || !job.faces.empty()) {
+    const bool every = job.all_faces || job.connected_faces;
+    auto data = (*file)->convert_shell(every ? (*file)->all_faces() : job.faces);
+    if (data && job.connected_faces) data = connected_part(job, std::move(data).value());
     if (!data) return data.error();
-    for (int i : indices) {
+    for (int i : data->source_faces) {
       auto info = (*file)->describe(i);
       if (!info) return info.error();
       run.faces_info.push_back(*info);

@@ -61,7 +61,11 @@ using SceneValues = std::map<std::string, std::vector<std::string>>;
 void mold_and_ply_values(const DrapeJob& job, SceneValues& v) {
   const auto& p = job.problem;
   v["mold"] = {job.mold};
-  if (job.all_faces) {
+  if (job.connected_faces) {
+    v["faces"] = {"connected"};
+    v["max-crease"] = {fmt(job.max_crease_deg)};
+    if (job.faces_at) v["faces-at"] = {fmt(*job.faces_at)};
+  } else if (job.all_faces) {
     v["faces"] = {"all"};
   } else if (!job.faces.empty()) {
     std::string list;

@@ -187,6 +187,14 @@ std::string text_no_face_at_point(const Values& x) {
          ")";
 }
 
+std::string text_connected_needs_point(const Values&) {
+  return "connected faces start from the face under the seed or faces-at point: give one";
+}
+
+std::string text_option_without(const Values& x) {
+  return x.text(0) + " has no effect without " + x.text(1);
+}
+
 std::string text_builtin_face_given(const Values&) {
   return "a built-in mold is draped whole (no --face or --faces list)";
 }

@@ -145,3 +145,53 @@ TEST_CASE("seed curve: on the cone the geodesic is straight in the development, 
   CHECK(err[0] < 1e-3);
   CHECK(err[1] < err[0] / 3.0);  // second order: a quarter of it at half the link
 }
+
+TEST_CASE("seed curve: across the flange, fillet and wall the geodesic is straight unrolled") {
+  // The L-shaped shell (flange z = 0, x <= 0; fillet of radius r about x = 0, z = -r; wall
+  // x = r) is developable: unrolled along its profile (s: x on the flange, r theta on the
+  // fillet, r pi / 2 + (-r - z) down the wall; y kept) a geodesic is a straight line, here at
+  // the ply angle from the rosette across the fillet. Every base-path point lies on the shell
+  // and at the link length from the one before, to 1e-10 d, on all three faces; the links that
+  // cross a change of curvature (flange to fillet, fillet to wall) bend the path off the line
+  // by an amount that falls with d (0.74, 0.37, 0.084 um at d = 0.5, 0.25, 0.125 mm).
+  const double r = 10.0;
+  auto data = builtin_shell("flange-fillet-wall", {});
+  REQUIRE(data);
+  auto shell = MoldSurface::from_shell(std::move(data).value());
+  REQUIRE(shell);
+  PlyDefinition def;
+  def.seed = Vec3(-20, 15, 0);
+  def.rosette = Vec3(1, 0, 0);
+  def.angle = 30 * kDeg;  // the warp 30 degrees off +X: across the fillet, up in Y
+  std::vector<double> off;
+  for (double d : {0.5, 0.125}) {
+    CAPTURE(d);
+    const DrapeResult geo = drape_ply(*shell, def, d, SeedCurve::kGeodesic);
+    const std::vector<Vec3> p = path_points(geo);
+    std::vector<Vec2> flat;
+    int on_fillet = 0, on_wall = 0;
+    for (const Vec3& x : p) {
+      CHECK(shell->project(x).distance < 1e-10 * d);
+      double s = x.x();
+      if (x.x() > 0 && x.z() > -r) {
+        s = r * std::atan2(x.x(), x.z() + r);
+        ++on_fillet;
+      } else if (x.x() > 0) {
+        s = r * kPi / 2 + (-r - x.z());
+        ++on_wall;
+      }
+      flat.emplace_back(s, x.y());
+    }
+    CHECK(on_fillet > 30);
+    CHECK(on_wall > 30);
+    check_links(p, d, 1e-10);
+    CHECK(geo.metrics.base_plane_max_rel < 1e-10);
+    const Vec2 t = (flat.back() - flat.front()).normalized();
+    CHECK(std::abs(std::atan2(std::abs(t.y()), std::abs(t.x())) - 30 * kDeg) < 1e-3 * kDeg);
+    off.push_back(off_line(flat));
+    CHECK(off.back() < 2e-3 * d);
+  }
+  // At least first order in d.
+  CAPTURE(off[0], off[1]);
+  CHECK(off[1] < off[0] / 4);
+}

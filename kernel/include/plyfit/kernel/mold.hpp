@@ -128,6 +128,23 @@ struct ShellData {
   double tolerance = 0.0;
 };
 
+/// A shared edge of a shell: the two faces it joins (positions in the shell) and how sharply.
+struct SharedEdge {
+  std::int32_t face_a = 0, face_b = 0;
+  /// Largest angle between the two faces' outward normals along the edge (radians, sampled
+  /// along it): 0 where they join tangentially, the crease angle at a crease.
+  double crease = 0.0;
+};
+
+/// The free boundary of one face (the part of its boundary on no shared edge): its runs (each
+/// a stretch between shared edges, or a whole loop with none) and their length (mm, along the
+/// boundary polyline). Free edges that meet at a corner with no shared edge between them make
+/// one run.
+struct FreeBoundary {
+  int runs = 0;
+  double length = 0.0;
+};
+
 class DrapeSurface;  // the drape's view of a surface (kernel internal)
 
 /// A face or a shell of faces, validated and ready to drape (drape(), flat_pattern()).
@@ -164,6 +181,10 @@ class MoldSurface {
   std::vector<BoundaryLoop> boundary() const;
   /// Parameter domain of the face `at` lies on.
   const ParamDomain& domain(const SurfaceLocation& at) const;
+  /// The shared edges of a shell (none for a single face).
+  std::vector<SharedEdge> shared_edges() const;
+  /// Face k's free boundary.
+  FreeBoundary free_boundary(std::int32_t k) const;
 
   /// The kernel's surface (kernel internal: its type is complete only inside the kernel).
   const DrapeSurface& impl() const { return *surface_; }
@@ -171,5 +192,14 @@ class MoldSurface {
  private:
   std::shared_ptr<const DrapeSurface> surface_;
 };
+
+/// The faces of `surface` reached from face `seed` across shared edges whose crease angle is at
+/// most `max_crease` (radians): the seed first, then breadth first (positions in the shell).
+std::vector<std::int32_t> connected_faces(const MoldSurface& surface, std::int32_t seed,
+                                          double max_crease);
+
+/// The shell of some of `data`'s faces (positions, in the given order; each at most once):
+/// edges shared by two of them keep joining them (renumbered), edges to a face left out are free.
+ShellData sub_shell(const ShellData& data, const std::vector<std::int32_t>& faces);
 
 }  // namespace plyfit

@@ -181,6 +181,8 @@ namespace plyfit {
   /* cli: jobs and commands */                                                              \
   X(BuiltinFaceGiven, builtin_face_given)                                                   \
   X(NoFaceAtPoint, no_face_at_point)                                                        \
+  X(ConnectedNeedsPoint, connected_needs_point)                                             \
+  X(OptionWithout, option_without)                                                          \
   X(Interrupted, interrupted)                                                               \
   X(UnknownMoldFormat, unknown_mold_format)                                                 \
   X(BadShard, bad_shard)                                                                    \
