@@ -10,6 +10,8 @@
 #include <plyfit/kernel/flat_pattern.hpp>
 #include <plyfit/kernel/ply_definition.hpp>
 
+#include "support/boundary_curves.hpp"
+
 #include <cmath>
 #include <iostream>
 
@@ -24,18 +26,6 @@ struct BoundaryCase {
   Vec3 seed;
   double d = 0.25;
 };
-
-BoundaryCurve circle_curve(const std::function<Vec3(double, double)>& at, double s0, double y0,
-                           double r, int n) {
-  BoundaryCurve c;
-  c.name = "circle";
-  c.closed = true;
-  for (int i = 0; i < n; ++i) {
-    const double t = 2 * kPi * i / n;
-    c.points.push_back(at(s0 + r * std::cos(t), y0 + r * std::sin(t)));
-  }
-  return c;
-}
 
 std::vector<BoundaryCase> boundary_cases() {
   std::vector<BoundaryCase> out;
@@ -55,14 +45,10 @@ std::vector<BoundaryCase> boundary_cases() {
     c.name = "flange-fillet-wall, development circle r = 25 (1440 points), d = 0.2";
     auto sd = builtin_shell("flange-fillet-wall", {});
     if (sd) c.mold = MoldSurface::from_shell(*sd);
-    const double r = 10.0, q = 0.5 * kPi * r;
-    const auto at = [r, q](double s, double y) {
-      if (s <= 0) return Vec3(s, y, 0);
-      if (s <= q) return Vec3(r * std::sin(s / r), y, r * std::cos(s / r) - r);
-      return Vec3(r, y, -r - (s - q));
-    };
-    c.boundary.curves = {circle_curve(at, 0.5 * q, 30, 25, 1440)};
-    c.seed = at(0.5 * q, 30);
+    const double q = 0.5 * kPi * 10.0;  // the fillet's arc
+    c.boundary.curves = {
+        support::circle_curve(support::flange_fillet_wall_at, 0.5 * q, 30, 25, 1440)};
+    c.seed = support::flange_fillet_wall_at(0.5 * q, 30);
     c.d = 0.2;
     out.push_back(std::move(c));
   }

@@ -7,6 +7,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "support/boundary_curves.hpp"
 #include "support/builtin_surfaces.hpp"
 
 #include <algorithm>
@@ -136,22 +137,11 @@ TEST_CASE("bound mold: a circle of the development across flange, fillet and wal
   REQUIRE(data);
   auto shell = MoldSurface::from_shell(*data);
   REQUIRE(shell);
-  const double r = 10.0, quarter = 0.5 * kPiT * r;
-  const auto on_mold = [&](double s, double y) {
-    if (s <= 0) return Vec3(s, y, 0);
-    if (s <= quarter) return Vec3(r * std::sin(s / r), y, r * std::cos(s / r) - r);
-    return Vec3(r, y, -r - (s - quarter));
-  };
+  const double quarter = 0.5 * kPiT * 10.0;  // the fillet's arc
+  const auto on_mold = plyfit::support::flange_fillet_wall_at;
   // Radius 25 about the fillet's middle: s from -17 to 33, through all three faces.
   const double s0 = 0.5 * quarter, y0 = 30.0, R = 25.0;
-  const int n = 1440;
-  BoundaryCurve c;
-  c.name = "development circle";
-  c.closed = true;
-  for (int i = 0; i < n; ++i) {
-    const double t = 2 * kPiT * i / n;
-    c.points.push_back(on_mold(s0 + R * std::cos(t), y0 + R * std::sin(t)));
-  }
+  const BoundaryCurve c = plyfit::support::circle_curve(on_mold, s0, y0, R, 1440);
   PlyBoundary b;
   b.curves = {c};
   const Vec3 seed = on_mold(s0, y0);
