@@ -35,7 +35,7 @@ std::vector<BoundaryCase> boundary_cases() {
     auto fd = builtin_mold("plate", {});
     if (fd) c.mold = MoldSurface::from_face(*fd);
     c.boundary.curves = {
-        circle_curve([](double x, double y) { return Vec3(x, y, 0); }, 50, 30, 20, 720)};
+        support::circle_curve([](double x, double y) { return Vec3(x, y, 0); }, 50, 30, 20, 720)};
     c.seed = Vec3(50, 30, 0);
     c.d = 0.1;
     out.push_back(std::move(c));
