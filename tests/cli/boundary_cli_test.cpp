@@ -68,7 +68,7 @@ TEST_CASE("cli: the issue's command drapes a 45 deg ply whose outline is the cir
   CHECK(slurp(out + "/net.step").find("boundary_curves") != std::string::npos);
 }
 
-TEST_CASE("cli: a scene's boundary is relative to it; --dump-scene keeps it and its offset") {
+TEST_CASE("cli: a scene's boundary is relative to it, and --dump-scene keeps it and its offset") {
   Scratch tmp("boundary_cli_scene");
   write(tmp, "loops.csv", circle_csv(50, 30, 0, 20) + "\n" + circle_csv(50, 30, 0, 5, 90));
   const std::string scene =
