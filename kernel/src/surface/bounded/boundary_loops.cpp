@@ -1,5 +1,6 @@
 // Boundary curves as closed loops on the mold: chained end to end, divided, projected, offset.
 #include "surface/bounded/bounded.hpp"
+#include "surface/shell/shell.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -14,6 +15,30 @@ namespace {
 // of the loop vote, and how far across it (relative to the loop's mean segment) they look.
 constexpr int kSideVotes = 9;
 constexpr double kSideProbeSegments = 0.5;
+// A boundary point is projected from the previous one's place on its face when it lies this
+// close to that face (relative to the mold's size: on it, to a chord's sagitta), else onto the
+// whole mold (which samples every face).
+constexpr double kOnFaceRel = 1e-5;
+
+const Face* face_of(const MoldSurface& mold, std::int32_t k) {
+  if (const auto* f = dynamic_cast<const Face*>(&mold.impl())) return f;
+  if (const auto* sh = dynamic_cast<const Shell*>(&mold.impl())) return &sh->face(k);
+  return nullptr;
+}
+
+// p projected onto the mold, continued from the previous point's projection where it can be.
+Projection project_near(const MoldSurface& mold, const Vec3& p, const Projection& prev,
+                        double close) {
+  if (prev.ok)
+    if (const Face* f = face_of(mold, prev.at.face)) {
+      Projection q = f->project_from(p, prev.at.uv, true);
+      if (q.ok && q.distance <= close) {
+        q.at.face = prev.at.face;
+        return q;
+      }
+    }
+  return mold.project(p);
+}
 
 std::string point_text(const Vec3& p) {
   char buf[96];
@@ -133,9 +158,12 @@ void densify(MoldLoop& loop, double step) {
 
 Status project_loops(const MoldSurface& mold, const PlyBoundary& boundary,
                      std::vector<MoldLoop>& loops, double reach) {
-  for (auto& loop : loops)
+  const double close = kOnFaceRel * mold.size();
+  for (auto& loop : loops) {
+    Projection prev;
     for (std::size_t i = 0; i < loop.points.size(); ++i) {
-      const Projection pr = mold.project(loop.points[i]);
+      const Projection pr = project_near(mold, loop.points[i], prev, close);
+      prev = pr;
       const auto& c = boundary.curves[static_cast<std::size_t>(loop.curve[i])];
       if (!pr.ok || !(pr.distance <= reach))
         return Error{ErrorCode::kBoundaryOffMold,
@@ -143,6 +171,7 @@ Status project_loops(const MoldSurface& mold, const PlyBoundary& boundary,
                      {c.name, pr.ok ? pr.distance : -1.0, reach, point_text(loop.points[i])}};
       loop.points[i] = pr.point;
     }
+  }
   return ok_status();
 }
 
