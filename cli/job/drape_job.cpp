@@ -205,6 +205,19 @@ Status read_start(const Options& o, DrapeJob& job) {
   return ok_status();
 }
 
+// The ply's boundary: its curve file (relative to the scene file) and offset.
+Status read_boundary(const Options& o, DrapeJob& job) {
+  if (auto f = o.text("boundary"); f && !f->empty()) {
+    CurveFileSpec spec = parse_curve_spec(*f);
+    spec.path = resolve(o, "boundary", spec.path);
+    job.boundary = spec;
+  }
+  auto offset = o.number("boundary-offset");
+  if (!offset) return offset.error();
+  job.boundary_offset = *offset;
+  return ok_status();
+}
+
 // The material: its warning and limit angles are the defaults of --warn-angle and
 // --lock-angle.
 Status read_material(const Options& o, DrapeJob& job) {
@@ -312,6 +325,7 @@ Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
       [&] { return read_spacing(o, job.problem.ply); },
       [&] { return read_ply(o, job.problem.ply); },
       [&] { return read_start(o, job); },
+      [&] { return read_boundary(o, job); },
       [&] { return read_material(o, job); },
       [&] { return read_numerics(o, job); },
       [&] { return read_outputs(o, job); },

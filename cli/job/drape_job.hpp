@@ -4,6 +4,7 @@
 // by drape, batch, compare and optimize.
 
 #include "commands/command_line.hpp"
+#include "job/curve_file.hpp"
 
 #include <plyfit/exporters/exporters.hpp>
 #include <plyfit/exporters/messages.hpp>
@@ -52,10 +53,12 @@ struct DrapeJob {
   std::optional<double> min_width;
   double warn_angle_deg = 25.0;
   std::string ply_name = "ply";
-  double ply_angle_deg = 0.0;    ///< --ply-angle: the warp from the rosette (degrees)
-  std::optional<Vec3> seed;      ///< --seed: the ply defined by seed, rosette and angle
-  Vec3 rosette = Vec3::UnitX();  ///< --rosette: the 0 deg direction
-  bool rosette_given = false;    ///< else, with the start keys, their warp is 0 deg
+  double ply_angle_deg = 0.0;             ///< --ply-angle: the warp from the rosette (degrees)
+  std::optional<Vec3> seed;               ///< --seed: the ply defined by seed, rosette and angle
+  Vec3 rosette = Vec3::UnitX();           ///< --rosette: the 0 deg direction
+  bool rosette_given = false;             ///< else, with the start keys, their warp is 0 deg
+  std::optional<CurveFileSpec> boundary;  ///< --boundary: the ply's boundary curves
+  double boundary_offset = 0.0;           ///< --boundary-offset (mm; > 0 grows the region)
   /// `problem` is already the problem on the mold (job_problem() applied: seed, angle).
   bool problem_on_mold = false;
   std::string material = "woven";  ///< name in the materials table
@@ -99,6 +102,17 @@ Result<MoldSurface> load_surface(const DrapeJob& job, exporters::RunInfo* run = 
 /// The drape problem of a job on its mold: from --seed, --rosette and --ply-angle, or the start
 /// keys turned by --ply-angle (ply_setup.cpp).
 Result<DrapeProblem> job_problem(const DrapeJob& job, const MoldSurface& surface);
+/// A job's surface restricted to its boundary's region, and what report.json says of the
+/// boundary (none without one: the surface unchanged).
+struct JobBoundary {
+  MoldSurface surface;
+  std::optional<exporters::BoundaryReport> report;
+};
+/// The job's surface restricted to its --boundary (ply_setup.cpp): the curves read, bounded
+/// about the seed (or the 3D start); `run`, if given, gets the faces that remain. Errors blame
+/// "boundary" and name the file.
+Result<JobBoundary> job_boundary(const DrapeJob& job, const MoldSurface& surface,
+                                 exporters::RunInfo* run = nullptr);
 /// What report.json's `ply` and the labels say of the ply a drape laid: the angle measured on
 /// the drape from the rosette, whatever keys made it.
 Result<exporters::PlyReport> ply_report(const DrapeJob& job, const MoldSurface& surface,

@@ -53,6 +53,14 @@ const OptionTable& drape_options() {
        "what the base path follows from the start: the base plane's section, or the geodesic "
        "leaving the start along it",
        false, "start"},
+      {"boundary", "FILE[:PICK]", "",
+       "the ply's boundary: a CSV of 3D points (one closed loop per block, blank lines "
+       "between loops), PICK the loops to use (indices from 0, comma list); the region "
+       "holding the seed is draped, inner loops are cut-outs",
+       false, "start"},
+      {"boundary-offset", "MM", "0",
+       "grow (> 0) or shrink (< 0) the boundary's region along the surface (trim allowance)", false,
+       "start"},
       {"material", "NAME", kDefaultMaterial,
        "material from the materials table: its label, warning and limit angles", false, "material"},
       {"materials", "FILE", "", "materials table to use instead of plyfit's (data/materials.ini)",

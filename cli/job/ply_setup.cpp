@@ -3,6 +3,7 @@
 
 #include "job/drape_job.hpp"
 
+#include <plyfit/kernel/boundary.hpp>
 #include <plyfit/kernel/ply_definition.hpp>
 
 namespace plyfit::cli {
@@ -21,6 +22,43 @@ Result<DrapeProblem> job_problem(const DrapeJob& job, const MoldSurface& surface
   if (!pb) return pb.error();
   pb->seed_curve = job.problem.seed_curve;
   return pb;
+}
+
+Result<JobBoundary> job_boundary(const DrapeJob& job, const MoldSurface& surface,
+                                 exporters::RunInfo* run) {
+  if (!job.boundary) return JobBoundary{surface, std::nullopt};
+  auto curves = read_curves(*job.boundary);
+  if (!curves) return Error(curves.error()).in("boundary");
+  PlyBoundary b;
+  b.curves = std::move(curves).value();
+  b.offset = job.boundary_offset;
+  const Vec3 seed = job.seed ? *job.seed : job.problem.start;
+  auto bounded = bound_mold(surface, b, seed, job.drape.tol);
+  if (!bounded) {
+    Error e = bounded.error();
+    e.input = job.boundary->path;
+    return e;
+  }
+  if (run) {  // the faces that remain, by their index in the file
+    std::vector<int> faces;
+    std::vector<FaceInfo> infos;
+    for (int k : bounded->faces) {
+      const auto i = static_cast<std::size_t>(k);
+      faces.push_back(i < run->faces.size() ? run->faces[i] : k);
+      if (i < run->faces_info.size()) infos.push_back(run->faces_info[i]);
+    }
+    run->faces = faces;
+    if (!run->faces_info.empty()) run->faces_info = infos;
+  }
+  exporters::BoundaryReport r;
+  r.source = to_string(*job.boundary);
+  r.offset = job.boundary_offset;
+  r.area = bounded->area;
+  for (const auto& loop : bounded->loops) {
+    r.loops.push_back(loop.points);
+    r.lengths.push_back(loop.length);
+  }
+  return JobBoundary{bounded->surface, r};
 }
 
 Result<exporters::PlyReport> ply_report(const DrapeJob& job, const MoldSurface& surface,

@@ -90,7 +90,9 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   exporters::RunInfo run = run_info(job);
   auto loaded = load_surface(job, &run);
   if (!loaded) return loaded.error();
-  const MoldSurface surface = std::move(loaded).value();
+  auto bounded = job_boundary(job, *loaded, &run);
+  if (!bounded) return bounded.error();
+  const MoldSurface surface = bounded->surface;
   run.import_ms = ms_since(t0);
 
   auto problem = job_problem(job, surface);
@@ -107,6 +109,7 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   auto ply = ply_report(job, surface, *res);
   if (!ply) return ply.error();
   eo.ply = *ply;
+  eo.ply->boundary = bounded->report;
   eo.ply_angle_deg = ply->laid_angle_deg;  // the label says what the drape laid
   const exporters::ExportContext ctx{*problem, *res, surface, &flat, run, eo};
   if (!job.outdir.empty())

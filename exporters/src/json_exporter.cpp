@@ -139,6 +139,15 @@ nlohmann::json inputs_json(const ExportContext& ctx) {
 
 // The ply as laid: how it was defined (seed, rosette, angle, or the start keys) and its frame
 // at the start, measured on the drape.
+nlohmann::json boundary_json(const std::optional<BoundaryReport>& b) {
+  using nlohmann::json;
+  if (!b) return json(nullptr);
+  json loops = json::array();
+  for (std::size_t k = 0; k < b->loops.size(); ++k)
+    loops.push_back({{"points", b->loops[k].size()}, {"length", b->lengths[k]}});
+  return {{"source", b->source}, {"offset", b->offset}, {"area", b->area}, {"loops", loops}};
+}
+
 nlohmann::json ply_json(const PlyReport& p) {
   using nlohmann::json;
   return {{"defined_by", p.from_seed ? "seed" : "start"},
@@ -151,7 +160,8 @@ nlohmann::json ply_json(const PlyReport& p) {
           {"normal", vec(p.normal)},
           {"zero_direction", vec(p.zero)},
           {"fibre_direction", vec(p.warp)},
-          {"weft_direction", vec(p.weft)}};
+          {"weft_direction", vec(p.weft)},
+          {"boundary", boundary_json(p.boundary)}};
 }
 
 // The mold: its unit, the surface draped (one face, or a shell's faces together), then face by

@@ -259,4 +259,22 @@ std::string text_option_needs_vary(const Values& x) {
   return "has no effect: --vary has no " + x.text(0);
 }
 
+std::string text_curve_file_cannot_open(const Values&) {
+  return "cannot open the curve file";
+}
+
+std::string text_curve_file_syntax(const Values& x) {
+  return "line " + x.n(0) + ": '" + x.text(1) + "' is not a point X,Y,Z (three numbers)";
+}
+
+std::string text_curve_file_format(const Values& x) {
+  return "unknown curve file type '" + x.text(0) +
+         "': give a .csv of points, or a STEP or IGES file";
+}
+
+std::string text_curve_not_found(const Values& x) {
+  return "no curve '" + x.text(0) + "' in the file (it holds " + x.n(1) +
+         " curves: plyfit info FILE --curves lists them)";
+}
+
 }  // namespace plyfit::exporters::render

@@ -27,4 +27,32 @@ std::string text_ply_angle_range(const Values&) {
   return "the ply angle must be in [-180, 180] degrees";
 }
 
+std::string text_boundary_empty(const Values&) {
+  return "the boundary has no curve";
+}
+
+std::string text_boundary_curve_points(const Values& x) {
+  if (x.number(2) == 0.0) return "boundary curve " + x.text(0) + " has a point that is not finite";
+  return "boundary curve " + x.text(0) + " has " + x.n(1) +
+         " points: a closed loop needs at least 3, an open curve 2";
+}
+
+std::string text_boundary_gap(const Values& x) {
+  return "boundary curve " + x.text(0) + " ends at (" + x.text(1) + ") " + x.brief(2) +
+         " mm from any other curve's end, more than the tolerance " + x.brief(3) +
+         " mm: the curves do not close into loops";
+}
+
+std::string text_boundary_off_mold(const Values& x) {
+  if (x.number(1) < 0)
+    return "boundary curve " + x.text(0) + " could not be projected onto the mold";
+  return "boundary curve " + x.text(0) + " lies " + x.brief(1) + " mm from the mold at (" +
+         x.text(3) + "), more than the tolerance " + x.brief(2) +
+         " mm: a wrong curve, unit or frame?";
+}
+
+std::string text_boundary_seed_outside(const Values&) {
+  return "the seed does not lie inside the ply boundary's region on the mold";
+}
+
 }  // namespace plyfit::exporters::render

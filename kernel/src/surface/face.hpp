@@ -23,6 +23,17 @@ class Face final : public DrapeSurface {
   const std::vector<TrimLoop>& loops() const { return loops_; }
   bool trimmed() const { return !loops_.empty(); }
   const std::string& name() const { return name_; }
+  /// The plain data of the face (its area left to be measured again).
+  FaceData data() const {
+    FaceData d;
+    d.surface = surface_->data();
+    d.loops = loops_;
+    d.reversed = reversed_;
+    d.closed_u = closed_u_;
+    d.closed_v = closed_v_;
+    d.name = name_;
+    return d;
+  }
   /// The same face with its orientation reversed (its normal flipped).
   Face flipped() const {
     Face f = *this;
@@ -165,5 +176,13 @@ class Face final : public DrapeSurface {
 /// spans) and returns the contained samples' (uv, point) pairs; used for projection seeds,
 /// bounding boxes and area.
 std::vector<std::pair<Vec2, Vec3>> sample_face(const Face& face, int n);
+
+/// The area on surface `s` of the region of (u, v) loops within its domain whose rings run
+/// as a polygon boolean gives them (outer rings one way, holes the other): Green's theorem,
+/// the integral over the loops of F dv with F(u, v) the area element integrated from the
+/// domain's u0 to u (Gauss rules per knot span, exact along straight (u, v) segments to the
+/// rules' order, where the adaptive quadrature of compute_area() converges only to first
+/// order at trims).
+double boundary_area(const NurbsSurface& s, const std::vector<std::vector<Vec2>>& loops);
 
 }  // namespace plyfit

@@ -188,3 +188,60 @@ double Face::compute_area() const {
 }
 
 }  // namespace plyfit
+
+namespace plyfit {
+
+namespace {
+
+// boundary_area: the Gauss cells per knot span of the inner integral (in u) and of the outer
+// one (a loop's segment is divided so that no piece spans more than that share of a v span).
+constexpr int kInnerCellsPerSpan = 4;
+constexpr int kOuterCellsPerSpan = 4;
+
+// F(u, v) = integral of |Su x Sv|(s, v) ds from the domain's u0 to u, by 5-point Gauss rules on
+// kInnerCellsPerSpan cells of each knot span (the area element is smooth within a span).
+double area_column(const NurbsSurface& s, const std::vector<double>& breaks, double u, double v) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i + 1 < breaks.size() && breaks[i] < u; ++i) {
+    const double lo = breaks[i], hi = std::min(breaks[i + 1], u);
+    for (int c = 0; c < kInnerCellsPerSpan; ++c) {
+      const double a = lo + (hi - lo) * c / kInnerCellsPerSpan;
+      const double b = lo + (hi - lo) * (c + 1) / kInnerCellsPerSpan;
+      for (int g = 0; g < 5; ++g) {
+        const SurfaceEval1 e = s.eval1(0.5 * (a + b) + 0.5 * (b - a) * detail::kGauss5X[g], v);
+        if (e.ok) sum += 0.5 * (b - a) * detail::kGauss5W[g] * e.du.cross(e.dv).norm();
+      }
+    }
+  }
+  return sum;
+}
+
+}  // namespace
+
+double boundary_area(const NurbsSurface& s, const std::vector<std::vector<Vec2>>& loops) {
+  const auto& d = s.domain();
+  const auto breaks = detail::breakpoints(s.data().knots_u, d.u0, d.u1);
+  const auto spans_v = static_cast<double>(
+      std::max<std::size_t>(1, detail::breakpoints(s.data().knots_v, d.v0, d.v1).size() - 1));
+  const double cell_v = d.width_v() / (spans_v * kOuterCellsPerSpan);
+  double total = 0.0;
+  for (const auto& loop : loops)
+    for (std::size_t k = 0, n = loop.size(); k < n; ++k) {
+      const Vec2 a0 = loop[k], b0 = loop[(k + 1) % n];
+      if (a0.y() == b0.y()) continue;
+      const int pieces =
+          std::max(1, static_cast<int>(std::ceil(std::abs(b0.y() - a0.y()) / cell_v)));
+      for (int c = 0; c < pieces; ++c) {
+        const Vec2 a = a0 + (b0 - a0) * (static_cast<double>(c) / pieces);
+        const Vec2 b = a0 + (b0 - a0) * (static_cast<double>(c + 1) / pieces);
+        for (int g = 0; g < 5; ++g) {
+          const Vec2 p = 0.5 * (a + b) + 0.5 * (b - a) * detail::kGauss5X[g];
+          total +=
+              0.5 * detail::kGauss5W[g] * (b.y() - a.y()) * area_column(s, breaks, p.x(), p.y());
+        }
+      }
+    }
+  return std::abs(total);
+}
+
+}  // namespace plyfit

@@ -156,3 +156,28 @@ TEST_CASE("kernel: projection finds the nearest point of the face") {
   const Projection pp = f->project(Vec3(0, 0, R));
   CHECK(pp.distance < 1e-9 * R);
 }
+
+TEST_CASE("surface: boundary_area integrates the area element over (u, v) loops") {
+  // The sphere octant of radius 20: its whole domain is an eighth of the sphere, 4 pi R^2 / 8;
+  // a loop and a hole inside it (opposite orientations, as a polygon boolean gives them) leave
+  // the difference of their areas.
+  const double R = 20.0, pi = 3.14159265358979323846;
+  const NurbsSurfaceData data = sphere_octant(R);
+  auto s = NurbsSurface::create(data);
+  REQUIRE(s);
+  const auto& d = s->domain();
+  const std::vector<Vec2> whole = {Vec2(d.u0, d.v0), Vec2(d.u1, d.v0), Vec2(d.u1, d.v1),
+                                   Vec2(d.u0, d.v1)};
+  CHECK(boundary_area(*s, {whole}) == Approx(0.5 * pi * R * R).epsilon(1e-10));
+  // The plate: a 2 x 3 rectangle with a 1 x 1 hole, exact.
+  NurbsSurfaceData plate;
+  plate.degree_u = plate.degree_v = 1;
+  plate.knots_u = plate.knots_v = {0, 0, 10, 10};
+  plate.poles = {Vec3(0, 0, 0), Vec3(0, 10, 0), Vec3(10, 0, 0), Vec3(10, 10, 0)};
+  plate.count_u = plate.count_v = 2;
+  auto p = NurbsSurface::create(plate);
+  REQUIRE(p);
+  const std::vector<Vec2> outer = {Vec2(1, 1), Vec2(3, 1), Vec2(3, 4), Vec2(1, 4)};
+  const std::vector<Vec2> hole = {Vec2(1.5, 2), Vec2(1.5, 3), Vec2(2.5, 3), Vec2(2.5, 2)};
+  CHECK(boundary_area(*p, {outer, hole}) == Approx(5.0).epsilon(1e-12));
+}

@@ -43,18 +43,28 @@ struct RunInfo {
 
 /// The ply a drape laid (report.json `ply`): how it was defined and the frame measured on the
 /// drape at its start.
+/// A ply's boundary as report.json and net.step give it.
+struct BoundaryReport {
+  std::string source;                    ///< the curve file (and the curves picked)
+  double offset = 0.0;                   ///< mm along the surface
+  double area = 0.0;                     ///< the region's area on the mold, mm^2
+  std::vector<std::vector<Vec3>> loops;  ///< the loops on the mold (each closes on itself)
+  std::vector<double> lengths;           ///< their lengths, mm
+};
+
 struct PlyReport {
   bool from_seed = false;        ///< defined by seed, rosette and angle (else the start keys)
   Vec3 seed = Vec3::Zero();      ///< the seed as given (from_seed)
   Vec3 rosette = Vec3::UnitX();  ///< the 0 deg direction as given
   double angle_deg = 0.0;        ///< the ply angle as given
   std::string seed_curve = "plane";
-  Vec3 point = Vec3::Zero();    ///< the start (the seed on the mold)
-  Vec3 normal = Vec3::UnitZ();  ///< the outward normal there
-  Vec3 zero = Vec3::UnitX();    ///< the rosette's 0 deg direction on the surface there
-  Vec3 warp = Vec3::UnitY();    ///< the warp fibres there, as laid
-  Vec3 weft = Vec3::UnitX();    ///< the weft fibres there, as laid
-  double laid_angle_deg = 0.0;  ///< the warp's angle from `zero`, as laid
+  Vec3 point = Vec3::Zero();               ///< the start (the seed on the mold)
+  Vec3 normal = Vec3::UnitZ();             ///< the outward normal there
+  Vec3 zero = Vec3::UnitX();               ///< the rosette's 0 deg direction on the surface there
+  Vec3 warp = Vec3::UnitY();               ///< the warp fibres there, as laid
+  Vec3 weft = Vec3::UnitX();               ///< the weft fibres there, as laid
+  double laid_angle_deg = 0.0;             ///< the warp's angle from `zero`, as laid
+  std::optional<BoundaryReport> boundary;  ///< the ply's boundary, if it has one
 };
 
 /// Options of the writers.

@@ -23,3 +23,21 @@ inline bool crosses_ray(const Vec2& a, const Vec2& b, const Vec2& p) {
 bool inside_polygon(const std::vector<Vec2>& polygon, const Vec2& p);
 
 }  // namespace plyfit
+
+namespace plyfit {
+
+/// A region of the plane: closed polygons combined by the even-odd rule (outer loops, holes,
+/// islands in holes), as trim loops and ply boundaries are.
+using Region2 = std::vector<std::vector<Vec2>>;
+
+/// The intersection of two even-odd regions, as loops (outer loops and their holes) whose
+/// even-odd combination is that intersection. Loops of no area are dropped.
+Region2 intersect_regions(const Region2& a, const Region2& b);
+
+/// The union of two even-odd regions, likewise.
+Region2 unite_regions(const Region2& a, const Region2& b);
+
+/// The area of an even-odd region.
+double region_area(const Region2& r);
+
+}  // namespace plyfit

@@ -59,6 +59,12 @@ namespace plyfit {
   X(RosetteZero, rosette_zero)                                                              \
   X(RosetteAlongNormal, rosette_along_normal)                                               \
   X(PlyAngleRange, ply_angle_range)                                                         \
+  /* kernel: ply boundary */                                                                \
+  X(BoundaryEmpty, boundary_empty)                                                          \
+  X(BoundaryCurvePoints, boundary_curve_points)                                             \
+  X(BoundaryGap, boundary_gap)                                                              \
+  X(BoundaryOffMold, boundary_off_mold)                                                     \
+  X(BoundarySeedOutside, boundary_seed_outside)                                             \
   /* kernel: geometry (NURBS), surface (faces, shells), molds, search */                    \
   /* kernel: geometry (NURBS surfaces and curves) */                                        \
   X(DegreeRange, degree_range)                                                              \
@@ -178,6 +184,11 @@ namespace plyfit {
   X(WarningAboveLimit, warning_above_limit)                                                 \
   X(LimitNotPositive, limit_not_positive)                                                   \
   X(UnknownMaterial, unknown_material)                                                      \
+  /* cli: curve files (ply boundaries) */                                                   \
+  X(CurveFileCannotOpen, curve_file_cannot_open)                                            \
+  X(CurveFileSyntax, curve_file_syntax)                                                     \
+  X(CurveFileFormat, curve_file_format)                                                     \
+  X(CurveNotFound, curve_not_found)                                                         \
   /* cli: jobs and commands */                                                              \
   X(BuiltinFaceGiven, builtin_face_given)                                                   \
   X(NoFaceAtPoint, no_face_at_point)                                                        \

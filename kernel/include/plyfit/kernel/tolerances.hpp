@@ -67,6 +67,17 @@ struct Tolerances {
   /// own starts off the surface lie within a fifth of it (Table 1 (b): 5.9 mm, 0.17 of the
   /// octant's size; Table 3 (c): 2.2 mm, 0.06 of the surface of revolution's).
   double start_far_rel = 0.5;
+  /// Ply boundaries (boundary.hpp), relative to the mold's size (its bounding-box diagonal):
+  /// curves whose ends lie within boundary_gap_rel of each other are chained (CAD curves meet
+  /// to their modelling tolerance, far below; a larger gap is a missing curve); every boundary
+  /// point must lie within boundary_on_mold_rel of the mold (a boundary drawn on the mold in
+  /// CAD does, to its tolerance; farther is a wrong curve, unit or frame); loops are divided
+  /// into segments of at most boundary_step_rel before they are mapped to the faces' (u, v),
+  /// where a segment is straight (0.1 mm on a 100 mm mold: the chord of a 20 mm radius off by
+  /// 6e-5 mm).
+  double boundary_gap_rel = 1e-3;
+  double boundary_on_mold_rel = 1e-3;
+  double boundary_step_rel = 1e-3;
 };
 
 }  // namespace plyfit

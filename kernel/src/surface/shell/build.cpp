@@ -72,6 +72,7 @@ Result<Shell> Shell::create(ShellData data, const Tolerances& tol) {
   if (auto st = check_counts(data); !st) return st.error();
   Shell sh;
   sh.tol_ = tol;
+  sh.tolerance_ = data.tolerance;
   for (std::size_t k = 0; k < data.faces.size(); ++k)
     sh.source_.push_back(data.source_faces.empty() ? static_cast<int>(k) : data.source_faces[k]);
   if (auto st = sh.check_tags(data); !st) return st.error();
@@ -90,6 +91,15 @@ Result<Shell> Shell::create(ShellData data, const Tolerances& tol) {
   for (const auto& f : sh.faces_) seams = seams || f->closed_u() || f->closed_v();
   sh.closes_ = seams || sh.euler_ != 1 || sh.boundary_.size() != 1;
   return sh;
+}
+
+ShellData Shell::data() const {
+  ShellData d;
+  for (const auto& f : faces_) d.faces.push_back(f->data());
+  d.edge_count = edge_count();
+  d.source_faces = source_;
+  d.tolerance = tolerance_;
+  return d;
 }
 
 // Every loop's tags, before anything is built: one per segment, each a shared edge in range.

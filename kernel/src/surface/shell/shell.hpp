@@ -45,6 +45,8 @@ class Shell final : public DrapeSurface {
   /// of free boundary loops: a disc has 1 and 1.
   int euler_characteristic() const { return euler_; }
   int free_loop_count() const { return static_cast<int>(boundary_.size()); }
+  /// The plain data of the shell: its faces' (as oriented), edges and sewing tolerance.
+  ShellData data() const;
   /// The sewing gap: points this close (3D) to a shared edge are on the shell.
   double gap() const { return gap_; }
 
@@ -154,6 +156,7 @@ class Shell final : public DrapeSurface {
   };
   std::vector<std::vector<Neighbour>> neighbours_;
   Tolerances tol_;
+  double tolerance_ = 0.0;  // the sewing tolerance given
   double gap_ = 0.0, size_ = 1.0, area_ = 0.0, rounding_ = 0.0;
   BBox3 bbox_;
   int euler_ = 1;

@@ -1,0 +1,129 @@
+// plyfit-bench boundary [--runs R]: a drape with a ply boundary against the same drape without
+// one (issue 29: at most 1.2x), per mapped node: the mold restricted by bound_mold() (timed
+// with the drape), the drape and the flat pattern, medians of R >= 5 runs interleaved.
+
+#include "bench.hpp"
+#include "tables.hpp"
+
+#include <plyfit/kernel/boundary.hpp>
+#include <plyfit/kernel/builtin_molds.hpp>
+#include <plyfit/kernel/flat_pattern.hpp>
+#include <plyfit/kernel/ply_definition.hpp>
+
+#include "support/boundary_curves.hpp"
+
+#include <cmath>
+#include <iostream>
+
+namespace plyfit::bench {
+
+namespace {
+
+struct BoundaryCase {
+  std::string name;
+  Result<MoldSurface> mold = Error{ErrorCode::kInternal};
+  PlyBoundary boundary;
+  Vec3 seed;
+  double d = 0.25;
+};
+
+std::vector<BoundaryCase> boundary_cases() {
+  std::vector<BoundaryCase> out;
+  {
+    BoundaryCase c;
+    c.name = "plate 100 x 60, circle r = 20 (720 points), d = 0.1";
+    auto fd = builtin_mold("plate", {});
+    if (fd) c.mold = MoldSurface::from_face(*fd);
+    c.boundary.curves = {
+        support::circle_curve([](double x, double y) { return Vec3(x, y, 0); }, 50, 30, 20, 720)};
+    c.seed = Vec3(50, 30, 0);
+    c.d = 0.1;
+    out.push_back(std::move(c));
+  }
+  {
+    BoundaryCase c;
+    c.name = "flange-fillet-wall, development circle r = 25 (1440 points), d = 0.2";
+    auto sd = builtin_shell("flange-fillet-wall", {});
+    if (sd) c.mold = MoldSurface::from_shell(*sd);
+    const double q = 0.5 * kPi * 10.0;  // the fillet's arc
+    c.boundary.curves = {
+        support::circle_curve(support::flange_fillet_wall_at, 0.5 * q, 30, 25, 1440)};
+    c.seed = support::flange_fillet_wall_at(0.5 * q, 30);
+    c.d = 0.2;
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+// Drape and flat pattern of the ply from the seed; the mapped node count.
+std::uint64_t drape_ply(const MoldSurface& m, const Vec3& seed, double d) {
+  PlyDefinition def;
+  def.seed = seed;
+  PlySpec cloth;
+  cloth.d_weft = cloth.d_warp = d;
+  auto pb = ply_problem(m, def, cloth);
+  if (!pb) return 0;
+  auto r = drape(m, *pb, DrapeOptions{});
+  if (!r) return 0;
+  const FlatPattern f = flat_pattern(m, *r);
+  return f.outline.empty() ? 0 : r->metrics.nodes.mapped;
+}
+
+Table boundary_table(int runs, bool* ok) {
+  Table t;
+  t.caption =
+      "A drape with a ply boundary against the same drape without one: wall time per "
+      "mapped node of bound_mold() + drape() + flat_pattern() against drape() + "
+      "flat_pattern() on the whole mold, medians of " +
+      std::to_string(std::max(runs, kMinRuns)) +
+      " runs each, interleaved; ratio = with / without (target <= 1.20).";
+  t.header = {"case",         "nodes without", "nodes with", "bound_mold ms", "without ns/node",
+              "with ns/node", "ratio"};
+  t.right = {false, true, true, true, true, true, true};
+  for (BoundaryCase& c : boundary_cases()) {
+    if (!c.mold) {
+      *ok = false;
+      t.add({c.name, "-", "-", "-", "-", "-", "no mold"});
+      continue;
+    }
+    std::uint64_t n0 = 0, n1 = 0;
+    std::vector<double> t0, t1, tb;
+    for (int k = 0; k < std::max(runs, kMinRuns); ++k) {
+      t0.push_back(time_once([&] { n0 = drape_ply(*c.mold, c.seed, c.d); }));
+      Result<BoundedMold> b = Error{ErrorCode::kInternal};
+      const double bound = time_once([&] { b = bound_mold(*c.mold, c.boundary, c.seed); });
+      if (!b) {
+        *ok = false;
+        break;
+      }
+      tb.push_back(bound);
+      t1.push_back(bound + time_once([&] { n1 = drape_ply(b->surface, c.seed, c.d); }));
+    }
+    if (t1.empty() || n0 == 0 || n1 == 0) {
+      *ok = false;
+      t.add({c.name, "-", "-", "-", "-", "-", "failed"});
+      continue;
+    }
+    const double a = median(t0) / static_cast<double>(n0) * 1e9;
+    const double w = median(t1) / static_cast<double>(n1) * 1e9;
+    t.add({c.name, fmt("%llu", static_cast<unsigned long long>(n0)),
+           fmt("%llu", static_cast<unsigned long long>(n1)), fmt("%.1f", median(tb) * 1e3),
+           fmt("%.0f", a), fmt("%.0f", w), fmt("%.2f", w / a)});
+  }
+  return t;
+}
+
+int run_boundary(const std::vector<std::string>& args) {
+  const int runs = std::stoi(option_value(args, "--runs", std::to_string(kMinRuns)));
+  bool ok = true;
+  std::cout << boundary_table(runs, &ok).markdown();
+  return ok ? 0 : 1;
+}
+
+const BenchmarkRegistrar kBoundary{
+    {"boundary", "a drape with a ply boundary against one without, per node [--runs R]",
+     run_boundary}};
+
+}  // namespace
+
+}  // namespace plyfit::bench

@@ -1,0 +1,129 @@
+// Curves from a file: CSV blocks of 3D points, picked by index.
+
+#include "job/curve_file.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace plyfit::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return {};
+  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
+}
+
+// Three numbers separated by commas (spaces around them allowed).
+bool parse_point(const std::string& line, Vec3& p) {
+  std::stringstream ss(line);
+  std::string field;
+  int k = 0;
+  while (std::getline(ss, field, ',')) {
+    const std::string f = trim(field);
+    if (k >= 3 || f.empty()) return false;
+    char* end = nullptr;
+    p[k] = std::strtod(f.c_str(), &end);
+    if (end != f.c_str() + f.size() || !std::isfinite(p[k])) return false;
+    ++k;
+  }
+  return k == 3;
+}
+
+std::string lower_extension(const std::string& path) {
+  std::string e = fs::path(path).extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
+  return e.empty() ? e : e.substr(1);
+}
+
+Result<std::vector<BoundaryCurve>> read_csv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return Error{ErrorCode::kCurveFileCannotOpen, path};
+  std::vector<BoundaryCurve> curves;
+  BoundaryCurve block;
+  std::string line;
+  const auto close_block = [&]() {
+    if (!block.points.empty()) curves.push_back(std::move(block));
+    block = BoundaryCurve{};
+  };
+  for (std::int64_t n = 1; std::getline(in, line); ++n) {
+    const std::string text = trim(line.substr(0, line.find('#')));
+    if (text.empty()) {
+      if (trim(line).empty()) close_block();  // a comment line does not end a loop
+      continue;
+    }
+    Vec3 p;
+    if (!parse_point(text, p)) return Error{ErrorCode::kCurveFileSyntax, path, {n, text}};
+    if (block.points.empty()) {
+      block.name = path + " line " + std::to_string(n);
+      block.closed = true;
+    }
+    block.points.push_back(p);
+  }
+  close_block();
+  return curves;
+}
+
+// The curves picked: each by index from 0, or by name.
+Result<std::vector<BoundaryCurve>> pick(const CurveFileSpec& spec, std::vector<BoundaryCurve> all) {
+  if (spec.pick.empty()) return all;
+  std::vector<BoundaryCurve> out;
+  for (const std::string& p : spec.pick) {
+    char* end = nullptr;
+    const long k = std::strtol(p.c_str(), &end, 10);
+    const bool index = !p.empty() && end == p.c_str() + p.size();
+    const auto it =
+        std::find_if(all.begin(), all.end(), [&](const BoundaryCurve& c) { return c.name == p; });
+    if (index && k >= 0 && k < static_cast<long>(all.size()))
+      out.push_back(all[static_cast<std::size_t>(k)]);
+    else if (!index && it != all.end())
+      out.push_back(*it);
+    else
+      return Error{
+          ErrorCode::kCurveNotFound, spec.path, {p, static_cast<std::int64_t>(all.size())}};
+  }
+  return out;
+}
+
+}  // namespace
+
+CurveFileSpec parse_curve_spec(const std::string& text) {
+  CurveFileSpec spec{text, {}};
+  const auto colon = text.rfind(':');
+  std::error_code ec;
+  if (colon == std::string::npos || fs::exists(text, ec)) return spec;
+  spec.path = text.substr(0, colon);
+  std::stringstream ss(text.substr(colon + 1));
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (!trim(item).empty()) spec.pick.push_back(trim(item));
+  return spec;
+}
+
+std::string to_string(const CurveFileSpec& spec) {
+  std::string s = spec.path;
+  for (std::size_t k = 0; k < spec.pick.size(); ++k) s += (k == 0 ? ":" : ",") + spec.pick[k];
+  return s;
+}
+
+Result<std::vector<BoundaryCurve>> read_curves(const CurveFileSpec& spec) {
+  const std::string ext = lower_extension(spec.path);
+  if (ext != "csv") return Error{ErrorCode::kCurveFileFormat, spec.path, {ext}};
+  std::error_code ec;
+  if (!fs::is_regular_file(spec.path, ec)) return Error{ErrorCode::kCurveFileCannotOpen, spec.path};
+  auto all = read_csv(spec.path);
+  if (!all) return all.error();
+  auto picked = pick(spec, std::move(all).value());
+  if (!picked) return picked.error();
+  if (picked->empty()) return Error{ErrorCode::kBoundaryEmpty, spec.path};
+  return picked;
+}
+
+}  // namespace plyfit::cli

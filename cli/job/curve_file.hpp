@@ -1,0 +1,34 @@
+#pragma once
+// Curves from a file, for a ply's boundary (and, later, seed curves and darts): a CSV of 3D
+// points, one closed loop per block, with `FILE:NAMES|INDICES` picking some.
+
+#include <plyfit/kernel/boundary.hpp>
+#include <plyfit/kernel/result.hpp>
+
+#include <string>
+#include <vector>
+
+namespace plyfit::cli {
+
+/// A curve file as given: its path and the curves picked (names or indices from 0; empty:
+/// every curve).
+struct CurveFileSpec {
+  std::string path;
+  std::vector<std::string> pick;
+};
+
+/// Splits `FILE[:NAMES|INDICES]` (comma list): the text after the last ':' picks curves
+/// unless the whole text names an existing file.
+CurveFileSpec parse_curve_spec(const std::string& text);
+
+/// The text back (`--dump-scene`).
+std::string to_string(const CurveFileSpec& spec);
+
+/// The curves of the file, each named for errors ("FILE line N", the line of its first point),
+/// the picked ones in the order picked. A CSV block is a closed curve. Errors (blaming the
+/// file): it cannot be opened (kCurveFileCannotOpen), a line is not a point (kCurveFileSyntax:
+/// its number and text), an unknown type (kCurveFileFormat), a pick that names no curve
+/// (kCurveNotFound), no curve at all (kBoundaryEmpty).
+Result<std::vector<BoundaryCurve>> read_curves(const CurveFileSpec& spec);
+
+}  // namespace plyfit::cli

@@ -1,0 +1,242 @@
+// Ply boundaries (bound_mold) against closed forms: circles and a hole on the plate, a circle
+// of the development across the flange, fillet and wall, a cap on the sphere; and every error.
+#include <plyfit/kernel/boundary.hpp>
+#include <plyfit/kernel/builtin_molds.hpp>
+#include <plyfit/kernel/flat_pattern.hpp>
+#include <plyfit/kernel/ply_definition.hpp>
+
+#include <catch2/catch.hpp>
+
+#include "support/boundary_curves.hpp"
+#include "support/builtin_surfaces.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <variant>
+
+using namespace plyfit;
+using plyfit::support::builtin_surface;
+
+namespace {
+constexpr double kPiT = 3.14159265358979323846;
+constexpr double kDeg = kPiT / 180.0;
+
+// The circle of radius r about c in the plane z = c.z, n points, as a closed curve.
+BoundaryCurve circle(const Vec3& c, double r, int n = 720) {
+  BoundaryCurve b;
+  b.name = "circle";
+  b.closed = true;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * kPiT * i / n;
+    b.points.push_back(c + Vec3(r * std::cos(t), r * std::sin(t), 0));
+  }
+  return b;
+}
+
+// The area of the regular n-gon inscribed in a circle of radius r: what the boundary's points
+// enclose (the curve between them is straight).
+double ngon_area(double r, int n) {
+  return 0.5 * n * r * r * std::sin(2 * kPiT / n);
+}
+
+PlySpec cloth(double d) {
+  PlySpec s;
+  s.d_weft = s.d_warp = d;
+  return s;
+}
+
+// Drapes `bounded` from the seed at the ply angle and returns its flat pattern.
+FlatPattern drape_flat(const BoundedMold& bounded, const Vec3& seed, double deg, double d,
+                       DrapeResult* out = nullptr) {
+  PlyDefinition def;
+  def.seed = seed;
+  def.angle = deg * kDeg;
+  auto pb = ply_problem(bounded.surface, def, cloth(d));
+  REQUIRE(pb);
+  auto r = drape(bounded.surface, *pb, DrapeOptions{});
+  REQUIRE(r);
+  if (out) *out = *r;
+  return flat_pattern(bounded.surface, *r);
+}
+}  // namespace
+
+TEST_CASE("bound mold: a circle of radius 20 on the plate is the outline at every ply angle") {
+  const MoldSurface plate = builtin_surface("plate");  // 100 x 60 in z = 0
+  PlyBoundary b;
+  b.curves = {circle(Vec3(50, 30, 0), 20.0)};
+  auto bm = bound_mold(plate, b, Vec3(50, 30, 0));
+  REQUIRE(bm);
+  const double exact = 400.0 * kPiT;
+  CHECK(bm->area == Approx(exact).epsilon(1e-3));
+  // The face's area quadrature converges to first order at trims, within its evaluation cap.
+  CHECK(bm->area == Approx(ngon_area(20.0, 720)).epsilon(1e-5));
+  REQUIRE(bm->loops.size() == 1);
+  CHECK(bm->loops[0].length == Approx(40.0 * kPiT).epsilon(1e-4));
+  for (double deg : {0.0, 45.0, 90.0, -45.0}) {
+    CAPTURE(deg);
+    const FlatPattern flat = drape_flat(*bm, Vec3(50, 30, 0), deg, 1.0);
+    CHECK(flat.area == Approx(exact).epsilon(1e-3));
+    // The outline is the circle: every vertex 20 from the seed (the ply's origin).
+    double worst = 0.0;
+    for (const auto& loop : flat.outline)
+      for (const Vec2& p : loop.points) worst = std::max(worst, std::abs(p.norm() - 20.0));
+    CHECK(worst < 0.01);
+  }
+}
+
+TEST_CASE("bound mold: an inner loop is a cut-out") {
+  const MoldSurface plate = builtin_surface("plate");
+  PlyBoundary b;
+  BoundaryCurve rect;
+  rect.name = "rectangle";
+  rect.closed = true;
+  rect.points = {Vec3(20, 10, 0), Vec3(80, 10, 0), Vec3(80, 50, 0), Vec3(20, 50, 0)};
+  b.curves = {rect, circle(Vec3(35, 30, 0), 8.0)};
+  auto bm = bound_mold(plate, b, Vec3(60, 30, 0));
+  REQUIRE(bm);
+  const double exact = 60.0 * 40.0 - ngon_area(8.0, 720);
+  CHECK(bm->area == Approx(exact).epsilon(1e-4));
+  const FlatPattern flat = drape_flat(*bm, Vec3(60, 30, 0), 30.0, 1.0);
+  CHECK(flat.area == Approx(exact).epsilon(1e-3));
+  // The seed in the hole is outside.
+  auto in_hole = bound_mold(plate, b, Vec3(35, 30, 0));
+  REQUIRE_FALSE(in_hole);
+  CHECK(in_hole.error().code == ErrorCode::kBoundarySeedOutside);
+}
+
+TEST_CASE("bound mold: open curves chain into a loop; the offset grows and shrinks it") {
+  const MoldSurface plate = builtin_surface("plate");
+  const BoundaryCurve full = circle(Vec3(50, 30, 0), 20.0);
+  BoundaryCurve a, c;
+  a.name = "upper";
+  c.name = "lower";
+  a.points.assign(full.points.begin(), full.points.begin() + 361);
+  c.points.assign(full.points.begin() + 360, full.points.end());
+  c.points.push_back(full.points.front());
+  std::reverse(c.points.begin(), c.points.end());  // chained reversed
+  PlyBoundary b;
+  b.curves = {a, c};
+  auto bm = bound_mold(plate, b, Vec3(50, 30, 0));
+  REQUIRE(bm);
+  CHECK(bm->area == Approx(ngon_area(20.0, 720)).epsilon(1e-5));
+  REQUIRE(bm->loops.size() == 1);
+  CHECK(bm->loops[0].curves.size() == 2);
+  for (double offset : {3.0, -3.0}) {
+    CAPTURE(offset);
+    b.offset = offset;
+    auto grown = bound_mold(plate, b, Vec3(50, 30, 0));
+    REQUIRE(grown);
+    CHECK(grown->area == Approx(kPiT * (20 + offset) * (20 + offset)).epsilon(1e-3));
+  }
+}
+
+TEST_CASE("bound mold: a circle of the development across flange, fillet and wall") {
+  // Flange z = 0 for x in [-40, 0], fillet of radius 10 about x = 0, z = -10, wall x = 10;
+  // 0 <= y <= 60. Arc length s from the fillet's top: the development is the (s, y) plane.
+  auto data = builtin_shell("flange-fillet-wall", {});
+  REQUIRE(data);
+  auto shell = MoldSurface::from_shell(*data);
+  REQUIRE(shell);
+  const double quarter = 0.5 * kPiT * 10.0;  // the fillet's arc
+  const auto on_mold = plyfit::support::flange_fillet_wall_at;
+  // Radius 25 about the fillet's middle: s from -17 to 33, through all three faces.
+  const double s0 = 0.5 * quarter, y0 = 30.0, R = 25.0;
+  const BoundaryCurve c = plyfit::support::circle_curve(on_mold, s0, y0, R, 1440);
+  PlyBoundary b;
+  b.curves = {c};
+  const Vec3 seed = on_mold(s0, y0);
+  auto bm = bound_mold(*shell, b, seed);
+  REQUIRE(bm);
+  CHECK(bm->faces.size() == 3);
+  // Developable: the region's area on the mold is the development's circle's.
+  const double exact = kPiT * R * R;
+  CHECK(bm->area == Approx(exact).epsilon(1e-3));
+  DrapeResult res;
+  const FlatPattern flat = drape_flat(*bm, seed, 0.0, 1.0, &res);
+  CHECK(flat.area == Approx(exact).epsilon(1e-3));
+  double worst = 0.0;
+  for (const auto& loop : flat.outline)
+    for (const Vec2& p : loop.points) worst = std::max(worst, std::abs(p.norm() - R));
+  CHECK(worst < 0.05);
+}
+
+TEST_CASE("bound mold: a cap on the sphere has the cap's area") {
+  const double R = 20.0, a = 20.0 * kDeg;
+  const MoldSurface octant = builtin_surface("sphere-octant", {{"R", R}});
+  // The cap of angular radius a about the octant's middle direction.
+  const Vec3 axis = Vec3(1, 1, 1).normalized();
+  const Vec3 e1 = Vec3(1, -1, 0).normalized(), e2 = axis.cross(e1);
+  BoundaryCurve c;
+  c.name = "cap";
+  c.closed = true;
+  const int n = 1440;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * kPiT * i / n;
+    c.points.push_back(R *
+                       (std::cos(a) * axis + std::sin(a) * (std::cos(t) * e1 + std::sin(t) * e2)));
+  }
+  PlyBoundary b;
+  b.curves = {c};
+  auto bm = bound_mold(octant, b, R * axis);
+  REQUIRE(bm);
+  const double cap = 2 * kPiT * R * R * (1 - std::cos(a));
+  CHECK(bm->area == Approx(cap).epsilon(5e-3));
+  DrapeResult res;
+  const FlatPattern flat = drape_flat(*bm, R * axis, 0.0, 0.25, &res);
+  CHECK_FALSE(flat.outline.empty());
+  // Every node the drape laid lies in the cap.
+  double widest = 0.0;
+  for (const auto& node : res.nodes)
+    if (node.mapped())
+      widest =
+          std::max(widest, std::acos(std::clamp(node.point.normalized().dot(axis), -1.0, 1.0)));
+  CHECK(widest <= a + 1e-6);
+  CHECK(widest >= a - 0.25 / R);
+}
+
+TEST_CASE("bound mold: bad boundaries are errors naming the curve") {
+  const MoldSurface plate = builtin_surface("plate");
+  const Vec3 seed(50, 30, 0);
+  SECTION("no curve") {
+    auto r = bound_mold(plate, PlyBoundary{}, seed);
+    REQUIRE_FALSE(r);
+    CHECK(r.error().code == ErrorCode::kBoundaryEmpty);
+  }
+  SECTION("too few points") {
+    PlyBoundary b;
+    BoundaryCurve c;
+    c.closed = true;
+    c.points = {Vec3(0, 0, 0), Vec3(1, 0, 0)};
+    b.curves = {c};
+    auto r = bound_mold(plate, b, seed);
+    REQUIRE_FALSE(r);
+    CHECK(r.error().code == ErrorCode::kBoundaryCurvePoints);
+  }
+  SECTION("a gap larger than the tolerance") {
+    const BoundaryCurve full = circle(Vec3(50, 30, 0), 20.0);
+    BoundaryCurve half;
+    half.name = "half";
+    half.points.assign(full.points.begin(), full.points.begin() + 361);
+    PlyBoundary b;
+    b.curves = {half};
+    auto r = bound_mold(plate, b, seed);
+    REQUIRE_FALSE(r);
+    CHECK(r.error().code == ErrorCode::kBoundaryGap);
+    CHECK(std::get<double>(r.error().values.at(2)) == Approx(40.0));
+  }
+  SECTION("a curve off the mold") {
+    PlyBoundary b;
+    b.curves = {circle(Vec3(50, 30, 2), 20.0)};
+    auto r = bound_mold(plate, b, seed);
+    REQUIRE_FALSE(r);
+    CHECK(r.error().code == ErrorCode::kBoundaryOffMold);
+    CHECK(std::get<double>(r.error().values.at(1)) == Approx(2.0));
+  }
+  SECTION("a seed outside") {
+    PlyBoundary b;
+    b.curves = {circle(Vec3(50, 30, 0), 20.0)};
+    auto r = bound_mold(plate, b, Vec3(5, 5, 0));
+    REQUIRE_FALSE(r);
+    CHECK(r.error().code == ErrorCode::kBoundarySeedOutside);
+  }
+}
