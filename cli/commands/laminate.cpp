@@ -38,9 +38,12 @@ const OptionTable& laminate_options() {
   return table;
 }
 
+// The laminate file's own keys, as "key = VALUE": they are no flags.
 void print_laminate_keys(std::ostream& os) {
-  os << "\nlaminate keys (besides every scene key, docs/laminate.md):\n";
-  print_options(os, laminate_keys());
+  os << "\nlaminate file keys (besides every scene key; docs/laminate.md):\n";
+  for (const auto& k : laminate_keys())
+    os << "  " << pad(k.key + " = " + k.value, 20) << "  " << k.help
+       << (k.def.empty() ? "" : " [" + k.def + "]") << "\n";
 }
 
 const CommandHelp kLaminateHelp = {
@@ -61,6 +64,11 @@ exporters::PlySheet sheet_of(const PlyRun& r) {
   if (r.job) {
     s.angle_deg = r.job->ply_angle_deg;
     s.material = r.job->material_label.empty() ? r.job->material : r.job->material_label;
+  } else {  // its keys are wrong: what they say, as far as it reads
+    const Options o(r.ply.raw, drape_options());
+    const auto angle = o.number("ply-angle");
+    s.angle_deg = o.given("ply-angle") && angle ? *angle : 0.0;
+    s.material = o.text("material").value_or("");
   }
   s.status = r.outcome.status;
   s.error = r.outcome.error;
