@@ -9,10 +9,8 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <set>
-#include <sstream>
 
 namespace fs = std::filesystem;
 
@@ -106,15 +104,7 @@ Status add_line(const IniLine& l, const std::string& path, const std::string& di
 
 // The file's sections: [laminate] (optional, first) and the [ply NAME] sections in file order.
 Result<std::pair<Section, std::vector<Section>>> read_sections(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    Error e{ErrorCode::kSceneCannotOpen};
-    e.where = path;
-    return e;
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  auto lines = read_ini(text.str(), path);
+  auto lines = read_scene_lines(path);
   if (!lines) return lines.error();
   const std::string dir = fs::absolute(fs::path(path)).parent_path().string();
   Section laminate;

@@ -126,7 +126,7 @@ void material_and_output_values(const DrapeJob& job, SceneValues& v) {
 
 }  // namespace
 
-Result<RawOptions> raw_from_scene(const std::string& path) {
+Result<std::vector<IniLine>> read_scene_lines(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     Error e{ErrorCode::kSceneCannotOpen};
@@ -135,7 +135,11 @@ Result<RawOptions> raw_from_scene(const std::string& path) {
   }
   std::ostringstream text;
   text << in.rdbuf();
-  auto lines = read_ini(text.str(), path);
+  return read_ini(text.str(), path);
+}
+
+Result<RawOptions> raw_from_scene(const std::string& path) {
+  auto lines = read_scene_lines(path);
   if (!lines) return lines.error();
   RawOptions raw;
   raw.origin = path;

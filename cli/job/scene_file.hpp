@@ -13,6 +13,9 @@ namespace plyfit::cli {
 /// (name them with scene_namer(path)).
 Result<RawOptions> raw_from_scene(const std::string& path);
 
+/// A scene (or laminate) file's lines; errors: scene_cannot_open, or placed in the file.
+Result<std::vector<IniLine>> read_scene_lines(const std::string& path);
+
 /// Adds a key = value line of a scene file (`path`, relative paths from `dir`) to raw values:
 /// sections are for grouping ("[ply] spacing = 1" is the key "spacing"), a dotted key is its
 /// last part. Messages name the key as coming from `origin` (empty: the file).

@@ -105,13 +105,16 @@ std::string ply_section(const PlySheet& p, std::size_t k, const std::string& dir
   for (const auto& [file, cls, caption] : {std::tuple{"flat.svg", "flat", "Flat pattern"},
                                            {"shear.svg", "shear", "Shear map"},
                                            {"view.svg", "view3d", "3D view"}}) {
-    const std::string svg = inline_svg(folder / file, std::string("p").append(std::to_string(k)).append("-"));
+    const std::string svg =
+        inline_svg(folder / file, std::string("p").append(std::to_string(k)).append("-"));
     if (svg.empty()) continue;
     any = true;
     o << "<figure class=\"picture " << cls << "\">\n"
       << svg << "<figcaption>" << caption << "</figcaption></figure>\n";
   }
-  if (!any) o << "<p class=\"no-picture\">No picture: the ply was not draped.</p>\n";
+  if (!any)
+    o << "<p class=\"no-picture\">No picture: the ply was not draped, or its outputs leave out "
+         "svg.</p>\n";
   o << "</div>\n";
   for (const auto& w : p.warnings)
     o << "<p class=\"warning\">" << xml_escape(message(w)) << " [" << to_string(w.code)
