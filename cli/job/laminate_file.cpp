@@ -23,6 +23,12 @@ constexpr const char* kPlyPrefix = "ply ";
 // The scene keys a laminate sets itself: each ply's output folder and name come from the
 // section, its angle from `angle`.
 constexpr const char* kSetByLaminate[] = {"output", "ply-name", "ply-angle"};
+// Keys that stand for one another: a ply section giving one of a group drops the laminate's
+// others (a ply's `faces` replaces the laminate's `face`, its start keys the laminate's seed).
+const std::vector<std::vector<std::string>> kAlternatives = {
+    {"face", "faces", "faces-at"},
+    {"seed", "start3d", "base2d", "sweep2d", "base-normal", "sweep3d"},
+    {"spacing", "spacing-weft", "spacing-warp"}};
 // Largest sequence number.
 constexpr long kMaxSequence = 1L << 30;
 
@@ -135,14 +141,20 @@ Result<std::pair<Section, std::vector<Section>>> read_sections(const std::string
 }
 
 // A ply's scene: the laminate's keys overridden by its own; its name, angle and output folder.
-Result<LaminatePly> make_ply(const Section& laminate, const Section& s, const std::string& outdir,
-                             long sequence) {
+LaminatePly make_ply(const Section& laminate, const Section& s, const std::string& outdir,
+                     long sequence) {
   LaminatePly p;
   p.name = s.name;
   p.sequence = sequence;
   RawOptions over = s.scene;
   over.origin = s.origin;
-  p.raw = merge(laminate.scene, over);
+  RawOptions base = laminate.scene;
+  for (const auto& group : kAlternatives)
+    for (const auto& key : group)
+      if (over.values.count(key))
+        for (const auto& other : group)
+          if (!over.values.count(other)) base.values.erase(other);
+  p.raw = merge(base, over);
   p.raw.origin = s.origin;
   const Section& angle_from = s.own.values.count("angle") ? s : laminate;
   if (const auto a = angle_from.own.values.find("angle"); a != angle_from.own.values.end()) {
@@ -197,9 +209,7 @@ Result<Laminate> read_laminate(const std::string& path, const std::string& outdi
       return in_section(Error{ErrorCode::kSequenceRepeated, "sequence", {std::int64_t{seq}}},
                         s.origin);
     previous = seq;
-    auto p = make_ply(laminate, s, outdir, seq);
-    if (!p) return p.error();
-    lam.plies.push_back(std::move(p).value());
+    lam.plies.push_back(make_ply(laminate, s, outdir, seq));
   }
   std::stable_sort(
       lam.plies.begin(), lam.plies.end(),

@@ -187,3 +187,17 @@ TEST_CASE("cli laminate: a piece wider than the roll is left out of cut.dxf, and
   for (const char* name : {"C", "D", "ROLL"}) CHECK(layer(name));
   CHECK(json::parse(slurp(s.file("out/plybook.json"))).at("plies")[1].at("status") == "ok");
 }
+
+TEST_CASE("cli laminate: a ply's keys replace the laminate's that stand for them") {
+  Scratch s("laminate_alternatives");
+  // E gives the paper's start keys instead of the laminate's seed, and its own thread spacings.
+  spit(s.file("lam.ini"), laminate_text("\n[ply E]\nstart2d = 0,0\nbase2d = 1,0\nsweep2d = 0,1\n"
+                                        "start3d = 0,0,20\nbase-normal = 0,1,0\nsweep3d = 0,1,0\n"
+                                        "spacing-weft = 1\nspacing-warp = 1.5\n"));
+  const CliRun r = plyfit_run("laminate lam.ini -o out --quiet", s, s.path.string());
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  const json rep = json::parse(slurp(s.file("out/E/report.json")));
+  CHECK(rep.at("ply").at("defined_by") == "start");
+  CHECK(json::parse(slurp(s.file("out/A/report.json"))).at("ply").at("defined_by") == "seed");
+}
