@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -45,23 +46,23 @@ std::string inline_svg(const fs::path& file, const std::string& prefix) {
   const std::string svg = ss.str();
   const auto start = svg.find("<svg");
   if (start == std::string::npos) return {};
+  // Each marker's next place, found again only once passed (one pass over the text).
+  const char* markers[] = {"id=\"", "url(#", "href=\"#"};
+  std::size_t next[3];
+  for (int m = 0; m < 3; ++m) next[m] = svg.find(markers[m], start);
   std::string out;
   out.reserve(svg.size() + svg.size() / 64);
   std::size_t k = start;
-  while (k < svg.size()) {
-    std::size_t best = std::string::npos, len = 0;
-    for (const char* m : {"id=\"", "url(#", "href=\"#"}) {
-      const auto at = svg.find(m, k);
-      if (at < best) best = at, len = std::char_traits<char>::length(m);
-    }
-    if (best == std::string::npos) {
-      out.append(svg, k, std::string::npos);
-      break;
-    }
-    out.append(svg, k, best + len - k);
+  for (;;) {
+    const int m = static_cast<int>(std::min_element(next, next + 3) - next);
+    if (next[m] == std::string::npos) break;
+    const std::size_t end = next[m] + std::char_traits<char>::length(markers[m]);
+    out.append(svg, k, end - k);
     out += prefix;
-    k = best + len;
+    k = end;
+    next[m] = svg.find(markers[m], k);
   }
+  out.append(svg, k, std::string::npos);
   return out;
 }
 
