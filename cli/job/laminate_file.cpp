@@ -8,9 +8,12 @@
 #include "job/scene_file.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <limits>
 #include <set>
+#include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 
@@ -136,7 +139,11 @@ Result<std::pair<Section, std::vector<Section>>> read_sections(const std::string
       return st.error();
     }
   }
-  if (plies.empty()) return placed(Error{ErrorCode::kLaminateNoPlies}, path, 0);
+  if (plies.empty()) {
+    Error e{ErrorCode::kLaminateNoPlies};
+    e.where = path;
+    return e;
+  }
   return std::pair{std::move(laminate), std::move(plies)};
 }
 
