@@ -13,15 +13,11 @@
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
-#include <thread>
 
 namespace plyfit::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// Most plies draped at a time.
-constexpr long kMaxJobs = 1024;
 
 std::atomic<bool> g_cancel{false};
 void on_interrupt(int) {
@@ -123,8 +119,7 @@ int run_laminate(const std::vector<std::string>& args) {
   const Arguments a = read_arguments(args, table, {"laminate", "laminate file"}, kLaminateHelp);
   if (a.exit) return *a.exit;
   const Options o(a.raw, table);
-  auto jobs = o.given("jobs") ? o.integer("jobs", 1, kMaxJobs)
-                              : Result<long>(std::max(1u, std::thread::hardware_concurrency()));
+  auto jobs = jobs_value(o);
   if (!jobs) return error_exit(kExitUsage, jobs.error(), o.namer());
   if (!o.given("output")) return error_exit(kExitUsage, o.missing("output"), o.namer());
   const fs::path dir = *o.text("output");
