@@ -13,16 +13,12 @@
 #include <algorithm>
 #include <cstdlib>
 #include <iostream>
-#include <thread>
 
 namespace plyfit::cli {
 namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-/// Most scenes run at a time.
-constexpr long kMaxJobs = 1024;
 
 const OptionTable& batch_options() {
   static const OptionTable table = {
@@ -118,8 +114,7 @@ int run_batch(const std::vector<std::string>& args) {
   const Arguments a = read_arguments(args, table, {"scene", "scene files", true}, kBatchHelp);
   if (a.exit) return *a.exit;
   const Options o(a.raw, table);
-  auto jobs = o.given("jobs") ? o.integer("jobs", 1, kMaxJobs)
-                              : Result<long>(std::max(1u, std::thread::hardware_concurrency()));
+  auto jobs = jobs_value(o);
   if (!jobs) return error_exit(kExitUsage, jobs.error(), o.namer());
   auto shard = o.given("shard") ? parse_shard(*o.text("shard")) : Result<Shard>(Shard{});
   if (!shard) return error_exit(kExitUsage, shard.error(), o.namer());

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <ostream>
 #include <sstream>
+#include <thread>
 
 namespace po = boost::program_options;
 namespace fs = std::filesystem;
@@ -160,6 +161,12 @@ exporters::InputNamer flag_namer(const OptionTable& table) {
 
 OptionSpec help_option() {
   return {"help", "", "", "show this help", false, "", 'h'};
+}
+
+Result<long> jobs_value(const Options& o) {
+  constexpr long kMaxJobs = 1024;  // most jobs run at a time
+  if (o.given("jobs")) return o.integer("jobs", 1, kMaxJobs);
+  return static_cast<long>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
 OptionSpec quiet_option() {

@@ -145,4 +145,7 @@ class Options {
   const OptionTable& table_;
 };
 
+/// The value of --jobs/-j (jobs_option): 1 to 1024, default the number of cores.
+Result<long> jobs_value(const Options& o);
+
 }  // namespace plyfit::cli

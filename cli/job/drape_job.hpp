@@ -9,10 +9,12 @@
 #include <plyfit/exporters/exporters.hpp>
 #include <plyfit/exporters/messages.hpp>
 #include <plyfit/kernel/drape.hpp>
+#include <plyfit/kernel/flat_pattern.hpp>
 #include <plyfit/kernel/optimize.hpp>
 #include <plyfit/kernel/result.hpp>
 
 #include <atomic>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -92,6 +94,16 @@ struct JobOutcome {
   /// The mold's (reading and sewing it: report.json's mold.warnings, e.g. faces that share
   /// no edge form separate shells).
   std::vector<std::string> mold_warnings;
+  /// The flat pattern's cut outline (FlatPattern::cut), for drawings of several plies.
+  std::vector<OutlineLoop> cut;
+};
+
+/// A job's surface, loaded once for every job that drapes it (plyfit laminate's plies share
+/// their mold): the surface and what the report says of the mold (faces, unit, warnings,
+/// import time).
+struct LoadedSurface {
+  std::shared_ptr<const MoldSurface> surface;
+  exporters::RunInfo mold;
 };
 
 /// Imports the surface a job drapes: a built-in mold (one face, or a built-in shell), one face
@@ -118,11 +130,19 @@ Result<JobBoundary> job_boundary(const DrapeJob& job, const MoldSurface& surface
 Result<exporters::PlyReport> ply_report(const DrapeJob& job, const MoldSurface& surface,
                                         const DrapeResult& result);
 
+/// Loads a job's surface (load_surface) with its import time.
+Result<LoadedSurface> load_job_surface(const DrapeJob& job);
+
 /// Runs a job end to end; outputs are written atomically into job.outdir. `cancel` stops
 /// the drape (no files are written then). Progress goes to stderr when it is a terminal and
 /// `progress` is true. Errors blame drape inputs by key (job.name_input names them).
 Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel = nullptr,
                            bool progress = false);
+
+/// run_job on a surface already loaded (load_job_surface): safe to call from several threads
+/// at once on one surface.
+Result<JobOutcome> run_job_on(const DrapeJob& job, const LoadedSurface& loaded,
+                              const std::atomic<bool>* cancel = nullptr, bool progress = false);
 
 /// The scene the search of initial conditions starts from (plyfit optimize).
 SearchScene search_scene(const DrapeJob& job);

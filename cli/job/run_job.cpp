@@ -85,15 +85,36 @@ JobOutcome outcome_of(const DrapeJob& job, const MoldSurface& surface, const Dra
 
 }  // namespace
 
+Result<LoadedSurface> load_job_surface(const DrapeJob& job) {
+  const auto t0 = Clock::now();
+  LoadedSurface loaded;
+  auto surface = load_surface(job, &loaded.mold);
+  if (!surface) return surface.error();
+  loaded.surface = std::make_shared<const MoldSurface>(std::move(surface).value());
+  loaded.mold.import_ms = ms_since(t0);
+  return loaded;
+}
+
 Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel, bool progress) {
+  auto loaded = load_job_surface(job);
+  if (!loaded) return loaded.error();
+  return run_job_on(job, *loaded, cancel, progress);
+}
+
+Result<JobOutcome> run_job_on(const DrapeJob& job, const LoadedSurface& loaded,
+                              const std::atomic<bool>* cancel, bool progress) {
   const auto t0 = Clock::now();
   exporters::RunInfo run = run_info(job);
-  auto loaded = load_surface(job, &run);
-  if (!loaded) return loaded.error();
-  auto bounded = job_boundary(job, *loaded, &run);
+  run.faces = loaded.mold.faces;
+  run.faces_info = loaded.mold.faces_info;
+  run.mold_unit = loaded.mold.mold_unit;
+  run.warnings = loaded.mold.warnings;
+  run.import_ms = loaded.mold.import_ms;
+  // The ply's boundary restricts the shared surface for this job alone (its time counts in
+  // the total, not in the import a laminate shares).
+  auto bounded = job_boundary(job, *loaded.surface, &run);
   if (!bounded) return bounded.error();
   const MoldSurface surface = bounded->surface;
-  run.import_ms = ms_since(t0);
 
   auto problem = job_problem(job, surface);
   if (!problem) return problem.error();
@@ -104,7 +125,7 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
   FlatPatternOptions fo;
   fo.min_width = job.min_width;
   const FlatPattern flat = flat_pattern(surface, *res, fo);
-  run.total_ms = ms_since(t0);
+  run.total_ms = run.import_ms + ms_since(t0);
   exporters::ExportOptions eo = export_options(job);
   auto ply = ply_report(job, surface, *res);
   if (!ply) return ply.error();
@@ -116,7 +137,8 @@ Result<JobOutcome> run_job(const DrapeJob& job, const std::atomic<bool>* cancel,
     if (auto s = exporters::write_outputs(ctx, job.outdir, job.outputs); !s) return s.error();
   JobOutcome out = outcome_of(job, surface, *res, flat);
   out.mold_warnings = run.warnings;
-  out.total_ms = ms_since(t0);
+  out.cut = flat.cut;
+  out.total_ms = run.import_ms + ms_since(t0);
   return out;
 }
 

@@ -21,9 +21,10 @@ const OptionSpec* find_key(const std::string& key) {
   return nullptr;
 }
 
-// A key = value line as a drape key: sections are for grouping ("[ply] spacing = 1" is the key
-// "spacing"), and a dotted key is its last part.
-Status add_key(const IniLine& l, const std::string& path, const std::string& dir, RawOptions& raw) {
+}  // namespace
+
+Status add_scene_key(const IniLine& l, const std::string& path, const std::string& dir,
+                     RawOptions& raw, const std::string& origin) {
   const std::string dotted = l.section.empty() ? l.key : l.section + "." + l.key;
   const auto dot = dotted.rfind('.');
   const std::string section = dot == std::string::npos ? "" : dotted.substr(0, dot);
@@ -38,9 +39,11 @@ Status add_key(const IniLine& l, const std::string& path, const std::string& dir
   if (!s->repeatable && !vals.empty()) return Error{ErrorCode::kOptionRepeated, key};
   vals.push_back(l.value);
   raw.dirs[key] = dir;
-  raw.origins[key] = path;
+  raw.origins[key] = origin.empty() ? path : origin;
   return ok_status();
 }
+
+namespace {
 
 std::string fmt(double x) {
   std::ostringstream os;
@@ -129,7 +132,7 @@ void material_and_output_values(const DrapeJob& job, SceneValues& v) {
 
 }  // namespace
 
-Result<RawOptions> raw_from_scene(const std::string& path) {
+Result<std::vector<IniLine>> read_scene_lines(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     Error e{ErrorCode::kSceneCannotOpen};
@@ -138,14 +141,18 @@ Result<RawOptions> raw_from_scene(const std::string& path) {
   }
   std::ostringstream text;
   text << in.rdbuf();
-  auto lines = read_ini(text.str(), path);
+  return read_ini(text.str(), path);
+}
+
+Result<RawOptions> raw_from_scene(const std::string& path) {
+  auto lines = read_scene_lines(path);
   if (!lines) return lines.error();
   RawOptions raw;
   raw.origin = path;
   const std::string dir = fs::absolute(fs::path(path)).parent_path().string();
   for (const IniLine& l : *lines)
     if (!l.is_section)
-      if (auto st = add_key(l, path, dir, raw); !st) return st.error();
+      if (auto st = add_scene_key(l, path, dir, raw); !st) return st.error();
   return raw;
 }
 

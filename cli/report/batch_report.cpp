@@ -3,6 +3,8 @@
 #include "commands/commands.hpp"
 #include "report/text_format.hpp"
 
+#include <plyfit/exporters/laminate.hpp>
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -11,16 +13,7 @@
 
 namespace plyfit::cli {
 
-namespace {
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-}  // namespace
+using exporters::csv_field;
 
 void print_batch_table(const std::vector<SceneRun>& runs, std::ostream& os) {
   std::vector<std::vector<std::string>> rows = {
@@ -36,15 +29,7 @@ void print_batch_table(const std::vector<SceneRun>& runs, std::ostream& os) {
                     ran ? fixed(r.shear_max_deg, 3) : "-",
                     r.status == "not run" ? "-" : fixed(r.seconds, 2), outputs});
   }
-  std::vector<std::size_t> w(rows[0].size(), 0);
-  for (const auto& row : rows)
-    for (std::size_t c = 0; c + 1 < row.size(); ++c) w[c] = std::max(w[c], row[c].size());
-  for (const auto& row : rows) {
-    std::string line;
-    for (std::size_t c = 0; c < row.size(); ++c)
-      line += c + 1 < row.size() ? pad(row[c], w[c] + 2) : row[c];
-    os << line << "\n";
-  }
+  print_columns(rows, os);
 }
 
 std::map<std::string, int> count_statuses(const std::vector<SceneRun>& runs) {

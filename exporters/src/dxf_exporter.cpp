@@ -35,6 +35,7 @@
 #include <plyfit/kernel/flat_pattern.hpp>
 
 #include "dxf/document.hpp"
+#include "dxf/labels.hpp"
 #include "net_util.hpp"
 #include "plugins.hpp"
 #include "render/drawing_scale.hpp"
@@ -51,15 +52,6 @@ namespace {
 using detail::Box2;
 using render::degrees_text;
 using render::fixed_text;
-
-// The label block, in units of the text height h: line pitch, the widest a character of the
-// Standard style's font is drawn (AutoCAD's txt and LibreCAD's fonts draw capitals and digits
-// narrower than this, so the block estimate is generous), the grain arrow's column ("WARP"
-// rotated, the shaft, a gap before the text) and the depth below the last baseline.
-constexpr double kLinePitch = 1.6;
-constexpr double kCharWidth = 1.0;
-constexpr double kArrowColumn = 3.0;
-constexpr double kDescent = 0.4;
 
 // What the drawing covers: the outline, the mapped nodes and the start, and its extent (at
 // least one thread spacing).
@@ -176,38 +168,6 @@ std::vector<std::string> label_lines(const ExportContext& ctx) {
   };
 }
 
-// The label block's size per unit of text height: the arrow's column and the longest line
-// wide, the lines high.
-render::BlockShape label_shape(const std::vector<std::string>& lines) {
-  // Characters as the file writes them (one byte each, a \U+XXXX escape seven): a reader that
-  // shows the escape, or measures it so (ezdxf), still finds the line inside the outline.
-  std::size_t chars = 0;
-  for (const auto& l : lines) chars = std::max(chars, dxf::dxf_text(l).size());
-  return {kArrowColumn + kCharWidth * static_cast<double>(chars),
-          1.0 + kLinePitch * static_cast<double>(lines.size() - 1) + kDescent};
-}
-
-// GRAIN and LABELS: the grain arrow up the block's left column (the head at the top, "WARP"
-// along the shaft) and the label lines beside it.
-void add_labels(dxf::Writer& e, const std::vector<std::string>& lines,
-                const render::BlockShape& shape, const render::BlockPlace& place) {
-  const double h = place.h;
-  const Vec2 top_left = place.top_left;
-  const double block_h = shape.height_at(h);
-  const Vec2 foot = top_left + Vec2(2.0 * h, -block_h);
-  const Vec2 tip = top_left + Vec2(2.0 * h, 0.0);
-  const double head = std::min(1.2 * h, 0.3 * block_h), head_half = 0.45 * h;
-  e.line("GRAIN", foot, tip);
-  e.line("GRAIN", tip, tip + Vec2(head_half, -head));
-  e.line("GRAIN", tip, tip + Vec2(-head_half, -head));
-  e.text("GRAIN", foot + Vec2(-0.4 * h, 0.1 * block_h), h, "WARP", 90.0);
-  for (std::size_t k = 0; k < lines.size(); ++k) {
-    const Vec2 at =
-        top_left + Vec2(kArrowColumn * h, -h * (1.0 + kLinePitch * static_cast<double>(k)));
-    e.text("LABELS", at, h, lines[k]);
-  }
-}
-
 std::string build_dxf(const ExportContext& ctx) {
   const std::vector<OutlineLoop> no_loops;
   const std::vector<OutlineLoop>& loops = ctx.flat ? ctx.flat->cut : no_loops;
@@ -220,15 +180,15 @@ std::string build_dxf(const ExportContext& ctx) {
   const double marker = render::kMarkerRel * ext.extent;
   add_markings(e, ctx, path, marker);
   const std::vector<std::string> lines = label_lines(ctx);
-  const render::BlockShape shape = label_shape(lines);
+  const render::BlockShape shape = dxf::label_shape(lines);
   const render::BlockPlace place =
       render::place_block(loops, shape, ext.extent, render::label_text_height(ext.extent),
                           ext.box.lo, marking_obstacles(path, ctx.problem.ply.start, marker));
-  add_labels(e, lines, shape, place);
+  dxf::add_labels(e, lines, shape, place, "GRAIN", "LABELS");
   ext.box.add(place.top_left);
   ext.box.add(place.top_left + Vec2(shape.width_at(place.h), -shape.height_at(place.h)));
   if (ext.box.empty()) ext.box.add(Vec2::Zero());
-  return dxf::document(e, {ext.box.lo, ext.box.hi, place.h, ctx.options.dxf_threads});
+  return dxf::document(e, {ext.box.lo, ext.box.hi, place.h, ctx.options.dxf_threads, {}});
 }
 
 }  // namespace

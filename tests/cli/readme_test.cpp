@@ -34,8 +34,9 @@ const std::string kReadme = "README.md";
 
 /// The page of docs/ that documents each command's options.
 const std::map<std::string, std::string> kCommandPages = {
-    {"info", "docs/info.md"},       {"drape", "docs/options.md"},     {"batch", "docs/batch.md"},
-    {"compare", "docs/compare.md"}, {"optimize", "docs/optimize.md"}, {"sample", "docs/sample.md"}};
+    {"info", "docs/info.md"},        {"drape", "docs/options.md"},     {"batch", "docs/batch.md"},
+    {"compare", "docs/compare.md"},  {"optimize", "docs/optimize.md"}, {"sample", "docs/sample.md"},
+    {"laminate", "docs/laminate.md"}};
 
 /// The commands `plyfit --help` lists.
 std::vector<std::string> commands(const Scratch& s) {

@@ -13,7 +13,11 @@ platform) and pdftoppm (poppler-utils), and checks what a person would see:
 
 The rendered page is kept as DIR/flat-librecad-1.png for a person to look at.
 
-usage: check_librecad.py DIR
+With --cut, DIR is a laminate's folder and the drawing its cut.dxf (plyfit laminate): every
+ply's outline, labels and grain arrow are on the ply's own layer (every layer but ROLL and 0),
+one arrow per ply; the page is kept as DIR/cut-librecad-1.png.
+
+usage: check_librecad.py DIR [--cut]
 """
 import os
 import shutil
@@ -59,7 +63,9 @@ def read_pgm(path):
 
 def main():
     d = sys.argv[1]
-    dxf = os.path.join(d, "flat.dxf")
+    cut = "--cut" in sys.argv[2:]
+    name = "cut" if cut else "flat"
+    dxf = os.path.join(d, name + ".dxf")
     failures = []
 
     def check(ok, what):
@@ -68,11 +74,11 @@ def main():
 
     tmp = tempfile.mkdtemp(prefix="plyfit_librecad_")
     try:
-        shutil.copy(dxf, os.path.join(tmp, "flat.dxf"))
+        shutil.copy(dxf, os.path.join(tmp, name + ".dxf"))
         env = dict(os.environ, QT_QPA_PLATFORM="offscreen", XDG_RUNTIME_DIR=tmp, HOME=tmp)
-        run = subprocess.run(["librecad", "dxf2pdf", "-a", "flat.dxf"], cwd=tmp, env=env,
+        run = subprocess.run(["librecad", "dxf2pdf", "-a", name + ".dxf"], cwd=tmp, env=env,
                              capture_output=True, text=True, timeout=TIMEOUT_S)
-        pdf = os.path.join(tmp, "flat.pdf")
+        pdf = os.path.join(tmp, name + ".pdf")
         if run.returncode != 0 or not os.path.exists(pdf):
             print("check_librecad: librecad dxf2pdf failed (%d): %s" % (run.returncode, run.stderr[-500:]))
             return 1
@@ -86,7 +92,7 @@ def main():
         if len(pgm) != 1:
             raise SystemExit(1)
         subprocess.run(["pdftoppm", "-r", str(DPI), "-png", "-f", "1", "-l", "1", pdf,
-                        os.path.join(d, "flat-librecad")], check=True, timeout=TIMEOUT_S)
+                        os.path.join(d, name + "-librecad")], check=True, timeout=TIMEOUT_S)
         w, h, px = read_pgm(os.path.join(tmp, pgm[0]))
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
@@ -120,11 +126,13 @@ def main():
                     return True
         return False
 
-    loops = [[(p[0], p[1]) for p in e.get_points("xy")]
-             for e in msp.query("LWPOLYLINE[layer=='OUTLINE' | layer=='HOLES']")]
+    marks = "[layer!='ROLL' & layer!='0']" if cut else "[layer=='LABELS' | layer=='GRAIN']"
+    outline = "[layer!='ROLL' & layer!='0']" if cut else "[layer=='OUTLINE' | layer=='HOLES']"
+    loops = [[(p[0], p[1]) for p in e.get_points("xy")] for e in msp.query("LWPOLYLINE" + outline)]
     check(len(loops) > 0, "no OUTLINE")
-    texts = list(msp.query("TEXT[layer=='LABELS' | layer=='GRAIN']"))
-    check(len(texts) >= 7, "%d label texts" % len(texts))
+    pieces = len({e.dxf.layer for e in msp.query("LWPOLYLINE" + outline)})
+    texts = list(msp.query("TEXT" + marks))
+    check(len(texts) >= (4 * pieces if cut else 7), "%d label texts" % len(texts))
     for e in texts:
         p = e.dxf.insert
         check(inside(loops, p.x, p.y), "text %r inserted outside the outline" % e.dxf.text)
@@ -136,8 +144,9 @@ def main():
         else:
             probe = (p.x + 0.5 * hgt, p.y + 0.5 * hgt)
         check(ink_near(*probe), "no ink at the text %r" % e.dxf.text)
-    shafts = [e for e in msp.query("LINE[layer=='GRAIN']") if e.dxf.start.x == e.dxf.end.x]
-    check(len(shafts) == 1, "%d grain arrow shafts" % len(shafts))
+    shafts = [e for e in msp.query("LINE" + ("[layer!='ROLL']" if cut else "[layer=='GRAIN']"))
+              if e.dxf.start.x == e.dxf.end.x]
+    check(len(shafts) == (pieces if cut else 1), "%d grain arrow shafts" % len(shafts))
     for e in shafts:
         for t in (0.0, 0.25, 0.5, 0.75, 1.0):
             x = e.dxf.start.x + t * (e.dxf.end.x - e.dxf.start.x)

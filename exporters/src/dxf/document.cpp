@@ -139,22 +139,34 @@ void ltype_table(Writer& f) {
   end_table(f);
 }
 
-void layer_table(Writer& f, bool threads_layer) {
+// A layer's record.
+void layer_record(Writer& f, unsigned handle, const std::string& name, int colour) {
+  record(f, "LAYER", handle, kLayerTable, "AcDbLayerTableRecord", name.c_str());
+  f.tag(62, colour);
+  f.tag(6, "Continuous");
+  f.tag(370, -3);
+  f.handle(390, kPlotStyleNormal);
+}
+
+void layer_table(Writer& f, const DocumentInfo& info) {
+  if (!info.layers.empty()) {
+    table(f, "LAYER", kLayerTable, static_cast<int>(info.layers.size()));
+    for (std::size_t k = 0; k < info.layers.size(); ++k)
+      layer_record(f, kFirstLayerHandle + static_cast<unsigned>(k), info.layers[k].name,
+                   info.layers[k].colour);
+    end_table(f);
+    return;
+  }
   auto defined = [&](int k) {
-    return threads_layer || std::string(kLayers[k].name) != kThreadsLayer;
+    return info.threads_layer || std::string(kLayers[k].name) != kThreadsLayer;
   };
   int layer_count = 0;
   for (int k = 0; k < kLayerCount; ++k) layer_count += defined(k);
   table(f, "LAYER", kLayerTable, layer_count);
-  for (int k = 0; k < kLayerCount; ++k) {
-    if (!defined(k)) continue;
-    record(f, "LAYER", kFirstLayerHandle + static_cast<unsigned>(k), kLayerTable,
-           "AcDbLayerTableRecord", kLayers[k].name);
-    f.tag(62, kLayers[k].colour);
-    f.tag(6, "Continuous");
-    f.tag(370, -3);
-    f.handle(390, kPlotStyleNormal);
-  }
+  for (int k = 0; k < kLayerCount; ++k)
+    if (defined(k))
+      layer_record(f, kFirstLayerHandle + static_cast<unsigned>(k), kLayers[k].name,
+                   kLayers[k].colour);
   end_table(f);
 }
 
@@ -199,7 +211,7 @@ void tables(Writer& f, const DocumentInfo& info) {
   begin_section(f, "TABLES");
   vport_table(f, info);
   ltype_table(f);
-  layer_table(f, info.threads_layer);
+  layer_table(f, info);
   style_table(f, info.text_height);
   small_tables(f);
   block_record_table(f);

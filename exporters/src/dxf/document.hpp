@@ -6,6 +6,7 @@
 #include "dxf/writer.hpp"
 
 #include <string>
+#include <vector>
 
 namespace plyfit::exporters::dxf {
 
@@ -14,6 +15,9 @@ struct DocumentInfo {
   Vec2 lo = Vec2::Zero(), hi = Vec2::Zero();  ///< the drawing's extents
   double text_height = 0.0;                   ///< $TEXTSIZE, the Standard style's height
   bool threads_layer = false;                 ///< the THREADS layer is defined
+  /// The drawing's own layers (layer 0 first), their handles from kFirstLayerHandle on, the
+  /// entities' after them (Writer(first_entity_handle(layers))); empty: flat.dxf's (kLayers).
+  std::vector<Layer> layers;
 };
 
 /// The whole file: HEADER, CLASSES, TABLES, BLOCKS, the ENTITIES `entities` wrote (their

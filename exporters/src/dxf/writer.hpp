@@ -20,6 +20,12 @@ constexpr LayerDef kLayers[] = {{"0", 7},       {"OUTLINE", 7},    {"HOLES", 7},
                                 {"THREADS", 8}, {"BASEPATH", 5},   {"ORIGIN", 3},
                                 {"GRAIN", 4},   {"SHEAR_WARN", 1}, {"LABELS", 7}};
 constexpr int kLayerCount = static_cast<int>(sizeof(kLayers) / sizeof(kLayers[0]));
+/// A layer of a drawing whose layers are not flat.dxf's.
+struct Layer {
+  std::string name;
+  int colour = 7;
+};
+
 /// The layer that is in the file only with ExportOptions::dxf_threads.
 constexpr const char* kThreadsLayer = "THREADS";
 
@@ -69,6 +75,8 @@ std::string dxf_text(const std::string& s);
 /// kFirstEntityHandle.
 class Writer {
  public:
+  /// Entities numbered from `first_handle` (after the layers' handles).
+  explicit Writer(unsigned first_handle = kFirstEntityHandle) : next_(first_handle) {}
   /// A group: its code right-aligned in three columns, as AutoCAD writes them, then the value.
   void tag(int code, const std::string& value);
   void tag(int code, int value) { tag(code, std::to_string(value)); }
@@ -96,7 +104,12 @@ class Writer {
  private:
   void entity_head(const char* type, const char* layer, const char* subclass);
   std::string out_;
-  unsigned next_ = kFirstEntityHandle;
+  unsigned next_;
 };
+
+/// The first entity handle of a drawing with these layers (DocumentInfo::layers).
+inline unsigned first_entity_handle(const std::vector<Layer>& layers) {
+  return kFirstLayerHandle + static_cast<unsigned>(layers.size());
+}
 
 }  // namespace plyfit::exporters::dxf

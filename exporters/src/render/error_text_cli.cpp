@@ -277,4 +277,45 @@ std::string text_curve_not_found(const Values& x) {
          " curves: plyfit info FILE --curves lists them)";
 }
 
+// ---- laminates ----
+
+std::string text_laminate_section(const Values& x) {
+  const std::string s = x.text(0);
+  return s.empty() || s == "?"
+             ? "a key outside the sections (a laminate file has [laminate] and [ply NAME])"
+             : "unknown section [" + s + "] ([laminate] first, then [ply NAME] sections)";
+}
+
+std::string text_laminate_no_plies(const Values&) {
+  return "the laminate has no [ply NAME] section";
+}
+
+std::string text_ply_name_invalid(const Values& x) {
+  return "ply name " + quoted(x, 0) +
+         " is not 1 to 64 letters, digits, '-', '_' or '.' (not first)";
+}
+
+std::string text_ply_repeated(const Values& x) {
+  return "ply " + quoted(x, 0) + " is defined twice (first at line " + x.n(1) + ")";
+}
+
+std::string text_sequence_repeated(const Values& x) {
+  return "sequence " + x.n(0) + " is taken by another ply";
+}
+
+std::string text_key_not_in_laminate(const Values& x) {
+  return "key " + quoted(x, 0) +
+         " is not taken here (roll-width in [laminate], sequence in [ply NAME]; a ply's name, "
+         "angle and output folder are its section name, `angle` and -o)";
+}
+
+std::string text_ply_exception(const Values& x) {
+  return "the ply stopped on an unexpected exception: " + x.text(0);
+}
+
+std::string text_piece_wider_than_roll(const Values& x) {
+  return "the cut outline is " + x.brief(0) + " mm wide, wider than the roll (" + x.brief(1) +
+         " mm): left out of cut.dxf";
+}
+
 }  // namespace plyfit::exporters::render

@@ -207,7 +207,16 @@ namespace plyfit {
   X(DifferentMolds, different_molds)                                                        \
   X(OptimizeShell, optimize_shell)                                                          \
   X(NoFeasibleDrape, no_feasible_drape)                                                     \
-  X(OptionNeedsVary, option_needs_vary)
+  X(OptionNeedsVary, option_needs_vary)                                                     \
+  /* cli: laminates */                                                                      \
+  X(LaminateSection, laminate_section)                                                      \
+  X(LaminateNoPlies, laminate_no_plies)                                                     \
+  X(PlyNameInvalid, ply_name_invalid)                                                       \
+  X(PlyRepeated, ply_repeated)                                                              \
+  X(SequenceRepeated, sequence_repeated)                                                    \
+  X(KeyNotInLaminate, key_not_in_laminate)                                                  \
+  X(PlyException, ply_exception)                                                            \
+  X(PieceWiderThanRoll, piece_wider_than_roll)
 
 /// What went wrong (see PLYFIT_ERROR_CODES).
 enum class ErrorCode : std::uint16_t {

@@ -1,0 +1,112 @@
+// cut.dxf: a laminate's cut outlines on one roll. The roll runs along +y, the warp direction of
+// every ply's flat pattern, so the grain is kept by never turning a piece (a 180 degree turn,
+// the only one a woven ply allows, leaves a piece's box as it is and gains a shelf packing
+// nothing). Pieces go in stacking order onto shelves across the roll: a piece that does not fit
+// beside the last one on its shelf starts the next shelf above the tallest piece of this one.
+// Layers: ROLL (the roll's two edges), then one per ply, named after it, holding its outline,
+// holes, grain arrow and labels (name and sequence, angle, material).
+
+#include <plyfit/exporters/laminate.hpp>
+
+#include "dxf/document.hpp"
+#include "dxf/labels.hpp"
+#include "net_util.hpp"
+#include "render/label_placement.hpp"
+#include "render/text.hpp"
+
+#include <algorithm>
+
+namespace plyfit::exporters {
+
+namespace {
+
+using detail::Box2;
+
+// The label text is at most this fraction of the piece's extent high.
+constexpr double kMaxTextRel = 1.0 / 20.0;
+constexpr const char* kRollLayer = "ROLL";
+// ACI colours the plies' layers cycle through (red, yellow, green, cyan, blue, magenta).
+constexpr int kPlyColours[] = {1, 2, 3, 4, 5, 6};
+
+// The pieces' places: shelves across the roll from x = gap to roll_width - gap.
+std::vector<CutPlace> shelf_pack(const Plybook& book, CutSheet& sheet) {
+  const double w = book.roll_width, gap = kCutGapRel * w;
+  std::vector<CutPlace> places;
+  double x = gap, shelf_y = gap, shelf_h = 0.0;
+  for (std::size_t k = 0; k < book.plies.size(); ++k) {
+    const PlySheet& p = book.plies[k];
+    Box2 box;
+    box.add(p.cut);
+    if (box.empty()) continue;
+    const Vec2 size = box.size();
+    if (size.x() > w - 2.0 * gap) {
+      sheet.left_out.push_back(Error{ErrorCode::kPieceWiderThanRoll, p.name, {size.x(), w}});
+      continue;
+    }
+    if (x + size.x() > w - gap) {
+      shelf_y += shelf_h + gap;
+      x = gap;
+      shelf_h = 0.0;
+    }
+    CutPlace c;
+    c.ply = k;
+    c.lo = Vec2(x, shelf_y);
+    c.hi = c.lo + size;
+    c.offset = c.lo - box.lo;
+    places.push_back(c);
+    x += size.x() + gap;
+    shelf_h = std::max(shelf_h, size.y());
+  }
+  sheet.length = places.empty() ? 0.0 : shelf_y + shelf_h + gap;
+  return places;
+}
+
+std::vector<OutlineLoop> moved(const std::vector<OutlineLoop>& loops, const Vec2& offset) {
+  std::vector<OutlineLoop> out = loops;
+  for (auto& l : out)
+    for (auto& p : l.points) p += offset;
+  return out;
+}
+
+// A placed ply: its loops and its label block, all on its own layer.
+void add_piece(dxf::Writer& e, const PlySheet& p, const CutPlace& c) {
+  const std::vector<OutlineLoop> loops = moved(p.cut, c.offset);
+  for (const auto& l : loops) e.polyline(p.name.c_str(), l.points, true);
+  const std::vector<std::string> lines = {
+      "PLY: " + p.name + " (SEQ " + std::to_string(p.sequence) + ")",
+      "ANGLE: " + render::degrees_text(p.angle_deg, 2), "MATERIAL: " + p.material};
+  const render::BlockShape shape = dxf::label_shape(lines);
+  const double extent = std::max(c.hi.x() - c.lo.x(), c.hi.y() - c.lo.y());
+  const render::BlockPlace place =
+      render::place_block(loops, shape, extent, kMaxTextRel * extent, c.lo);
+  dxf::add_labels(e, lines, shape, place, p.name.c_str(), p.name.c_str());
+}
+
+}  // namespace
+
+CutSheet cut_sheet(const Plybook& book) {
+  CutSheet sheet;
+  sheet.places = shelf_pack(book, sheet);
+  std::vector<dxf::Layer> layers = {{"0", 7}, {kRollLayer, 8}};
+  for (std::size_t k = 0; k < sheet.places.size(); ++k)
+    layers.push_back({book.plies[sheet.places[k].ply].name,
+                      kPlyColours[k % (sizeof(kPlyColours) / sizeof(kPlyColours[0]))]});
+  dxf::Writer e(dxf::first_entity_handle(layers));
+  const double w = book.roll_width, len = std::max(sheet.length, kCutGapRel * w);
+  e.line(kRollLayer, Vec2(0.0, 0.0), Vec2(0.0, len));
+  e.line(kRollLayer, Vec2(w, 0.0), Vec2(w, len));
+  double text_h = kCutGapRel * w;
+  for (const auto& c : sheet.places) {
+    add_piece(e, book.plies[c.ply], c);
+    text_h = std::min(text_h, kMaxTextRel * std::max(c.hi.x() - c.lo.x(), c.hi.y() - c.lo.y()));
+  }
+  dxf::DocumentInfo info;
+  info.lo = Vec2::Zero();
+  info.hi = Vec2(w, len);
+  info.text_height = text_h;
+  info.layers = std::move(layers);
+  sheet.dxf = dxf::document(e, info);
+  return sheet;
+}
+
+}  // namespace plyfit::exporters
