@@ -122,6 +122,7 @@ int OutlineBuilder::surface_vertex(const SurfaceLocation& at, const Vec2& p2, in
 // outline is the same, vertex for vertex, as if every cell were clipped.
 void OutlineBuilder::add_cells() {
   whole_.at.assign(r_.nodes.size(), 0);  // by the drape index of corner (i, j)
+  whole_.cells.reserve(cells_.size());   // most cells are whole: no copy while growing
   std::vector<NodeId> ring(4);
   for (const auto [i, j] : cells_) add_cell(i, j, ring);
   cells_ = {};
