@@ -9,12 +9,15 @@
 #include "cli/markdown.hpp"
 #include "corpus.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <filesystem>
 #include <regex>
 #include <set>
 #include <sstream>
 
 using namespace plyfit::test;
+using nlohmann::json;
 namespace fs = std::filesystem;
 
 namespace {
@@ -57,22 +60,18 @@ std::string steady(const std::string& line) {
   return std::regex_replace(line, varying, "; N ms -> DIR");
 }
 
-}  // namespace
-
-TEST_CASE("cli: the README's first drape on a shared CAD file runs as the README shows it") {
-  const std::string section =
-      md_section(source_file("README.md"), "## A first drape on a real CAD file");
-  REQUIRE(!section.empty());
-  const auto commands = shown_commands(section);
-  REQUIRE(commands.size() >= 2);
-  Scratch s("readme_corpus");
-  const std::string program = "build/bin/plyfit ", output = " -o first";
+/// Runs each command of `commands` as the README writes it, from the repository root, its
+/// output folder (`-o NAME`) made s.file(NAME), and checks it prints the lines shown.
+void run_as_shown(const std::vector<Shown>& commands, const Scratch& s) {
+  const std::string program = "build/bin/plyfit ";
+  static const std::regex output(" -o ([^ ']+)$");
   for (const auto& c : commands) {
     INFO(c.command);
     REQUIRE(c.command.rfind(program, 0) == 0);
     std::string args = c.command.substr(program.size());
-    if (const auto o = args.find(output); o != std::string::npos)
-      args.replace(o, output.size(), " -o '" + s.file("first") + "'");
+    std::smatch m;
+    if (std::regex_search(args, m, output))
+      args = m.prefix().str() + " -o '" + s.file(m[1].str()) + "'";
     const CliRun run = plyfit_run(args, s, PLYFIT_SOURCE_DIR);
     INFO(run.err);
     REQUIRE(run.code == 0);
@@ -92,6 +91,18 @@ TEST_CASE("cli: the README's first drape on a shared CAD file runs as the README
     INFO("first line not printed: " << (next < c.lines.size() ? c.lines[next] : ""));
     CHECK(next == c.lines.size());
   }
+}
+
+}  // namespace
+
+TEST_CASE("cli: the README's first drape on a shared CAD file runs as the README shows it") {
+  const std::string section =
+      md_section(source_file("README.md"), "## A first drape on a real CAD file");
+  REQUIRE(!section.empty());
+  const auto commands = shown_commands(section);
+  REQUIRE(commands.size() >= 2);
+  Scratch s("readme_corpus");
+  run_as_shown(commands, s);
   // The files the README says the drape writes into first/: all there, and nothing else.
   std::set<std::string> said, written;
   const std::regex file("`([a-z]+\\.(dxf|step|svg|vtk|glb|json))`");
@@ -102,4 +113,30 @@ TEST_CASE("cli: the README's first drape on a shared CAD file runs as the README
   for (const auto& e : fs::directory_iterator(s.file("first")))
     written.insert(e.path().filename().string());
   CHECK(said == written);
+}
+
+TEST_CASE(
+    "cli: the README's ply definition runs as shown: a 45 deg ply, then the 0/45/90/-45 set") {
+  const std::string section = md_section(source_file("README.md"), "## Defining a ply");
+  REQUIRE(!section.empty());
+  const auto commands = shown_commands(section);
+  REQUIRE(commands.size() == 3);
+  Scratch s("readme_corpus_ply");
+  run_as_shown(commands, s);
+  const json p45 = json::parse(slurp(s.file("P45") + "/report.json"));
+  CHECK(p45["ply"]["laid_angle_deg"].get<double>() == Approx(45.0).margin(1e-9));
+  CHECK(!p45["ply"]["boundary"].is_null());
+  // Every ply of the set bounded, at the four angles.
+  const json book = json::parse(slurp(s.file("plies") + "/plybook.json"));
+  std::set<double> angles;
+  int bounded = 0;
+  for (const auto& ply : book["plies"]) {
+    angles.insert(ply["angle_deg"].get<double>());
+    const std::string name = ply["name"].get<std::string>();
+    const json r = json::parse(slurp(s.file("plies") + "/" + name + "/report.json"));
+    bounded += r["ply"]["boundary"].is_null() ? 0 : 1;
+  }
+  CHECK(book["plies"].size() >= 8);
+  CHECK(bounded == static_cast<int>(book["plies"].size()));
+  CHECK(angles == std::set<double>{-45.0, 0.0, 45.0, 90.0});
 }

@@ -17,15 +17,18 @@ TEST_CASE("samples: every sample scene matches its golden report figures") {
   check_goldens(scenes);
   if (std::getenv("PLYFIT_UPDATE_GOLDENS") != nullptr) return;
   // No golden without its scene (the corpus scenes' too: their goldens are committed).
-  for (const auto& e : fs::directory_iterator(samples_dir() + "/golden")) {
-    INFO("golden " << e.path().filename().string());
-    CHECK(fs::exists(samples_dir() + "/" + e.path().stem().string() + ".ini"));
+  const std::string golden_dir = samples_dir() + "/golden";
+  for (const auto& e : fs::recursive_directory_iterator(golden_dir)) {
+    if (e.is_directory()) continue;
+    const fs::path rel = fs::relative(e.path(), golden_dir);
+    INFO("golden " << rel.generic_string());
+    CHECK(fs::exists(fs::path(samples_dir()) / fs::path(rel).replace_extension(".ini")));
   }
 }
 
 TEST_CASE("samples: the goldens are plausible") {
   for (const auto& scene : sample_scenes()) {
-    const std::string name = scene.stem().string();
+    const std::string name = scene_name(scene);
     INFO("scene " << name);
     const json g = json::parse(slurp(samples_dir() + "/golden/" + name + ".json"));
     CHECK(g["/status"] == "ok");
@@ -62,4 +65,19 @@ TEST_CASE("samples: the goldens are plausible") {
   CHECK(blob["/nodes/shear_limit"].get<int>() > 0);
   CHECK(blob["/thread_angle/min"].get<double>() >= 40.0 * kDegToRad - 1e-12);
   CHECK(blob["/thread_angle/max"].get<double>() <= 140.0 * kDegToRad + 1e-12);
+  // The plies' boundaries are closed forms: the plate's circle r = 20 (400 pi at every angle,
+  // the outline too), the development circle r = 24 of the flange + fillet + wall (576 pi) and
+  // the sphere's cap of 30 deg (2 pi R^2 (1 - cos 30 deg), R = 20).
+  for (const char* angle : {"0", "45", "90", "m45"}) {
+    const json p = golden(std::string("plies/plate-") + angle);
+    INFO("plate " << angle);
+    CHECK(std::abs(p["/ply/boundary/area"].get<double>() - 400 * kPi) < 1e-3 * 400 * kPi);
+    CHECK(std::abs(p["/flat_outline_exact/area"].get<double>() - 400 * kPi) < 1e-3 * 400 * kPi);
+  }
+  const double fillet = 576 * kPi;
+  CHECK(std::abs(golden("plies/flange-fillet-wall")["/ply/boundary/area"].get<double>() - fillet) <
+        1e-3 * fillet);
+  const double cap = 2 * kPi * 400 * (1 - std::cos(30 * kDegToRad));
+  CHECK(std::abs(golden("plies/sphere-cap")["/ply/boundary/area"].get<double>() - cap) <
+        5e-3 * cap);
 }

@@ -16,6 +16,34 @@ constexpr double kOnTrimRel = 1e-9;
 // relative to the face's (u, v) area.
 constexpr double kSameAreaRel = 1e-9;
 
+// True when a and b lie on one edge of the face's domain (clamped there by the projection:
+// their coordinate equals the edge's exactly), across an open direction.
+bool on_one_edge(const Face& face, const Vec2& a, const Vec2& b) {
+  const ParamDomain& d = face.domain();
+  const bool u = !face.closed_u() && a.x() == b.x() && (a.x() == d.u0 || a.x() == d.u1);
+  const bool v = !face.closed_v() && a.y() == b.y() && (a.y() == d.v0 || a.y() == d.v1);
+  return u || v;
+}
+
+// The loop without the inner points of its runs along one domain edge: where the loop leaves
+// the face its points are clamped onto the domain's edges, and those runs (most of the loop on
+// a face of a shell the loop only crosses) add nothing to the region within the face but
+// collinear overlaps with the face's own boundary, the costliest case of the clipping.
+std::vector<Vec2> without_runs_on_edges(const Face& face, std::vector<Vec2> uv) {
+  const std::size_t n = uv.size();
+  if (n < 4) return uv;
+  std::vector<Vec2> out;
+  out.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 &prev = uv[(i + n - 1) % n], &next = uv[(i + 1) % n];
+    if (on_one_edge(face, prev, uv[i]) && on_one_edge(face, uv[i], next) &&
+        on_one_edge(face, prev, next))
+      continue;
+    out.push_back(uv[i]);
+  }
+  return out.size() >= 3 ? out : uv;
+}
+
 // The loop projected onto the face's surface, clamped to its domain and unwrapped across its
 // seams (each point the copy nearest the one before).
 std::vector<Vec2> loop_on_face(const Face& face, const MoldLoop& loop) {
@@ -33,7 +61,7 @@ std::vector<Vec2> loop_on_face(const Face& face, const MoldLoop& loop) {
     uv.push_back(q);
     seed = face.wrap(q);
   }
-  return uv;
+  return without_runs_on_edges(face, std::move(uv));
 }
 
 // The region of the loops on the face, with its copies a period away across closed seams.
