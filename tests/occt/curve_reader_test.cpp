@@ -191,3 +191,35 @@ TEST_CASE("cli: STEP curve files: a pick past the curves, an unreadable file") {
   CHECK(error_code(u) == "curve_file_unreadable");
   CHECK(u.err.find("junk.step") != std::string::npos);
 }
+
+TEST_CASE("cli: info --curves lists a STEP file's curves, as a table and as JSON") {
+  Scratch tmp("curves_cli_info");
+  write_step(compound(arc(0, kPiC), arc(kPiC, 2 * kPiC)), tmp.file("arcs.step"));
+  const CliRun t = plyfit_run("info '" + tmp.file("arcs.step") + "' --curves", tmp);
+  INFO(t.err);
+  REQUIRE(t.code == 0);
+  CHECK(t.out.find("index") != std::string::npos);
+  CHECK(t.out.find("circle") != std::string::npos);
+  CHECK(t.out.find("2 curves") != std::string::npos);
+  const CliRun j = plyfit_run("info '" + tmp.file("arcs.step") + "' --curves --json", tmp);
+  INFO(j.err);
+  REQUIRE(j.code == 0);
+  const json r = json::parse(j.out);
+  REQUIRE(r["curves"].size() == 2);
+  for (int k = 0; k < 2; ++k) {
+    const json& c = r["curves"][static_cast<std::size_t>(k)];
+    CHECK(c["index"] == k);
+    CHECK(c["kind"] == "circle");
+    CHECK(c["closed"] == false);
+    CHECK(c["length_mm"].get<double>() == Approx(kPiC * kRadius).epsilon(1e-9));
+    // Each arc's ends on the circle, at angles 0 and pi: x = 50 +- 20, y = 30.
+    for (const char* end : {"start", "end"}) {
+      const json& p = c[end];
+      CHECK(std::abs(std::abs(p[0].get<double>() - 50) - kRadius) < 1e-9);
+      CHECK(std::abs(p[1].get<double>() - 30) < 1e-9);
+    }
+  }
+  const CliRun both = plyfit_run("info '" + tmp.file("arcs.step") + "' --curves --neighbours", tmp);
+  CHECK(both.code == 2);
+  CHECK(error_code(both) == "options_exclusive");
+}
