@@ -1,6 +1,9 @@
-// Curves from a file: CSV blocks of 3D points, picked by index.
+// Curves from a file: CSV blocks of 3D points, or a STEP/IGES file's curves (read by the
+// importers), picked by index or name.
 
 #include "job/curve_file.hpp"
+
+#include <plyfit/importers/importers.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -71,20 +74,40 @@ Result<std::vector<BoundaryCurve>> read_csv(const std::string& path) {
   return curves;
 }
 
-// The curves picked: each by index from 0, or by name.
-Result<std::vector<BoundaryCurve>> pick(const CurveFileSpec& spec, std::vector<BoundaryCurve> all) {
+// A STEP or IGES file's curves, each named for errors "FILE curve N 'NAME'"; `keys` gets the
+// names picks match (the entity names).
+Result<std::vector<BoundaryCurve>> read_cad(const std::string& path,
+                                            std::vector<std::string>& keys) {
+  auto read = importers::read_curves(path);
+  if (!read) return Error{ErrorCode::kCurveFileUnreadable, path}.because(read.error());
+  std::vector<BoundaryCurve> curves;
+  for (importers::FileCurve& c : *read) {
+    BoundaryCurve b;
+    b.name =
+        path + " curve " + std::to_string(c.index) + (c.name.empty() ? "" : " '" + c.name + "'");
+    b.closed = c.closed;
+    b.points = std::move(c.points);
+    curves.push_back(std::move(b));
+    keys.push_back(c.name);
+  }
+  if (curves.empty()) return Error{ErrorCode::kCurveFileNoCurves, path};
+  return curves;
+}
+
+// The curves picked: each by index from 0, or by name (keys[k]: the name curve k is picked by).
+Result<std::vector<BoundaryCurve>> pick(const CurveFileSpec& spec, std::vector<BoundaryCurve> all,
+                                        const std::vector<std::string>& keys) {
   if (spec.pick.empty()) return all;
   std::vector<BoundaryCurve> out;
   for (const std::string& p : spec.pick) {
     char* end = nullptr;
     const long k = std::strtol(p.c_str(), &end, 10);
     const bool index = !p.empty() && end == p.c_str() + p.size();
-    const auto it =
-        std::find_if(all.begin(), all.end(), [&](const BoundaryCurve& c) { return c.name == p; });
+    const auto it = std::find(keys.begin(), keys.end(), p);
     if (index && k >= 0 && k < static_cast<long>(all.size()))
       out.push_back(all[static_cast<std::size_t>(k)]);
-    else if (!index && it != all.end())
-      out.push_back(*it);
+    else if (!index && it != keys.end())
+      out.push_back(all[static_cast<std::size_t>(it - keys.begin())]);
     else
       return Error{
           ErrorCode::kCurveNotFound, spec.path, {p, static_cast<std::int64_t>(all.size())}};
@@ -113,14 +136,24 @@ std::string to_string(const CurveFileSpec& spec) {
   return s;
 }
 
+bool is_cad_curve_file(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  return ext == "step" || ext == "stp" || ext == "iges" || ext == "igs";
+}
+
 Result<std::vector<BoundaryCurve>> read_curves(const CurveFileSpec& spec) {
   const std::string ext = lower_extension(spec.path);
-  if (ext != "csv") return Error{ErrorCode::kCurveFileFormat, spec.path, {ext}};
+  const bool cad = is_cad_curve_file(spec.path);
+  if (ext != "csv" && !cad) return Error{ErrorCode::kCurveFileFormat, spec.path, {ext}};
   std::error_code ec;
   if (!fs::is_regular_file(spec.path, ec)) return Error{ErrorCode::kCurveFileCannotOpen, spec.path};
-  auto all = read_csv(spec.path);
+  std::vector<std::string> keys;
+  auto all = cad ? read_cad(spec.path, keys) : read_csv(spec.path);
   if (!all) return all.error();
-  auto picked = pick(spec, std::move(all).value());
+  keys.resize(all->size());
+  if (!cad)
+    for (std::size_t k = 0; k < all->size(); ++k) keys[k] = (*all)[k].name;
+  auto picked = pick(spec, std::move(all).value(), keys);
   if (!picked) return picked.error();
   if (picked->empty()) return Error{ErrorCode::kBoundaryEmpty, spec.path};
   return picked;

@@ -1,6 +1,6 @@
 #pragma once
-// Curves from a file, for a ply's boundary (and, later, seed curves and darts): a CSV of 3D
-// points, one closed loop per block, with `FILE:NAMES|INDICES` picking some.
+// Curves from a file, for a ply's boundary and seed curve: a CSV of 3D points, one closed loop
+// per block, or a STEP/IGES file's curves, with `FILE:NAMES|INDICES` picking some.
 
 #include <plyfit/kernel/boundary.hpp>
 #include <plyfit/kernel/result.hpp>
@@ -24,11 +24,16 @@ CurveFileSpec parse_curve_spec(const std::string& text);
 /// The text back (`--dump-scene`).
 std::string to_string(const CurveFileSpec& spec);
 
-/// The curves of the file, each named for errors ("FILE line N", the line of its first point),
-/// the picked ones in the order picked. A CSV block is a closed curve. Errors (blaming the
-/// file): it cannot be opened (kCurveFileCannotOpen), a line is not a point (kCurveFileSyntax:
-/// its number and text), an unknown type (kCurveFileFormat), a pick that names no curve
-/// (kCurveNotFound), no curve at all (kBoundaryEmpty).
+/// True for a STEP or IGES file (by extension), whose curves the importers read.
+bool is_cad_curve_file(const std::string& path);
+
+/// The curves of the file, each named for errors ("FILE line N", the line of its first point;
+/// "FILE curve N 'NAME'" for a STEP/IGES curve, picked by index or by its name in the file), the
+/// picked ones in the order picked. A CSV block is a closed curve. Errors (blaming the file): it
+/// cannot be opened (kCurveFileCannotOpen), a line is not a point (kCurveFileSyntax: its number
+/// and text), an unknown type (kCurveFileFormat), a STEP/IGES file that does not read
+/// (kCurveFileUnreadable, the reader's error as cause) or holds no curve (kCurveFileNoCurves),
+/// a pick that names no curve (kCurveNotFound), no curve at all (kBoundaryEmpty).
 Result<std::vector<BoundaryCurve>> read_curves(const CurveFileSpec& spec);
 
 }  // namespace plyfit::cli

@@ -171,10 +171,17 @@ Status read_start(const Options& o, DrapeJob& job) {
   job.rosette = *rosette;
   job.rosette_given = o.given("rosette");
   const std::string curve = *o.text("seed-curve");
-  if (curve == "geodesic")
+  if (curve == "geodesic") {
     job.problem.seed_curve = SeedCurve::kGeodesic;
-  else if (curve != "plane")
-    return Error{ErrorCode::kUnknownValue, "seed-curve", {curve, std::string("plane, geodesic")}};
+  } else if (curve != "plane") {
+    CurveFileSpec spec = parse_curve_spec(curve);
+    if (std::filesystem::path(spec.path).extension().empty())
+      return Error{
+          ErrorCode::kUnknownValue, "seed-curve", {curve, std::string("plane, geodesic, FILE")}};
+    spec.path = resolve(o, "seed-curve", spec.path);
+    job.seed_curve_file = spec;
+    job.problem.seed_curve = SeedCurve::kCurve;
+  }
   if (o.given("seed")) {
     auto seed = o.vec3("seed");
     if (!seed) return seed.error();

@@ -49,9 +49,9 @@ const OptionTable& drape_options() {
       {"rosette", "DX,DY,DZ", "1,0,0",
        "the 0 deg direction (a translational rosette), projected onto the surface at the seed",
        false, "start"},
-      {"seed-curve", "plane|geodesic", "plane",
-       "what the base path follows from the start: the base plane's section, or the geodesic "
-       "leaving the start along it",
+      {"seed-curve", "plane|geodesic|FILE[:PICK]", "plane",
+       "what the base path follows from the start: the base plane's section, the geodesic "
+       "leaving the start along it, or a curve of a file (CSV, STEP, IGES; one curve)",
        false, "start"},
       {"boundary", "FILE[:PICK]", "",
        "the ply's boundary: a CSV of 3D points (one closed loop per block, blank lines "

@@ -21,6 +21,21 @@ Result<DrapeProblem> job_problem(const DrapeJob& job, const MoldSurface& surface
   }();
   if (!pb) return pb.error();
   pb->seed_curve = job.problem.seed_curve;
+  if (job.seed_curve_file) {
+    auto curves = read_curves(*job.seed_curve_file);
+    if (!curves) return Error(curves.error()).in("seed-curve");
+    if (curves->size() != 1)
+      return Error{ErrorCode::kSeedCurveOneCurve,
+                   job.seed_curve_file->path,
+                   {static_cast<std::int64_t>(curves->size())}};
+    // A CSV block is a boundary's closed loop by definition; as a seed curve it is open
+    // unless its last point repeats its first.
+    const BoundaryCurve& c = curves->front();
+    pb->seed_polyline = c.points;
+    pb->seed_polyline_closed = is_cad_curve_file(job.seed_curve_file->path)
+                                   ? c.closed
+                                   : c.points.size() > 2 && c.points.front() == c.points.back();
+  }
   return pb;
 }
 

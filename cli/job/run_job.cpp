@@ -32,6 +32,7 @@ exporters::RunInfo run_info(const DrapeJob& job) {
   run.max_nodes = job.drape.max_nodes;
   run.ply_name = job.ply_name;
   run.material = job.material;
+  if (job.seed_curve_file) run.seed_curve_file = to_string(*job.seed_curve_file);
   run.outputs = job.outputs;
   return run;
 }

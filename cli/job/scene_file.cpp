@@ -93,7 +93,8 @@ void mold_and_ply_values(const DrapeJob& job, SceneValues& v) {
   if (p.ply.rect) v["ply"] = {fmt(*p.ply.rect)};
   v["start2d"] = {fmt(p.ply.start)};
   if (job.rosette_given) v["rosette"] = {fmt(job.rosette)};  // else the start keys' own 0 deg
-  v["seed-curve"] = {to_string(p.seed_curve)};
+  v["seed-curve"] = {job.seed_curve_file ? to_string(*job.seed_curve_file)
+                                         : std::string(to_string(p.seed_curve))};
   if (job.boundary) v["boundary"] = {to_string(*job.boundary)};
   if (job.boundary_offset != 0.0) v["boundary-offset"] = {fmt(job.boundary_offset)};
   if (job.seed) {  // the directions follow from the seed on the mold

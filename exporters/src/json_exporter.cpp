@@ -116,7 +116,8 @@ nlohmann::json inputs_json(const ExportContext& ctx) {
   in["base2d"] = vec(p.ply.base_dir);
   in["sweep2d"] = vecs(p.ply.sweeps);
   in["start3d"] = vec(p.start);
-  in["seed_curve"] = to_string(p.seed_curve);
+  in["seed_curve"] = p.seed_curve == SeedCurve::kCurve ? "file" : to_string(p.seed_curve);
+  if (p.seed_curve == SeedCurve::kCurve) in["seed_curve_file"] = ctx.run.seed_curve_file;
   in["base_normal"] = vec(p.base_normal);
   in["sweep3d"] = vecs(p.sweeps);
   in["lock_angle_deg"] = ctx.run.lock_angle_deg;

@@ -25,12 +25,18 @@ Result<const OcctImporterApi*> occt_importers() {
 
 Importer occt_importer(std::string key, std::vector<std::string> extensions,
                        std::string description) {
-  Importer imp{key, std::move(extensions), std::move(description), {}};
+  Importer imp{key, std::move(extensions), std::move(description), {}, {}};
   imp.open = [key](const std::string& path,
                    const ImportOptions& options) -> Result<std::unique_ptr<MoldFile>> {
     auto api = occt_importers();
     if (!api) return Error{path}.because(api.error());
     return (*api)->open(key, path, options);
+  };
+  imp.curves = [key](const std::string& path,
+                     const ImportOptions& options) -> Result<std::vector<FileCurve>> {
+    auto api = occt_importers();
+    if (!api) return Error{path}.because(api.error());
+    return (*api)->curves(key, path, options);
   };
   return imp;
 }

@@ -44,7 +44,9 @@ std::string supported_extensions() {
   return s;
 }
 
-Result<std::unique_ptr<MoldFile>> open_mold(const std::string& path, const ImportOptions& options) {
+namespace {
+// The importer of options.format, else of the file's extension.
+Result<const Importer*> importer_for(const std::string& path, const ImportOptions& options) {
   const Importer* imp = nullptr;
   if (!options.format.empty()) {
     imp = find_importer(options.format);
@@ -59,7 +61,20 @@ Result<std::unique_ptr<MoldFile>> open_mold(const std::string& path, const Impor
       return Error{path + ": unknown file extension '" + ext +
                    "' (supported: " + supported_extensions() + "; --format overrides)"};
   }
-  return imp->open(path, options);
+  return imp;
+}
+}  // namespace
+
+Result<std::unique_ptr<MoldFile>> open_mold(const std::string& path, const ImportOptions& options) {
+  auto imp = importer_for(path, options);
+  if (!imp) return imp.error();
+  return (*imp)->open(path, options);
+}
+
+Result<std::vector<FileCurve>> read_curves(const std::string& path, const ImportOptions& options) {
+  auto imp = importer_for(path, options);
+  if (!imp) return imp.error();
+  return (*imp)->curves(path, options);
 }
 
 Result<MoldSurface> load_face(const std::string& path, int index, const ImportOptions& options) {

@@ -99,4 +99,8 @@ Result<std::unique_ptr<MoldFile>> open_iges(const std::string& path, const Impor
   return occt::open_with(path, "iges", options, read_iges);
 }
 
+Result<std::vector<FileCurve>> curves_iges(const std::string& path, const ImportOptions& options) {
+  return occt::curves_with(path, "iges", options, read_iges);
+}
+
 }  // namespace plyfit::importers

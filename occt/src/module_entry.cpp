@@ -11,21 +11,42 @@ namespace {
 
 using OpenFunction = Result<std::unique_ptr<MoldFile>> (*)(const std::string& path,
                                                            const ImportOptions& options);
+using CurvesFunction = Result<std::vector<FileCurve>> (*)(const std::string& path,
+                                                          const ImportOptions& options);
 
-// One line per format (its registry entry, with the extensions, is in registry.cpp).
-constexpr std::pair<const char*, OpenFunction> kReaders[] = {
-    {"step", &open_step},
-    {"iges", &open_iges},
+struct Reader {
+  const char* key;
+  OpenFunction open;
+  CurvesFunction curves;
 };
 
-Result<std::unique_ptr<MoldFile>> open(const std::string& key, const std::string& path,
-                                       const ImportOptions& options) {
-  for (const auto& [k, f] : kReaders)
-    if (key == k) return f(path, options);
+// One line per format (its registry entry, with the extensions, is in registry.cpp).
+constexpr Reader kReaders[] = {
+    {"step", &open_step, &curves_step},
+    {"iges", &open_iges, &curves_iges},
+};
+
+Result<const Reader*> reader(const std::string& key, const std::string& path) {
+  for (const Reader& r : kReaders)
+    if (key == r.key) return &r;
   return Error{path + ": plyfit's OpenCASCADE module has no reader '" + key + "'"};
 }
 
-const OcctImporterApi kApi{plyfit::occt::kOcctModuleAbi, &open};
+Result<std::unique_ptr<MoldFile>> open(const std::string& key, const std::string& path,
+                                       const ImportOptions& options) {
+  auto r = reader(key, path);
+  if (!r) return r.error();
+  return (*r)->open(path, options);
+}
+
+Result<std::vector<FileCurve>> curves(const std::string& key, const std::string& path,
+                                      const ImportOptions& options) {
+  auto r = reader(key, path);
+  if (!r) return r.error();
+  return (*r)->curves(path, options);
+}
+
+const OcctImporterApi kApi{plyfit::occt::kOcctModuleAbi, &open, &curves};
 
 }  // namespace
 

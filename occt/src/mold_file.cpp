@@ -686,9 +686,8 @@ Result<FaceData> convert_face(const TopoDS_Face& face, const FaceInfo& info, con
   return convert(face, info, tol, tag);
 }
 
-Result<std::unique_ptr<MoldFile>> open_with(const std::string& path, const std::string& format_key,
-                                            const ImportOptions& options,
-                                            const ReadFunction& read) {
+Result<ReadOutput> read_guarded(const std::string& path, const std::string& format_key,
+                                const ImportOptions& options, const ReadFunction& read) {
   const auto sniffed = check_file_head(path, format_key);
   if (!sniffed) return sniffed.error();
   const Sniffed want = *sniffed;
@@ -707,6 +706,14 @@ Result<std::unique_ptr<MoldFile>> open_with(const std::string& path, const std::
   if (deadline->expired())
     return Error{path + ": reading took longer than the time limit (" +
                  std::to_string(static_cast<int>(options.time_limit_s)) + " s)"};
+  return out;
+}
+
+Result<std::unique_ptr<MoldFile>> open_with(const std::string& path, const std::string& format_key,
+                                            const ImportOptions& options,
+                                            const ReadFunction& read) {
+  auto out = read_guarded(path, format_key, options, read);
+  if (!out) return out.error();
   ReadOutput& ro = out.value();
 
   TopTools_IndexedMapOfShape faces;

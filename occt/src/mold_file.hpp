@@ -59,7 +59,7 @@ struct ReadOutput {
   std::string schema;                 ///< STEP schema, or IGES version and sending system
   std::string unit;                   ///< the file's length unit, as the file names it
   std::vector<std::string> warnings;  ///< summarised reader messages
-  /// Names of the entities that produced transferred shapes (faces are looked up here).
+  /// Names of the entities that produced transferred faces, wires and edges.
   std::vector<std::pair<TopoDS_Shape, std::string>> shape_names;
   /// The file's length precision in millimetres (see file_precision()).
   double precision = 0.0;
@@ -108,6 +108,16 @@ class SignalScope {
 /// under the guard and deadline.
 Result<std::unique_ptr<MoldFile>> open_with(const std::string& path, const std::string& format_key,
                                             const ImportOptions& options, const ReadFunction& read);
+
+/// Reads `path` with a format's reader, as open_with() does, into its shape without listing
+/// faces: the file checks, then the read under the guard and deadline.
+Result<ReadOutput> read_guarded(const std::string& path, const std::string& format_key,
+                                const ImportOptions& options, const ReadFunction& read);
+
+/// Reads `path` with a format's reader and returns its curves (Importer::curves): the edges
+/// of its shape that bound no face, else every face's edges. Defined in curve_reader.cpp.
+Result<std::vector<FileCurve>> curves_with(const std::string& path, const std::string& format_key,
+                                           const ImportOptions& options, const ReadFunction& read);
 
 /// Reads `path` with an OpenCASCADE reader (STEP or IGES, `format_name` for messages) and
 /// sets the length unit of its output to millimetres. Errors have no path prefix.

@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace plyfit::importers {
 
@@ -14,5 +15,9 @@ namespace plyfit::importers {
 Result<std::unique_ptr<MoldFile>> open_step(const std::string& path, const ImportOptions& options);
 /// Opens an IGES file (iges_importer.cpp).
 Result<std::unique_ptr<MoldFile>> open_iges(const std::string& path, const ImportOptions& options);
+/// Reads the curves of a STEP file (step_importer.cpp).
+Result<std::vector<FileCurve>> curves_step(const std::string& path, const ImportOptions& options);
+/// Reads the curves of an IGES file (iges_importer.cpp).
+Result<std::vector<FileCurve>> curves_iges(const std::string& path, const ImportOptions& options);
 
 }  // namespace plyfit::importers

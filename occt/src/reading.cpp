@@ -252,7 +252,9 @@ std::vector<std::pair<TopoDS_Shape, std::string>> shape_names(
     const Handle(Transfer_Binder) b = process->MapItem(i);
     if (b.IsNull() || !b->HasResult()) continue;
     const TopoDS_Shape sh = TransferBRep::ShapeResult(b);
-    if (sh.IsNull() || sh.ShapeType() != TopAbs_FACE) continue;
+    if (sh.IsNull() || (sh.ShapeType() != TopAbs_FACE && sh.ShapeType() != TopAbs_WIRE &&
+                        sh.ShapeType() != TopAbs_EDGE))
+      continue;
     std::string name = name_of(process->Mapped(i));
     if (!name.empty()) out.emplace_back(sh, std::move(name));
   }

@@ -68,4 +68,8 @@ Result<std::unique_ptr<MoldFile>> open_step(const std::string& path, const Impor
   return occt::open_with(path, "step", options, read_step);
 }
 
+Result<std::vector<FileCurve>> curves_step(const std::string& path, const ImportOptions& options) {
+  return occt::curves_with(path, "step", options, read_step);
+}
+
 }  // namespace plyfit::importers

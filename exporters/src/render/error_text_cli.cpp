@@ -277,6 +277,19 @@ std::string text_curve_not_found(const Values& x) {
          " curves: plyfit info FILE --curves lists them)";
 }
 
+std::string text_curve_file_unreadable(const Values&) {
+  return "cannot read the curves of the file";
+}
+
+std::string text_curve_file_no_curves(const Values&) {
+  return "the file holds no curve (no free curve, wire or face edge)";
+}
+
+std::string text_seed_curve_one_curve(const Values& x) {
+  return "a seed curve is one curve, the file gives " + x.n(0) +
+         " (pick one: FILE:NAME or FILE:INDEX)";
+}
+
 // ---- laminates ----
 
 std::string text_laminate_section(const Values& x) {

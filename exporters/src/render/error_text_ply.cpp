@@ -55,4 +55,14 @@ std::string text_boundary_seed_outside(const Values&) {
   return "the seed does not lie inside the ply boundary's region on the mold";
 }
 
+std::string text_seed_curve_off_mold(const Values& x) {
+  return "the seed curve lies " + x.brief(0) + " mm from the mold at (" + x.text(2) +
+         "), more than the tolerance " + x.brief(1) + " mm: a wrong curve, unit or frame?";
+}
+
+std::string text_seed_not_on_curve(const Values& x) {
+  return "the start lies " + x.brief(0) + " mm from the seed curve, more than the tolerance " +
+         x.brief(1) + " mm: put the seed on the curve";
+}
+
 }  // namespace plyfit::exporters::render

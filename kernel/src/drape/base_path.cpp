@@ -20,11 +20,13 @@ void Scanner::map_path(const Vec3& t3) {
   n0.order = order_++;
   overlaps(i0);  // records the start
   std::vector<std::uint32_t> ahead{i0}, behind;
+  if (seed_curve_) curve_along_ = seed_curve_->tangent(seed_curve_->start_place()).dot(t3) >= 0.0;
   for (int dirn = 0; dirn < 2; ++dirn) {
     const bool fwd = dirn == 0;
     auto& chain = fwd ? ahead : behind;
     std::uint32_t prev = i0;
     Vec3 travel = fwd ? t3 : Vec3(-t3);
+    CurvePlace place = seed_curve_ ? seed_curve_->start_place() : CurvePlace{};
     for (std::int32_t k = fwd ? 1 : -1;; k += fwd ? 1 : -1) {
       const PathNode* pk = ply_.path_node(k);
       if (!pk) {
@@ -37,11 +39,16 @@ void Scanner::map_path(const Vec3& t3) {
         truncated_ = true;
         break;
       }
+      const auto aim = path_aim(node(prev), travel, rest, fwd, place);
+      if (!aim) {  // the seed curve ends
+        path_stop_[dirn] = pcopy.pos;
+        break;
+      }
       const std::uint32_t idx = node_for(pcopy.id, pcopy.pos);
       node(idx).flags |= DrapeNode::kOnPath;
       const DrapeNode& from = node(prev);
       const SolveResult r =
-          solve_base_path(s_, {from.point, from.at(), path_plane(from, travel), travel, rest}, st_);
+          solve_base_path(s_, {from.point, from.at(), aim->plane_normal, aim->travel, rest}, st_);
       resolve(idx, r);
       // Across a hole of the face the path goes on, on the face's surface under the hole
       // (kInHole: outside, extended), and comes back onto the face beyond it: the seed curve
@@ -77,6 +84,21 @@ Vec3 Scanner::path_plane(const DrapeNode& from, const Vec3& travel) const {
   const SurfaceNormal sn = s_.normal(from.at());
   const Vec3 m = sn.n.cross(travel);
   return sn.ok && m.norm() > 0.0 ? m : res_.base_normal;
+}
+
+// The plane the next path point lies in and the direction it lies in. For a seed curve: the
+// point of the curve at `rest` from `from` (`place` moves on to it), the plane through `from`
+// holding the normal there and the chord to that point; none when the curve ends first.
+std::optional<Scanner::PathAim> Scanner::path_aim(const DrapeNode& from, const Vec3& travel,
+                                                  double rest, bool fwd, CurvePlace& place) const {
+  if (!seed_curve_) return PathAim{path_plane(from, travel), travel};
+  const auto next = seed_curve_->at_distance(place, from.point, rest, fwd == curve_along_);
+  if (!next) return std::nullopt;
+  place = next->second;
+  const Vec3 chord = next->first - from.point;
+  const SurfaceNormal sn = s_.normal(from.at());
+  const Vec3 m = sn.n.cross(chord);
+  return PathAim{sn.ok && m.norm() > 0.0 ? m : res_.base_normal, chord};
 }
 
 // Direction of the base path at path node a, along +tau (a chord to a path neighbour).

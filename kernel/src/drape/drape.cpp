@@ -209,6 +209,25 @@ Result<Vec3> place_start(const DrapeSurface& s, const DrapeProblem& pb, DrapeRes
   return t3;
 }
 
+// SeedCurve::kCurve: the curve projected onto the surface, and the base path's direction at
+// the start turned onto the curve's (t3 keeps its sense; the base normal is n0 x t3's
+// complement, the plane the path starts in).
+Result<std::optional<detail::SeedPolyline>> seed_polyline(const DrapeSurface& s,
+                                                          const DrapeProblem& pb,
+                                                          const Tolerances& tol, const Vec3& n0,
+                                                          DrapeResult& res, Vec3& t3) {
+  if (pb.seed_curve != SeedCurve::kCurve) return std::optional<detail::SeedPolyline>();
+  auto curve = detail::SeedPolyline::create(s, pb, res.start_point, tol);
+  if (!curve) return curve.error();
+  const Vec3 c = curve->tangent(curve->start_place());
+  Vec3 along = c - n0 * n0.dot(c);
+  if (along.norm() < kMinPlaneCutSin) return Error{ErrorCode::kBaseNormalTangent, "seed-curve"};
+  along = (along.dot(t3) >= 0.0 ? along : Vec3(-along)).normalized();
+  t3 = along;
+  res.base_normal = t3.cross(n0).normalized();
+  return std::optional<detail::SeedPolyline>(std::move(curve).value());
+}
+
 // Pairing of 2D and 3D: (base, sweep) has the same handedness about the normal in both. Each
 // 3D sweep must point to one side of the path (its part across the path, in the tangent
 // plane: the sine of its angle with the plane of the path and the normal); t3 is turned round
@@ -299,6 +318,8 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
   Vec3 n0 = Vec3::Zero();  // the normal at the start
   auto t3 = place_start(s, pb, res, n0);
   if (!t3) return t3.error();
+  auto curve = seed_polyline(s, pb, opt.tol, n0, res, *t3);
+  if (!curve) return curve.error();
   if (auto ok = pair_sweeps(pb, *ply, opt.tol, n0, *t3); !ok) return ok.error();
   res.base_tangent = *t3;
   res.seed_curve = pb.seed_curve;
@@ -307,6 +328,7 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
   res.nodes.reserve(
       expected_nodes(s, *mply, res.start_point, res.base_normal, pb.sweeps, opt.max_nodes));
   detail::Scanner scanner(s, *mply, opt, res);  // sized by the reserve
+  if (*curve) scanner.follow(&**curve);
   scan_and_measure(s, opt, *t3, scanner, res);
   warn_scan_stops(scanner, opt, res);
   warn_path_ends(s, res);

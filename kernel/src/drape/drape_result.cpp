@@ -11,6 +11,7 @@
 namespace plyfit {
 
 const char* to_string(SeedCurve c) {
+  if (c == SeedCurve::kCurve) return "curve";
   return c == SeedCurve::kGeodesic ? "geodesic" : "plane";
 }
 

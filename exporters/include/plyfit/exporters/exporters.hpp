@@ -36,6 +36,7 @@ struct RunInfo {
   std::uint64_t max_nodes = 0;  ///< node cap
   std::string ply_name;         ///< for labels
   std::string material;         ///< for labels
+  std::string seed_curve_file;  ///< --seed-curve FILE[:PICK] (SeedCurve::kCurve)
   double import_ms = 0, drape_ms = 0, total_ms = 0;
   std::vector<std::string> outputs;   ///< exporter keys being written
   std::vector<std::string> warnings;  ///< import warnings etc.

@@ -74,6 +74,19 @@ class MoldFile {
   std::vector<int> all_faces() const;
 };
 
+/// A curve of a file (a free 3D curve, a wire's edge, or a face's edge when the file has no
+/// other): one edge of the file's shape as a polyline within tolerances.curve_chord_rel of the
+/// curves' size (their bounding-box diagonal).
+struct FileCurve {
+  int index = 0;        ///< 0.. in the order of a depth-first walk of the file's edges
+  std::string name;     ///< the entity's name or label in the file, may be empty
+  std::string kind;     ///< line, circle, ellipse, bspline, ...
+  bool closed = false;  ///< its ends are one vertex (a closed curve); then the last point is not
+                        ///< repeated
+  double length = 0.0;  ///< mm, of the exact curve
+  std::vector<Vec3> points;  ///< mm, in the edge's direction
+};
+
 /// A registered importer.
 struct Importer {
   std::string key;                      ///< e.g. "step"
@@ -84,6 +97,11 @@ struct Importer {
   std::function<Result<std::unique_ptr<MoldFile>>(const std::string& path,
                                                   const ImportOptions& options)>
       open;
+  /// Reads a file's curves (see FileCurve): free curves and wire edges, else face edges; an
+  /// empty list when it has none. Errors name the file and the problem.
+  std::function<Result<std::vector<FileCurve>>(const std::string& path,
+                                               const ImportOptions& options)>
+      curves;
 };
 
 /// All registered importers, in registration order.
@@ -98,6 +116,11 @@ std::string supported_extensions();
 /// no faces).
 Result<std::unique_ptr<MoldFile>> open_mold(const std::string& path,
                                             const ImportOptions& options = {});
+
+/// The curves of `path` (Importer::curves), read with the importer named by options.format or
+/// by the file's extension.
+Result<std::vector<FileCurve>> read_curves(const std::string& path,
+                                           const ImportOptions& options = {});
 
 /// Opens `path` and converts face `index` into a surface ready to drape.
 Result<MoldSurface> load_face(const std::string& path, int index,

@@ -126,8 +126,11 @@ enum class SeedCurve : std::uint8_t {
   /// before that (the straightest discrete curve: great circles on a sphere, helices on a
   /// cylinder, exactly).
   kGeodesic,
+  /// A given curve (DrapeProblem::seed_polyline), projected onto the surface: each path point
+  /// is the point of the curve at link length from the point before it.
+  kCurve,
 };
-/// "plane", "geodesic".
+/// "plane", "geodesic", "curve".
 const char* to_string(SeedCurve c);
 
 /// 3D initial conditions (§4.2.2) and the 2D ply with its initial conditions (§4.2.1).
@@ -137,6 +140,10 @@ struct DrapeProblem {
   Vec3 base_normal = Vec3::UnitY();  ///< base-plane normal; the plane passes through the start
   std::vector<Vec3> sweeps;          ///< 3D sweep directions, paired in order with ply.sweeps
   SeedCurve seed_curve = SeedCurve::kPlane;  ///< what the base path follows from the start
+  /// kCurve: the curve (a 3D polyline, mm) the base path follows, through the start to within
+  /// Tolerances::seed_curve_rel of the mold's size, on the surface to within the same.
+  std::vector<Vec3> seed_polyline;
+  bool seed_polyline_closed = false;  ///< its last point joins its first
 };
 
 /// Initial guess of the two-sphere solver.

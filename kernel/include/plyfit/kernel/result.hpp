@@ -65,6 +65,9 @@ namespace plyfit {
   X(BoundaryGap, boundary_gap)                                                              \
   X(BoundaryOffMold, boundary_off_mold)                                                     \
   X(BoundarySeedOutside, boundary_seed_outside)                                             \
+  /* kernel: seed curve from a file */                                                      \
+  X(SeedCurveOffMold, seed_curve_off_mold)                                                  \
+  X(SeedNotOnCurve, seed_not_on_curve)                                                      \
   /* kernel: geometry (NURBS), surface (faces, shells), molds, search */                    \
   /* kernel: geometry (NURBS surfaces and curves) */                                        \
   X(DegreeRange, degree_range)                                                              \
@@ -189,6 +192,9 @@ namespace plyfit {
   X(CurveFileSyntax, curve_file_syntax)                                                     \
   X(CurveFileFormat, curve_file_format)                                                     \
   X(CurveNotFound, curve_not_found)                                                         \
+  X(CurveFileUnreadable, curve_file_unreadable)                                             \
+  X(CurveFileNoCurves, curve_file_no_curves)                                                \
+  X(SeedCurveOneCurve, seed_curve_one_curve)                                                \
   /* cli: jobs and commands */                                                              \
   X(BuiltinFaceGiven, builtin_face_given)                                                   \
   X(NoFaceAtPoint, no_face_at_point)                                                        \

@@ -78,6 +78,13 @@ struct Tolerances {
   double boundary_gap_rel = 1e-3;
   double boundary_on_mold_rel = 1e-3;
   double boundary_step_rel = 1e-3;
+  /// Curves read from a STEP or IGES file (a boundary, a seed curve) are polylines that deviate
+  /// from the exact curve by at most curve_chord_rel times the curves' size (their
+  /// bounding-box diagonal): a circle of radius r to 1e-5 r encloses its area to about 1e-5.
+  double curve_chord_rel = 1e-5;
+  /// A seed curve from a file (SeedCurve::kCurve) must lie within seed_curve_rel of the
+  /// surface's size (bounding-box diagonal) of the surface, and pass that near the start.
+  double seed_curve_rel = 1e-3;
 };
 
 }  // namespace plyfit

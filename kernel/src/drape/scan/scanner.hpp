@@ -9,6 +9,7 @@
 #include "drape/solvers/solvers.hpp"
 
 #include "drape/scan/overlap_grid.hpp"
+#include "drape/seed_curve.hpp"
 
 #include <cstdint>
 #include <initializer_list>
@@ -66,6 +67,8 @@ class Scanner {
 
   /// Maps the base path (t3: its 3D direction at the start) and scans the frontier.
   void run(const Vec3& t3);
+  /// SeedCurve::kCurve: the curve the base path follows (kept by the caller during run()).
+  void follow(const SeedPolyline* curve) { seed_curve_ = curve; }
   bool truncated() const { return truncated_; }
   bool cancelled() const { return cancelled_; }
   std::uint64_t path_off_ply() const { return path_off_ply_; }
@@ -125,6 +128,11 @@ class Scanner {
   void map_path(const Vec3& t3);
   Vec3 path_chord(const DrapeNode& a) const;
   Vec3 path_plane(const DrapeNode& from, const Vec3& travel) const;
+  struct PathAim {
+    Vec3 plane_normal, travel;
+  };
+  std::optional<PathAim> path_aim(const DrapeNode& from, const Vec3& travel, double rest, bool fwd,
+                                  CurvePlace& place) const;
 
   // guesses.cpp
   SolveResult solve_two(const DrapeNode& q, const DrapeNode& a, ThreadDir da, double ra,
@@ -159,6 +167,8 @@ class Scanner {
   OverlapGrid grid_;
   ThreadEnds thread_ends_;
   std::uint32_t popped_ = 0;  // frontier entries taken
+  const SeedPolyline* seed_curve_ = nullptr;
+  bool curve_along_ = true;  // the curve's later points lie ahead along t3
 };
 
 }  // namespace plyfit::detail

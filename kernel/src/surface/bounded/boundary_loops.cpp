@@ -58,12 +58,12 @@ Status check_curve(const BoundaryCurve& c) {
 }
 
 // Appends curve k to the chain, reversed when `reversed`, without a first point that repeats
-// the chain's last.
-void append(MoldLoop& chain, const BoundaryCurve& c, int k, bool reversed) {
+// the chain's last (within `gap`: CAD curves meet to their modelling tolerance, not exactly).
+void append(MoldLoop& chain, const BoundaryCurve& c, int k, bool reversed, double gap) {
   const std::size_t n = c.points.size();
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3& p = c.points[reversed ? n - 1 - i : i];
-    if (i == 0 && !chain.points.empty() && p == chain.points.back()) continue;
+    if (i == 0 && !chain.points.empty() && (p - chain.points.back()).norm() <= gap) continue;
     chain.points.push_back(p);
     chain.curve.push_back(k);
   }
@@ -80,7 +80,7 @@ void drop_closing_point(MoldLoop& loop, double gap) {
 // Chains the open curve `first` with the unused open curves until it closes on itself.
 Result<MoldLoop> chain_from(const PlyBoundary& b, int first, std::vector<bool>& used, double gap) {
   MoldLoop chain;
-  append(chain, b.curves[static_cast<std::size_t>(first)], first, false);
+  append(chain, b.curves[static_cast<std::size_t>(first)], first, false, gap);
   used[static_cast<std::size_t>(first)] = true;
   for (std::size_t step = 0; step <= b.curves.size(); ++step) {
     const Vec3 end = chain.points.back();
@@ -109,7 +109,7 @@ Result<MoldLoop> chain_from(const PlyBoundary& b, int first, std::vector<bool>& 
                    {b.curves[static_cast<std::size_t>(at)].name, point_text(end),
                     std::min(best, close), gap}};
     }
-    append(chain, b.curves[static_cast<std::size_t>(next)], next, reversed);
+    append(chain, b.curves[static_cast<std::size_t>(next)], next, reversed, gap);
     used[static_cast<std::size_t>(next)] = true;
   }
   return Error{ErrorCode::kInternal};
@@ -128,7 +128,7 @@ Result<std::vector<MoldLoop>> chain_curves(const PlyBoundary& boundary, double g
     const bool ends_meet = (c.points.front() - c.points.back()).norm() <= gap;
     if (!c.closed && !(ends_meet && c.points.size() > 3)) continue;
     MoldLoop loop;
-    append(loop, c, static_cast<int>(k), false);
+    append(loop, c, static_cast<int>(k), false, gap);
     drop_closing_point(loop, gap);
     used[k] = true;
     loops.push_back(std::move(loop));

@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace plyfit::importers {
 
@@ -19,6 +20,9 @@ struct OcctImporterApi {
   /// Opens `path` with the reader of importer `key` ("step", "iges").
   Result<std::unique_ptr<MoldFile>> (*open)(const std::string& key, const std::string& path,
                                             const ImportOptions& options);
+  /// Reads the curves of `path` with the reader of importer `key`.
+  Result<std::vector<FileCurve>> (*curves)(const std::string& key, const std::string& path,
+                                           const ImportOptions& options);
 };
 
 /// The signature of the entry point.
