@@ -24,17 +24,12 @@
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
-
-extern char** environ;
 
 namespace plyfit::bench {
 
@@ -117,44 +112,12 @@ TopTools_IndexedMapOfShape occt_read(const std::string& path) {
   return faces;
 }
 
-// Wall-clock seconds of a process (output discarded) and its exit code.
-struct Process {
-  double seconds = 0.0;
-  int code = -1;
-};
-
-Process run_process(const std::vector<std::string>& args, const std::vector<std::string>& env) {
-  std::vector<std::string> envs;
-  for (char** e = environ; *e; ++e) envs.emplace_back(*e);
-  envs.insert(envs.end(), env.begin(), env.end());
-  std::vector<char*> argv, envp;
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  for (const auto& e : envs) envp.push_back(const_cast<char*>(e.c_str()));
-  envp.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  Process p;
-  const auto t0 = std::chrono::steady_clock::now();
-  pid_t pid = 0;
-  if (posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), envp.data()) == 0) {
-    int status = 0;
-    waitpid(pid, &status, 0);
-    p.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-  p.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  posix_spawn_file_actions_destroy(&actions);
-  return p;
-}
-
 // Median wall-clock seconds of `runs` runs; ok false if one failed.
 double median_process(const std::vector<std::string>& args, const std::vector<std::string>& env,
                       int runs, bool* ok) {
   std::vector<double> t;
   for (int i = 0; i < std::max(runs, kMinRuns); ++i) {
-    const Process p = run_process(args, env);
+    const ProcessRun p = run_process(args, env);
     if (p.code != 0) *ok = false;
     t.push_back(p.seconds);
   }

@@ -46,6 +46,17 @@ inline double children_cpu_seconds() {
          1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
 
+/// One child process, its output discarded: wall seconds, exit code (-1 if it did not exit)
+/// and its peak resident set as wait4 reports it, bytes (process.cpp).
+struct ProcessRun {
+  double seconds = 0.0;
+  double max_rss = 0.0;
+  int code = -1;
+};
+/// Runs `args` (args[0] a path) with the environment plus `env` ("NAME=value" each).
+ProcessRun run_process(const std::vector<std::string>& args,
+                       const std::vector<std::string>& env = {});
+
 /// A plyfit-bench subcommand; `run` gets the arguments after its name and returns the exit
 /// code.
 struct Benchmark {

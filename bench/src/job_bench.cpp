@@ -10,17 +10,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
-
-extern char** environ;
 
 namespace plyfit::bench {
 
@@ -32,41 +27,17 @@ constexpr double kKinDrapeNodesPerSecond = 2500.0;
 // Nodes of a side of KinDrape's ply.
 constexpr int kKinDrapeSide = 48;
 
-// One process run: wall seconds and peak resident set (bytes) of the child.
-struct ProcessRun {
-  double seconds = 0.0;
-  double max_rss = 0.0;
-  int status = -1;
-};
-
 // GNU time, which reports its child's peak resident set. A child spawned from this process
 // would start with this process's own high-water mark (Linux carries it over exec), so the
 // peak is taken from a grandchild of the small `time` process.
 constexpr const char* kGnuTime = "/usr/bin/time";
 
-ProcessRun run_process(std::vector<std::string> args, const std::string& rss_file) {
+// A process run through GNU time when it is installed: its peak resident set is the
+// grandchild's.
+ProcessRun run_measured(std::vector<std::string> args, const std::string& rss_file) {
   const bool timed = access(kGnuTime, X_OK) == 0;
   if (timed) args.insert(args.begin(), {kGnuTime, "-f", "%M", "-o", rss_file});
-  std::vector<char*> argv;
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 2, "/dev/null", O_WRONLY, 0);
-  ProcessRun r;
-  const auto t0 = std::chrono::steady_clock::now();
-  pid_t pid = 0;
-  if (posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), environ) == 0) {
-    rusage u{};
-    int st = 0;
-    if (wait4(pid, &st, 0, &u) == pid) {
-      r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      r.max_rss = 1024.0 * static_cast<double>(u.ru_maxrss);
-      r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-    }
-  }
-  posix_spawn_file_actions_destroy(&fa);
+  ProcessRun r = run_process(args);
   if (timed) {
     std::ifstream in(rss_file);
     double kb = 0.0;
@@ -122,8 +93,8 @@ JobFigures measure_job(const JobCase& c, const std::string& d, int runs, const s
   std::vector<double> wall, rss, drape, import;
   JobFigures f;
   for (int k = 0; k < runs; ++k) {
-    const ProcessRun r = run_process(args, dir + "/rss");
-    if (r.status != 0) return f;
+    const ProcessRun r = run_measured(args, dir + "/rss");
+    if (r.code != 0) return f;
     std::ifstream in(dir + "/report.json");
     const auto j = nlohmann::json::parse(in, nullptr, false);
     if (j.is_discarded()) return f;
@@ -147,7 +118,7 @@ Table job_table(int runs, bool* ok) {
   const std::string dir = capture("mktemp -d /tmp/plyfit-job.XXXXXX");
   std::vector<double> start;
   for (int k = 0; k < runs; ++k)
-    start.push_back(run_process({plyfit_binary(), "--version"}, dir + "/rss").seconds);
+    start.push_back(run_measured({plyfit_binary(), "--version"}, dir + "/rss").seconds);
   const double t0 = median(start);
   t.caption =
       fmt("The whole job as a user runs it: `plyfit drape --outputs json` as a process (import, "
