@@ -118,3 +118,30 @@ TEST_CASE("cli: bad boundaries are one-line errors with their codes") {
     CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
   }
 }
+
+TEST_CASE("cli: a boundary across a file's shell drapes as across the built-in shell") {
+  // The circle of radius 24 of the flange + fillet + wall's development crosses its three
+  // faces and both shared edges twice; read from STEP or IGES, the shell's shared edges are
+  // polylines of many segments, each face's use cut by the boundary. Developable: the flat
+  // outline's area is the circle's, 576 pi.
+  Scratch tmp("boundary_cli_file_shell");
+  const std::string samples = std::string(PLYFIT_SOURCE_DIR) + "/samples/";
+  const double exact = 576 * kPiT;
+  for (const std::string& mold :
+       {std::string("builtin:flange-fillet-wall"), samples + "molds/flange-fillet-wall.step",
+        samples + "molds/flange-fillet-wall.igs"}) {
+    CAPTURE(mold);
+    const std::string out = tmp.file("out");
+    const CliRun r = plyfit_run(
+        "drape --mold '" + mold +
+            "' --faces all --spacing 1 --seed -5,30,0 --rosette 0,1,0 --boundary '" + samples +
+            "plies/flange-fillet-wall-circle.csv' --quiet --outputs json -o '" + out + "'",
+        tmp);
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    const json j = json::parse(slurp(out + "/report.json"));
+    CHECK(j["status"] == "ok");
+    CHECK(j["ply"]["boundary"]["area"].get<double>() == Approx(exact).epsilon(1e-3));
+    CHECK(j["flat_outline_exact"]["area"].get<double>() == Approx(exact).epsilon(1e-3));
+  }
+}

@@ -43,16 +43,21 @@ Status normalise_loops(std::vector<TrimLoop>& loops) {
   return ok_status();
 }
 
-// True when every point of the loop lies on the domain's border (to the parameter rounding): a
-// natural boundary given as a loop (e.g. to tag a shell's shared edges), which bounds the
-// whole domain, so that contains() needs only the domain test.
+// True when every segment of the loop runs along the domain's border (both its ends on one
+// side, to the parameter rounding): a natural boundary given as a loop (e.g. to tag a shell's
+// shared edges), which bounds the whole domain, so that contains() needs only the domain test.
+// Points alone do not tell: a loop cut from the domain by an isoparametric line has all its
+// points on the border and a segment across it.
 bool on_domain_border(const TrimLoop& loop, const ParamDomain& d, const Tolerances& tol) {
   const double eu = tol.param_rel * d.width_u(), ev = tol.param_rel * d.width_v();
-  bool border = true;
-  for (const Vec2& p : loop.points)
-    border = border && (std::abs(p.x() - d.u0) <= eu || std::abs(p.x() - d.u1) <= eu ||
-                        std::abs(p.y() - d.v0) <= ev || std::abs(p.y() - d.v1) <= ev);
-  return border;
+  const auto sides = [&](const Vec2& p) {  // bit k: on side k (u0, u1, v0, v1)
+    return (std::abs(p.x() - d.u0) <= eu ? 1 : 0) | (std::abs(p.x() - d.u1) <= eu ? 2 : 0) |
+           (std::abs(p.y() - d.v0) <= ev ? 4 : 0) | (std::abs(p.y() - d.v1) <= ev ? 8 : 0);
+  };
+  const std::size_t n = loop.points.size();
+  for (std::size_t i = 0; i < n; ++i)
+    if ((sides(loop.points[i]) & sides(loop.points[(i + 1) % n])) == 0) return false;
+  return true;
 }
 
 // The loop of largest (u, v) area: the outer one of a face with holes.

@@ -194,6 +194,50 @@ TEST_CASE("bound mold: a cap on the sphere has the cap's area") {
   CHECK(widest >= a - 0.25 / R);
 }
 
+// The cap of angular radius a about the unit direction `axis` of the sphere of radius R.
+BoundaryCurve cap_curve(double R, double a, const Vec3& axis, int n = 1440) {
+  const Vec3 e1 = axis.unitOrthogonal(), e2 = axis.cross(e1);
+  BoundaryCurve c;
+  c.name = "cap";
+  c.closed = true;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * kPiT * i / n;
+    c.points.push_back(R *
+                       (std::cos(a) * axis + std::sin(a) * (std::cos(t) * e1 + std::sin(t) * e2)));
+  }
+  return c;
+}
+
+TEST_CASE("bound mold: caps across the sphere's eight faces, about a corner and about a pole") {
+  // Four faces meet at the corner (R, 0, 0) on the equator and at the pole (0, 0, R): a cap
+  // about either crosses four faces, runs along their shared edges to the corner or the pole,
+  // and the region is whole on each (no corner or pole cut off, every shared edge kept).
+  const double R = 20.0, a = 30.0 * kDeg;
+  auto data = builtin_shell("sphere-8", {{"R", R}});
+  REQUIRE(data);
+  auto shell = MoldSurface::from_shell(*data);
+  REQUIRE(shell);
+  const double cap = 2 * kPiT * R * R * (1 - std::cos(a));
+  // The pole is a collapsed edge of all four faces: the seed is set just beside it.
+  for (const Vec3& axis : {Vec3(1, 0, 0), Vec3(0, 0, 1)}) {
+    CAPTURE(axis.transpose());
+    PlyBoundary b;
+    b.curves = {cap_curve(R, a, axis)};
+    const Vec3 seed = R * (axis + Vec3(0.01, 0.02, 0)).normalized();
+    auto bm = bound_mold(*shell, b, seed);
+    REQUIRE(bm);
+    CHECK(bm->faces.size() == 4);
+    CHECK(bm->area == Approx(cap).epsilon(1e-3));
+    DrapeResult res;
+    const FlatPattern flat = drape_flat(*bm, seed, 0.0, 0.5, &res);
+    CHECK_FALSE(res.partial);
+    // Sheared cells cover less of the mold than of the ply (d^2 cos(shear)): the flat area
+    // lies between the cap's and the cap's over the cosine of the largest shear.
+    CHECK(flat.area >= cap * (1 - 1e-3));
+    CHECK(flat.area <= cap / std::cos(res.metrics.shear_max));
+  }
+}
+
 TEST_CASE("bound mold: bad boundaries are errors naming the curve") {
   const MoldSurface plate = builtin_surface("plate");
   const Vec3 seed(50, 30, 0);

@@ -3,7 +3,9 @@
 
 #include <plyfit/kernel/polygon2d.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace plyfit::detail {
 
@@ -15,6 +17,9 @@ constexpr double kOnTrimRel = 1e-9;
 // The region leaves the face whole (or takes none of it) when their areas agree to this,
 // relative to the face's (u, v) area.
 constexpr double kSameAreaRel = 1e-9;
+// A point of a boundary loop farther than this from the face (relative to the face's size)
+// lies off it: on another face of the shell.
+constexpr double kOffFaceRel = 1e-6;
 
 // True when a and b lie on one edge of the face's domain (clamped there by the projection:
 // their coordinate equals the edge's exactly), across an open direction.
@@ -30,6 +35,10 @@ bool on_one_edge(const Face& face, const Vec2& a, const Vec2& b) {
 // a face of a shell the loop only crosses) add nothing to the region within the face but
 // collinear overlaps with the face's own boundary, the costliest case of the clipping.
 std::vector<Vec2> without_runs_on_edges(const Face& face, std::vector<Vec2> uv) {
+  // Repeated points first (projections clamped to the same corner): a corner repeated would
+  // seem to lie between two points of one edge, each copy, and be lost.
+  uv.erase(std::unique(uv.begin(), uv.end()), uv.end());
+  while (uv.size() > 1 && uv.front() == uv.back()) uv.pop_back();
   const std::size_t n = uv.size();
   if (n < 4) return uv;
   std::vector<Vec2> out;
@@ -44,13 +53,50 @@ std::vector<Vec2> without_runs_on_edges(const Face& face, std::vector<Vec2> uv) 
   return out.size() >= 3 ? out : uv;
 }
 
+// Perimeter of a domain with no closed direction: position s in [0, 4) going round it
+// counter-clockwise from (u0, v0), one unit a side.
+struct Border {
+  ParamDomain d;
+  // The point of the border nearest q (in units of the domain's widths), as s.
+  double place(const Vec2& q) const {
+    const double x = std::clamp((q.x() - d.u0) / d.width_u(), 0.0, 1.0);
+    const double y = std::clamp((q.y() - d.v0) / d.width_v(), 0.0, 1.0);
+    const double to[4] = {y, 1.0 - x, 1.0 - y, x};  // bottom, right, top, left
+    const int side = static_cast<int>(std::min_element(to, to + 4) - to);
+    const double along[4] = {x, y, 1.0 - x, 1.0 - y};
+    return side + along[side];
+  }
+  Vec2 at(double s) const {
+    const int side = static_cast<int>(std::floor(s)) % 4;
+    const double t = s - std::floor(s);
+    const double x[4] = {t, 1.0, 1.0 - t, 0.0}, y[4] = {0.0, t, 1.0, 1.0 - t};
+    return {d.u0 + x[side] * d.width_u(), d.v0 + y[side] * d.width_v()};
+  }
+  // The border's corners strictly between a and b, the shorter way round, in order.
+  void corners_between(double a, double b, std::vector<Vec2>& out) const {
+    double step = b - a;
+    step -= 4.0 * std::round(step / 4.0);
+    const int first =
+        step > 0 ? static_cast<int>(std::floor(a)) + 1 : static_cast<int>(std::ceil(a)) - 1;
+    for (int c = first; step > 0 ? c < a + step : c > a + step; c += step > 0 ? 1 : -1)
+      out.push_back(at(static_cast<double>(((c % 4) + 4) % 4)));
+  }
+};
+
 // The loop projected onto the face's surface, clamped to its domain and unwrapped across its
-// seams (each point the copy nearest the one before).
+// seams (each point the copy nearest the one before). Where the loop runs off the face, the
+// clamped projections lie on the domain's border only roughly (a projection onto a pole stalls
+// short of it): on a face open both ways those points are put on the border and the corners
+// they pass added, so that the region takes in the face up to its edges and poles.
 std::vector<Vec2> loop_on_face(const Face& face, const MoldLoop& loop) {
   std::vector<Vec2> uv;
   uv.reserve(loop.points.size());
   const ParamDomain& d = face.domain();
+  const bool open = !face.closed_u() && !face.closed_v();
+  const Border border{d};
+  const double off_face = kOffFaceRel * face.size();
   Vec2 seed = face.project(loop.points.front()).at.uv;
+  std::optional<double> last_off;  // border place of the point before, when it was off the face
   for (const Vec3& p : loop.points) {
     const Projection pr = face.project_from(p, seed, false);
     Vec2 q = pr.ok ? pr.at.uv : seed;
@@ -58,8 +104,16 @@ std::vector<Vec2> loop_on_face(const Face& face, const MoldLoop& loop) {
       if (face.closed_u()) q.x() -= d.width_u() * std::round((q.x() - uv.back().x()) / d.width_u());
       if (face.closed_v()) q.y() -= d.width_v() * std::round((q.y() - uv.back().y()) / d.width_v());
     }
-    uv.push_back(q);
     seed = face.wrap(q);
+    if (open && (!pr.ok || pr.distance > off_face)) {
+      const double s = border.place(q);
+      if (last_off) border.corners_between(*last_off, s, uv);
+      q = border.at(s);
+      last_off = s;
+    } else {
+      last_off.reset();
+    }
+    uv.push_back(q);
   }
   return without_runs_on_edges(face, std::move(uv));
 }
@@ -85,17 +139,30 @@ Region2 loops_region(const Face& face, const std::vector<MoldLoop>& loops) {
   return r;
 }
 
-// The tag of segment a -> b: the shared edge of the face's own trim segment it lies on.
-std::int32_t tag_of(const Face& face, const Vec2& a, const Vec2& b, double eps) {
+// The shared edge of the face's own trim segments that point p lies on (within eps), or
+// kFreeEdge; a point where two edges meet is on `want` when one of them is want.
+std::int32_t edge_at(const Face& face, const Vec2& p, double eps, std::int32_t want) {
+  std::int32_t found = TrimLoop::kFreeEdge;
   for (const TrimLoop& loop : face.loops()) {
+    if (loop.edges.empty()) continue;
     const std::size_t n = loop.points.size();
     for (std::size_t i = 0; i < n; ++i) {
-      const Vec2 &p = loop.points[i], &q = loop.points[(i + 1) % n];
-      if (segment_distance(a, p, q) <= eps && segment_distance(b, p, q) <= eps)
-        return loop.edges.empty() ? TrimLoop::kFreeEdge : loop.edges[i];
+      if (segment_distance(p, loop.points[i], loop.points[(i + 1) % n]) > eps) continue;
+      if (loop.edges[i] == want) return want;
+      found = loop.edges[i];
     }
   }
-  return TrimLoop::kFreeEdge;
+  return found;
+}
+
+// The tag of segment a -> b: the shared edge it runs along. The clipping may join several of
+// the face's own collinear trim segments into one (where the region's loop runs along the
+// same domain edge), so the segment's ends and middle are each tested against the edge's
+// polyline, not against one of its segments.
+std::int32_t tag_of(const Face& face, const Vec2& a, const Vec2& b, double eps) {
+  const std::int32_t e = edge_at(face, 0.5 * (a + b), eps, TrimLoop::kFreeEdge);
+  if (e == TrimLoop::kFreeEdge) return e;
+  return edge_at(face, a, eps, e) == e && edge_at(face, b, eps, e) == e ? e : TrimLoop::kFreeEdge;
 }
 
 }  // namespace
