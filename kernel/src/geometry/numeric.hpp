@@ -74,4 +74,7 @@ inline constexpr double kGauss5X[5] = {-0.9061798459386640, -0.5384693101056831,
 inline constexpr double kGauss5W[5] = {0.2369268850561891, 0.4786286704993665, 0.5688888888888889,
                                        0.4786286704993665, 0.2369268850561891};
 
+/// The 2-point Gauss-Legendre rule on [-1, 1] (weights 1).
+inline constexpr double kGauss2X[2] = {-0.5773502691896258, 0.5773502691896258};
+
 }  // namespace plyfit::detail

@@ -181,3 +181,48 @@ TEST_CASE("surface: boundary_area integrates the area element over (u, v) loops"
   const std::vector<Vec2> hole = {Vec2(1.5, 2), Vec2(1.5, 3), Vec2(2.5, 3), Vec2(2.5, 2)};
   CHECK(boundary_area(*p, {outer, hole}) == Approx(5.0).epsilon(1e-12));
 }
+
+namespace {
+// The part of polygon `poly` where coordinate `axis` is on the `below` side of `at`
+// (Sutherland-Hodgman against one line).
+std::vector<Vec2> clip_half(const std::vector<Vec2>& poly, int axis, double at, bool below) {
+  std::vector<Vec2> out;
+  const auto in = [&](const Vec2& p) { return below ? p[axis] <= at : p[axis] >= at; };
+  for (std::size_t i = 0, n = poly.size(); i < n; ++i) {
+    const Vec2 &a = poly[i], &b = poly[(i + 1) % n];
+    if (in(a)) out.push_back(a);
+    if (in(a) != in(b)) out.push_back(a + (b - a) * ((at - a[axis]) / (b[axis] - a[axis])));
+  }
+  return out;
+}
+
+double polygon_area(const std::vector<Vec2>& p) {
+  double a = 0.0;
+  for (std::size_t i = 0, n = p.size(); i < n; ++i)
+    a += p[i].x() * p[(i + 1) % n].y() - p[(i + 1) % n].x() * p[i].y();
+  return 0.5 * std::abs(a);
+}
+}  // namespace
+
+TEST_CASE("surface: boundary_area is exact across knots where the area element jumps") {
+  // A plate of degree 1 whose parametrisation speeds up at the interior knots (C0 there):
+  // x = u on [0, 1] then 1 + 4 (u - 1); y = v on [0, 1] then 1 + 3 (v - 1). The area of a
+  // (u, v) polygon is the sum over the four knot cells of its part's area times x' y' there:
+  // the loop's segments cross the knots, where the integrand of Green's theorem has a kink.
+  NurbsSurfaceData plate;
+  plate.degree_u = plate.degree_v = 1;
+  plate.knots_u = plate.knots_v = {0, 0, 1, 2, 2};
+  const double xs[3] = {0, 1, 5}, ys[3] = {0, 1, 4};
+  for (double x : xs)
+    for (double y : ys) plate.poles.push_back(Vec3(x, y, 0));
+  plate.count_u = plate.count_v = 3;
+  auto s = NurbsSurface::create(plate);
+  REQUIRE(s);
+  const std::vector<Vec2> loop = circle_poly(Vec2(1.1, 0.9), 0.5, 40, false);
+  double exact = 0.0;
+  for (bool left : {true, false})
+    for (bool low : {true, false})
+      exact += (left ? 1.0 : 4.0) * (low ? 1.0 : 3.0) *
+               polygon_area(clip_half(clip_half(loop, 0, 1.0, left), 1, 1.0, low));
+  CHECK(boundary_area(*s, {loop}) == Approx(exact).epsilon(1e-12));
+}
