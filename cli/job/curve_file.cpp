@@ -94,7 +94,9 @@ Result<std::vector<BoundaryCurve>> read_cad(const std::string& path,
   return curves;
 }
 
-// The curves picked: each by index from 0, or by name (keys[k]: the name curve k is picked by).
+// The curves picked: each by index from 0, or by name (keys[k]: the name curve k is picked by):
+// a name picks every curve that bears it, in file order (CAD systems name a wire's or a face
+// border's edges after it: the curves of one loop).
 Result<std::vector<BoundaryCurve>> pick(const CurveFileSpec& spec, std::vector<BoundaryCurve> all,
                                         const std::vector<std::string>& keys) {
   if (spec.pick.empty()) return all;
@@ -103,12 +105,13 @@ Result<std::vector<BoundaryCurve>> pick(const CurveFileSpec& spec, std::vector<B
     char* end = nullptr;
     const long k = std::strtol(p.c_str(), &end, 10);
     const bool index = !p.empty() && end == p.c_str() + p.size();
-    const auto it = std::find(keys.begin(), keys.end(), p);
+    const std::size_t before = out.size();
     if (index && k >= 0 && k < static_cast<long>(all.size()))
       out.push_back(all[static_cast<std::size_t>(k)]);
-    else if (!index && it != keys.end())
-      out.push_back(all[static_cast<std::size_t>(it - keys.begin())]);
-    else
+    else if (!index)
+      for (std::size_t c = 0; c < keys.size(); ++c)
+        if (keys[c] == p) out.push_back(all[c]);
+    if (out.size() == before)
       return Error{
           ErrorCode::kCurveNotFound, spec.path, {p, static_cast<std::int64_t>(all.size())}};
   }

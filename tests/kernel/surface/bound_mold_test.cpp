@@ -238,6 +238,47 @@ TEST_CASE("bound mold: caps across the sphere's eight faces, about a corner and 
   }
 }
 
+// The rectangle [x0, x1] x [y0, y1] in the plane z = 0 as one closed curve, counter-clockwise
+// (or clockwise) seen from +Z.
+BoundaryCurve rectangle(double x0, double y0, double x1, double y1, bool ccw) {
+  BoundaryCurve b;
+  b.name = "rectangle";
+  b.closed = true;
+  b.points = {Vec3(x0, y0, 0), Vec3(x1, y0, 0), Vec3(x1, y1, 0), Vec3(x0, y1, 0)};
+  if (!ccw) std::reverse(b.points.begin(), b.points.end());
+  return b;
+}
+
+TEST_CASE("bound mold: an offset rectangle keeps square corners, either way round") {
+  // Shrinking a rectangle by 5 gives the rectangle 10 narrower each way (each point moved
+  // across the loop overshoots at the convex corners: the swallowtails are cut out). On the
+  // plate's own border, one side of the loop is off the mold: the side that is on it is
+  // the region, whichever way the loop runs. Growing the border clips the loop to the mold.
+  const MoldSurface plate = builtin_surface("plate");
+  // Off the grid of the rectangles' corners (a node on a corner of the boundary: see the
+  // flat pattern's tests).
+  const Vec3 seed(50.3, 30.4, 0);
+  for (bool ccw : {true, false}) {
+    CAPTURE(ccw);
+    struct Case {
+      BoundaryCurve curve;
+      double offset, area;
+    };
+    for (const Case& c : {Case{rectangle(20, 10, 80, 50, ccw), -5.0, 50.0 * 30.0},
+                          Case{rectangle(0, 0, 100, 60, ccw), -5.0, 90.0 * 50.0},
+                          Case{rectangle(0, 0, 100, 60, ccw), 5.0, 100.0 * 60.0}}) {
+      CAPTURE(c.offset, c.area);
+      PlyBoundary b;
+      b.curves = {c.curve};
+      b.offset = c.offset;
+      auto bm = bound_mold(plate, b, seed);
+      REQUIRE(bm);
+      CHECK(bm->area == Approx(c.area).epsilon(1e-9));
+      CHECK(drape_flat(*bm, seed, 0.0, 1.0).area == Approx(c.area).epsilon(1e-9));
+    }
+  }
+}
+
 TEST_CASE("bound mold: bad boundaries are errors naming the curve") {
   const MoldSurface plate = builtin_surface("plate");
   const Vec3 seed(50, 30, 0);

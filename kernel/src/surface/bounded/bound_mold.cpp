@@ -4,6 +4,7 @@
 
 #include <plyfit/kernel/boundary.hpp>
 
+#include <cmath>
 #include <map>
 
 namespace plyfit {
@@ -92,10 +93,12 @@ Result<Restricted> restrict_mold(const MoldSurface& mold,
   return Error{ErrorCode::kInternal};
 }
 
-// True when p's place on the mold (its projection) lies on the restricted surface.
-bool on_region(const MoldSurface& mold, const Restricted& r, const Vec3& p) {
+// True when p's place on the mold (its projection) lies on the restricted surface, p within
+// `reach` of it (a point past the mold's edge projects onto the edge: it is not on the mold).
+bool on_region(const MoldSurface& mold, const Restricted& r, const Vec3& p,
+               double reach = INFINITY) {
   const Projection pr = mold.project(p);
-  if (!pr.ok) return false;
+  if (!pr.ok || pr.distance > reach) return false;
   for (std::size_t k = 0; k < r.faces.size(); ++k)
     if (r.faces[k] == pr.at.face)
       return r.surface.impl().contains(SurfaceLocation(pr.at.uv, static_cast<std::int32_t>(k)));
@@ -129,7 +132,9 @@ Result<BoundedMold> bound_mold(const MoldSurface& mold, const PlyBoundary& bound
   auto region = restrict_mold(mold, *loops, tol);
   if (!region) return region.error();
   if (boundary.offset != 0.0) {
-    const auto inside = [&](const Vec3& p) { return on_region(mold, *region, p); };
+    const auto inside = [&](const Vec3& p, double reach) {
+      return on_region(mold, *region, p, reach);
+    };
     detail::offset_loops(mold, *loops, boundary.offset, inside);
     region = restrict_mold(mold, *loops, tol);
     if (!region) return region.error();

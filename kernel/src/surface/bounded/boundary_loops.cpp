@@ -2,9 +2,13 @@
 #include "surface/bounded/bounded.hpp"
 #include "surface/shell/shell.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
+#include <optional>
 #include <string>
 
 namespace plyfit::detail {
@@ -15,6 +19,15 @@ namespace {
 // of the loop vote, and how far across it (relative to the loop's mean segment) they look.
 constexpr int kSideVotes = 9;
 constexpr double kSideProbeSegments = 0.5;
+// A probe point lies on the mold when within this share of the probe's length of it (the
+// surface's curvature puts a point of the tangent plane at about k probe^2 / 2).
+constexpr double kSideProbeReach = 0.25;
+// Two segments of an offset loop cross where they come within this share of its mean segment
+// (both lie on the mold: crossing chords of a curved surface pass at about k L^2 / 8).
+constexpr double kCrossingTouch = 0.05;
+// An offset point lies on the mold when its projection is within this share of the offset (a
+// point of the tangent plane lies about k offset^2 / 2 off a surface of curvature k).
+constexpr double kOffsetOnMold = 0.25;
 // A boundary point is projected from the previous one's place on its face when it lies this
 // close to that face (relative to the mold's size: on it, to a chord's sagitta), else onto the
 // whole mold (which samples every face).
@@ -175,8 +188,108 @@ Status project_loops(const MoldSurface& mold, const PlyBoundary& boundary,
   return ok_status();
 }
 
+namespace {
+
+// The closest points of segments p0 p1 and q0 q1, at p0 + s (p1 - p0) and q0 + t (q1 - q0).
+struct ClosestPair {
+  double s = 0.0, t = 0.0, distance = INFINITY;
+};
+ClosestPair closest(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
+  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  const double c = d1.dot(r), b = d1.dot(d2), den = a * e - b * b;
+  ClosestPair out;
+  if (!(a > 0.0) || !(e > 0.0)) return out;
+  out.s = den > 0.0 ? std::clamp((b * f - c * e) / den, 0.0, 1.0) : 0.0;
+  out.t = (b * out.s + f) / e;
+  if (out.t < 0.0 || out.t > 1.0) {
+    out.t = std::clamp(out.t, 0.0, 1.0);
+    out.s = std::clamp((b * out.t - c) / a, 0.0, 1.0);
+  }
+  out.distance = ((p0 + out.s * d1) - (q0 + out.t * d2)).norm();
+  return out;
+}
+
+// The first crossing of two segments of the loop that share no point (i < j: segments i and
+// j), the segments found through a grid of cells `cell` wide.
+std::optional<std::pair<std::size_t, std::size_t>> first_crossing(const MoldLoop& loop, double cell,
+                                                                  double touch, Vec3& at) {
+  const std::size_t n = loop.points.size();
+  const auto key = [cell](const Vec3& p) {
+    return std::array<long long, 3>{static_cast<long long>(std::floor(p.x() / cell)),
+                                    static_cast<long long>(std::floor(p.y() / cell)),
+                                    static_cast<long long>(std::floor(p.z() / cell))};
+  };
+  std::map<std::array<long long, 3>, std::vector<std::size_t>> grid;
+  for (std::size_t i = 0; i < n; ++i)
+    grid[key(0.5 * (loop.points[i] + loop.points[(i + 1) % n]))].push_back(i);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 &p0 = loop.points[i], &p1 = loop.points[(i + 1) % n];
+    const auto k = key(0.5 * (p0 + p1));
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        for (long long dz = -1; dz <= 1; ++dz) {
+          const auto it = grid.find({k[0] + dx, k[1] + dy, k[2] + dz});
+          if (it == grid.end()) continue;
+          for (std::size_t j : it->second) {
+            if (j <= i + 1 || (i == 0 && j == n - 1)) continue;
+            const ClosestPair c = closest(p0, p1, loop.points[j], loop.points[(j + 1) % n]);
+            if (c.distance <= touch && c.s > 0.0 && c.s < 1.0 && c.t > 0.0 && c.t < 1.0) {
+              at = p0 + c.s * (p1 - p0);
+              return std::make_pair(i, j);
+            }
+          }
+        }
+  }
+  return std::nullopt;
+}
+
+// Where a loop moved across itself crosses itself (the swallowtail an offset makes past a
+// corner, inward past a convex one or outward past a concave one), the shorter of the two
+// loops the crossing makes is cut out: what is left is the offset region's boundary.
+void remove_self_crossings(MoldLoop& loop) {
+  const std::size_t n0 = loop.points.size();
+  if (n0 < 4) return;
+  double longest = 0.0, length = 0.0;
+  for (std::size_t i = 0; i < n0; ++i) {
+    const double l = (loop.points[(i + 1) % n0] - loop.points[i]).norm();
+    longest = std::max(longest, l);
+    length += l;
+  }
+  const double touch = kCrossingTouch * length / static_cast<double>(n0);
+  Vec3 at;
+  for (std::size_t round = 0; round < n0 && loop.points.size() >= 4; ++round) {
+    const auto hit = first_crossing(loop, 2.0 * longest + touch, touch, at);
+    if (!hit) return;
+    const auto [i, j] = *hit;
+    const std::size_t n = loop.points.size();
+    MoldLoop out;
+    if (j - i <= n / 2) {  // cut out points i + 1 .. j
+      for (std::size_t k = 0; k < n; ++k) {
+        if (k > i && k <= j) continue;
+        out.points.push_back(loop.points[k]);
+        out.curve.push_back(loop.curve[k]);
+        if (k == i) {
+          out.points.push_back(at);
+          out.curve.push_back(loop.curve[i]);
+        }
+      }
+    } else {  // keep points i + 1 .. j only
+      out.points.push_back(at);
+      out.curve.push_back(loop.curve[i]);
+      for (std::size_t k = i + 1; k <= j; ++k) {
+        out.points.push_back(loop.points[k]);
+        out.curve.push_back(loop.curve[k]);
+      }
+    }
+    loop = std::move(out);
+  }
+}
+
+}  // namespace
+
 void offset_loops(const MoldSurface& mold, std::vector<MoldLoop>& loops, double offset,
-                  const std::function<bool(const Vec3&)>& inside) {
+                  const std::function<bool(const Vec3&, double)>& inside) {
   for (auto& loop : loops) {
     const std::size_t n = loop.points.size();
     // Across the loop, to its left seen from outside: normal x tangent.
@@ -191,17 +304,26 @@ void offset_loops(const MoldSurface& mold, std::vector<MoldLoop>& loops, double 
       length += (loop.points[(i + 1) % n] - loop.points[i]).norm();
     }
     const double probe = kSideProbeSegments * length / static_cast<double>(n);
+    // Each vote probes both sides: a side past the mold's edge (a loop along the edge) is in
+    // the region on neither, so the side that is decides.
     int left_inside = 0;
     for (int k = 0; k < kSideVotes; ++k) {
       const std::size_t i = (static_cast<std::size_t>(k) * n) / kSideVotes;
-      left_inside += inside(loop.points[i] + probe * across[i]) ? 1 : -1;
+      const double reach = kSideProbeReach * probe;
+      const bool left = inside(loop.points[i] + probe * across[i], reach);
+      const bool right = inside(loop.points[i] - probe * across[i], reach);
+      left_inside += left == right ? 0 : (left ? 1 : -1);
     }
     // Growing moves away from the region.
     const double sign = left_inside > 0 ? -1.0 : 1.0;
     for (std::size_t i = 0; i < n; ++i) {
-      const Projection pr = mold.project(loop.points[i] + sign * offset * across[i]);
-      if (pr.ok) loop.points[i] = pr.point;
+      // A point moved past the mold's edge stays where it is: the faces' cuts clip the loop to
+      // the mold (projected onto its edge, it would make the loop double back along it).
+      const Vec3 moved = loop.points[i] + sign * offset * across[i];
+      const Projection pr = mold.project(moved);
+      loop.points[i] = pr.ok && pr.distance <= kOffsetOnMold * std::abs(offset) ? pr.point : moved;
     }
+    remove_self_crossings(loop);
   }
 }
 

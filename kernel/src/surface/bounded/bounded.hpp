@@ -32,9 +32,10 @@ Status project_loops(const MoldSurface& mold, const PlyBoundary& boundary,
                      std::vector<MoldLoop>& loops, double reach);
 
 /// Every point moved by `offset` along the surface, across its loop, away from the region
-/// (`inside` tells whether a 3D point lies in the region), then projected onto the mold.
+/// (`inside(p, reach)` tells whether 3D point p lies on the mold within `reach` of the surface
+/// and in the region), then projected onto the mold.
 void offset_loops(const MoldSurface& mold, std::vector<MoldLoop>& loops, double offset,
-                  const std::function<bool(const Vec3&)>& inside);
+                  const std::function<bool(const Vec3&, double)>& inside);
 
 /// What the region does to one face.
 struct FaceCut {
