@@ -13,6 +13,9 @@ namespace {
 
 // Barycentric slack when locating a (u, v) point in a cell's triangles (rounding only).
 constexpr double kBarycentricSlack = 1e-12;
+// A boundary vertex lies on the part's edge when this close to it, relative to the part's
+// extent in its chart (rounding of the chart's coordinates).
+constexpr double kOnPartRel = 1e-9;
 
 // True when p lies inside polygon `poly` (even-odd rule).
 bool in_polygon(const std::vector<Vec2>& poly, const Vec2& p) {
@@ -25,6 +28,15 @@ bool in_polygon(const std::vector<Vec2>& poly, const Vec2& p) {
       in = !in;
   }
   return in;
+}
+
+// True when p lies in polygon `poly` or on its edges, within `slack`: a boundary vertex on a
+// corner or an edge of the part (a node on a corner of the boundary) is in the part.
+bool in_or_on_polygon(const std::vector<Vec2>& poly, const Vec2& p, double slack) {
+  if (in_polygon(poly, p)) return true;
+  for (std::size_t k = 0, n = poly.size(); k < n; ++k)
+    if (segment_distance(p, poly[k], poly[(k + 1) % n]) <= slack) return true;
+  return false;
 }
 
 }  // namespace
@@ -134,6 +146,9 @@ OutlineBuilder::Pairing OutlineBuilder::pair_exits(const std::vector<Item>& item
   Pairing pr{std::vector<int>(n, -1), std::vector<std::vector<int>>(n)};
   std::vector<int> taken(n, 0);
   bool bijective = true;
+  double extent = 0.0;
+  for (const Vec2& c : cw) extent = std::max(extent, (c - cw[0]).cwiseAbs().maxCoeff());
+  const double slack = kOnPartRel * extent;
   for (std::size_t k = 0; k < n; ++k) {
     if (items[k].kind != 1) continue;
     pr.entry[k] = walk(items, k, turn, pr.path[k]);
@@ -145,7 +160,7 @@ OutlineBuilder::Pairing OutlineBuilder::pair_exits(const std::vector<Item>& item
     for (int lv : pr.path[k]) {
       const SurfaceLocation& at =
           boundary_[static_cast<std::size_t>(bl)].points[static_cast<std::size_t>(lv)];
-      if (!in_polygon(cw, chart_point(chart, at, loop_point(bl, lv)))) {
+      if (!in_or_on_polygon(cw, chart_point(chart, at, loop_point(bl, lv)), slack)) {
         bijective = false;
         pr.entry[k] = -1;
         pr.path[k].clear();

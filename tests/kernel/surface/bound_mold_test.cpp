@@ -255,28 +255,30 @@ TEST_CASE("bound mold: an offset rectangle keeps square corners, either way roun
   // plate's own border, one side of the loop is off the mold: the side that is on it is
   // the region, whichever way the loop runs. Growing the border clips the loop to the mold.
   const MoldSurface plate = builtin_surface("plate");
-  // Off the grid of the rectangles' corners (a node on a corner of the boundary: see the
-  // flat pattern's tests).
-  const Vec3 seed(50.3, 30.4, 0);
-  for (bool ccw : {true, false}) {
-    CAPTURE(ccw);
-    struct Case {
-      BoundaryCurve curve;
-      double offset, area;
-    };
-    for (const Case& c : {Case{rectangle(20, 10, 80, 50, ccw), -5.0, 50.0 * 30.0},
-                          Case{rectangle(0, 0, 100, 60, ccw), -5.0, 90.0 * 50.0},
-                          Case{rectangle(0, 0, 100, 60, ccw), 5.0, 100.0 * 60.0}}) {
-      CAPTURE(c.offset, c.area);
-      PlyBoundary b;
-      b.curves = {c.curve};
-      b.offset = c.offset;
-      auto bm = bound_mold(plate, b, seed);
-      REQUIRE(bm);
-      CHECK(bm->area == Approx(c.area).epsilon(1e-9));
-      CHECK(drape_flat(*bm, seed, 0.0, 1.0).area == Approx(c.area).epsilon(1e-9));
+  // From (50, 30) at d = 1 the net's nodes lie on the rectangles' sides and corners: a
+  // corner of the boundary on a node is kept (the walk along the boundary passes through the
+  // cell's own corner); from (50.3, 30.4) they lie off them.
+  for (const Vec3& seed : {Vec3(50, 30, 0), Vec3(50.3, 30.4, 0)})
+    for (bool ccw : {true, false}) {
+      CAPTURE(seed.transpose(), ccw);
+      struct Case {
+        BoundaryCurve curve;
+        double offset, area;
+      };
+      for (const Case& c : {Case{rectangle(20, 10, 80, 50, ccw), 0.0, 60.0 * 40.0},
+                            Case{rectangle(20, 10, 80, 50, ccw), -5.0, 50.0 * 30.0},
+                            Case{rectangle(0, 0, 100, 60, ccw), -5.0, 90.0 * 50.0},
+                            Case{rectangle(0, 0, 100, 60, ccw), 5.0, 100.0 * 60.0}}) {
+        CAPTURE(c.offset, c.area);
+        PlyBoundary b;
+        b.curves = {c.curve};
+        b.offset = c.offset;
+        auto bm = bound_mold(plate, b, seed);
+        REQUIRE(bm);
+        CHECK(bm->area == Approx(c.area).epsilon(1e-9));
+        CHECK(drape_flat(*bm, seed, 0.0, 1.0).area == Approx(c.area).epsilon(1e-9));
+      }
     }
-  }
 }
 
 TEST_CASE("bound mold: bad boundaries are errors naming the curve") {
