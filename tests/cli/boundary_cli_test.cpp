@@ -145,3 +145,49 @@ TEST_CASE("cli: a boundary across a file's shell drapes as across the built-in s
     CHECK(j["flat_outline_exact"]["area"].get<double>() == Approx(exact).epsilon(1e-3));
   }
 }
+
+TEST_CASE("cli: loops winding round a tube bound a band, or the side that holds the seed") {
+  // samples/molds/tube.step: the cylinder of radius 10 from z = 0 to 20, one face closed on
+  // itself. A circle round it is no area on the face but a side of it: two circles make the
+  // band between them, one the side that holds the seed.
+  Scratch tmp("boundary_cli_winding");
+  const auto ring = [](double z) {
+    std::string s;
+    char buf[128];
+    for (int i = 0; i < 360; ++i) {
+      const double t = 2 * kPiT * i / 360;
+      std::snprintf(buf, sizeof buf, "%.12g, %.12g, %.12g\n", 10 * std::cos(t), 10 * std::sin(t),
+                    z);
+      s += buf;
+    }
+    return s;
+  };
+  const std::string band = write(tmp, "band.csv", ring(5) + "\n" + ring(15));
+  const std::string one = write(tmp, "ring.csv", ring(5));
+  const std::string tube = std::string(PLYFIT_SOURCE_DIR) + "/samples/molds/tube.step";
+  // Each circle lies on the tube, at one height: in the face's (u, v) a line across it, so the
+  // region is the tube's own between heights, 2 pi r per unit of height.
+  const double per_mm = 2 * kPiT * 10;
+  struct Case {
+    std::string csv, seed;
+    double area;
+  };
+  for (const Case& c : {Case{band, "0,10,10", 10 * per_mm}, Case{one, "0,10,10", 15 * per_mm},
+                        Case{one, "0,10,2", 5 * per_mm}}) {
+    CAPTURE(c.csv, c.seed);
+    const std::string out = tmp.file("out");
+    const CliRun r = plyfit_run("drape --mold '" + tube + "' --seed " + c.seed +
+                                    " --rosette 0,0,1 --spacing 0.5 --boundary '" + c.csv +
+                                    "' --quiet --outputs json -o '" + out + "'",
+                                tmp);
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    const json j = json::parse(slurp(out + "/report.json"));
+    CHECK(j["ply"]["boundary"]["area"].get<double>() == Approx(c.area).epsilon(1e-5));
+  }
+  const CliRun off =
+      plyfit_run("drape --mold '" + tube + "' --seed 0,10,2 --spacing 0.5 --boundary '" + band +
+                     "' -o '" + tmp.file("o2") + "'",
+                 tmp);
+  CHECK(off.err.find("[boundary_seed_outside]") != std::string::npos);
+}

@@ -15,12 +15,13 @@ namespace {
 struct Restricted {
   MoldSurface surface;
   std::vector<int> faces;
+  bool winding = false;  // a loop winds round a closed face: its side was chosen
 };
 
 // One face restricted: its new trims, or an empty result when the region misses it.
 Result<Restricted> restrict_face(const Face& face, const std::vector<detail::MoldLoop>& loops,
-                                 const Tolerances& tol) {
-  detail::FaceCut cut = detail::cut_face(face, loops, tol);
+                                 const Tolerances& tol, bool far_side) {
+  detail::FaceCut cut = detail::cut_face(face, loops, tol, far_side);
   if (cut.kind == detail::FaceCut::kNone) return Error{ErrorCode::kBoundarySeedOutside, "boundary"};
   FaceData data = face.data();
   data.area = face.area();
@@ -30,7 +31,7 @@ Result<Restricted> restrict_face(const Face& face, const std::vector<detail::Mol
   }
   auto s = MoldSurface::from_face(std::move(data), tol);
   if (!s) return s.error();
-  return Restricted{std::move(s).value(), {0}};
+  return Restricted{std::move(s).value(), {0}, cut.winding};
 }
 
 // Shared edges that lost a side become free; the rest are numbered again from 0.
@@ -57,13 +58,14 @@ void renumber_edges(ShellData& data) {
 
 // A shell restricted: each face cut, faces the region misses left out.
 Result<Restricted> restrict_shell(const Shell& shell, const std::vector<detail::MoldLoop>& loops,
-                                  const Tolerances& tol) {
+                                  const Tolerances& tol, bool far_side) {
   const ShellData all = shell.data();
   ShellData data;
   data.tolerance = all.tolerance;
   Restricted out{MoldSurface(nullptr), {}};
   for (std::int32_t k = 0; k < shell.face_count(); ++k) {
-    detail::FaceCut cut = detail::cut_face(shell.face(k), loops, tol);
+    detail::FaceCut cut = detail::cut_face(shell.face(k), loops, tol, far_side);
+    out.winding = out.winding || cut.winding;
     if (cut.kind == detail::FaceCut::kNone) continue;
     FaceData f = all.faces[static_cast<std::size_t>(k)];
     f.area = shell.face(k).area();
@@ -84,12 +86,12 @@ Result<Restricted> restrict_shell(const Shell& shell, const std::vector<detail::
 }
 
 Result<Restricted> restrict_mold(const MoldSurface& mold,
-                                 const std::vector<detail::MoldLoop>& loops,
-                                 const Tolerances& tol) {
+                                 const std::vector<detail::MoldLoop>& loops, const Tolerances& tol,
+                                 bool far_side) {
   if (const auto* face = dynamic_cast<const Face*>(&mold.impl()))
-    return restrict_face(*face, loops, tol);
+    return restrict_face(*face, loops, tol, far_side);
   if (const auto* shell = dynamic_cast<const Shell*>(&mold.impl()))
-    return restrict_shell(*shell, loops, tol);
+    return restrict_shell(*shell, loops, tol, far_side);
   return Error{ErrorCode::kInternal};
 }
 
@@ -103,6 +105,16 @@ bool on_region(const MoldSurface& mold, const Restricted& r, const Vec3& p,
     if (r.faces[k] == pr.at.face)
       return r.surface.impl().contains(SurfaceLocation(pr.at.uv, static_cast<std::int32_t>(k)));
   return false;
+}
+
+// The mold restricted to the loops' region; where a loop winds round a closed face (and so
+// bounds a side of it, not an area) the side that holds the seed.
+Result<Restricted> region_holding(const MoldSurface& mold,
+                                  const std::vector<detail::MoldLoop>& loops, const Tolerances& tol,
+                                  const Vec3& seed) {
+  auto near = restrict_mold(mold, loops, tol, false);
+  if (!near || !near->winding || on_region(mold, *near, seed)) return near;
+  return restrict_mold(mold, loops, tol, true);
 }
 
 std::vector<PlyBoundaryLoop> loops_on_mold(const std::vector<detail::MoldLoop>& loops) {
@@ -129,14 +141,14 @@ Result<BoundedMold> bound_mold(const MoldSurface& mold, const PlyBoundary& bound
   for (auto& l : *loops) detail::densify(l, tol.boundary_step_rel * size);
   if (auto st = detail::project_loops(mold, boundary, *loops, tol.boundary_on_mold_rel * size); !st)
     return st.error();
-  auto region = restrict_mold(mold, *loops, tol);
+  auto region = region_holding(mold, *loops, tol, seed);
   if (!region) return region.error();
   if (boundary.offset != 0.0) {
     const auto inside = [&](const Vec3& p, double reach) {
       return on_region(mold, *region, p, reach);
     };
     detail::offset_loops(mold, *loops, boundary.offset, inside);
-    region = restrict_mold(mold, *loops, tol);
+    region = region_holding(mold, *loops, tol, seed);
     if (!region) return region.error();
   }
   if (!on_region(mold, *region, seed)) return Error{ErrorCode::kBoundarySeedOutside, "boundary"};

@@ -42,12 +42,16 @@ struct FaceCut {
   enum Kind { kWhole, kNone, kPart } kind = kWhole;
   std::vector<TrimLoop> loops;  ///< for kPart: the face's new trims, tagged
   double area = 0.0;            ///< for kPart: their area on the face (boundary_area)
+  bool winding = false;         ///< a loop winds round the face's closed direction
 };
 
 /// The face's trims met with the loops' region, in its (u, v): the loops projected onto the
 /// face's surface (clamped to its domain, unwrapped across seams), combined even-odd, and
 /// intersected with the face's own region. A segment of the result on one of the face's own
 /// trim segments keeps its shared-edge tag; the others are free edges.
-FaceCut cut_face(const Face& face, const std::vector<MoldLoop>& loops, const Tolerances& tol);
+/// A loop winding round a closed direction bounds, with the others, the side of the face
+/// towards the open direction's near edge (v0 or u0), or its far one when `far_side`.
+FaceCut cut_face(const Face& face, const std::vector<MoldLoop>& loops, const Tolerances& tol,
+                 bool far_side = false);
 
 }  // namespace plyfit::detail

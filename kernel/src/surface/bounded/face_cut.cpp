@@ -118,10 +118,50 @@ std::vector<Vec2> loop_on_face(const Face& face, const MoldLoop& loop) {
   return without_runs_on_edges(face, std::move(uv));
 }
 
+// A loop that winds round the face's closed direction `axis` (its unwrapped end a period or
+// more from its start) is no polygon in (u, v): it is repeated over the periods the domain
+// spans and closed along the open direction's near edge (v0 or u0; the far one when
+// `far_side`), making the part of the face on that side of it. Two such loops make the band
+// between them (even-odd); one makes a side, the near or the far.
+bool close_winding(const Face& face, std::vector<Vec2>& uv, bool far_side) {
+  const ParamDomain& d = face.domain();
+  for (int axis = 0; axis < 2; ++axis) {
+    const bool closed = axis == 0 ? face.closed_u() : face.closed_v();
+    const bool other_open = axis == 0 ? !face.closed_v() : !face.closed_u();
+    if (!closed || !other_open || uv.size() < 3) continue;
+    const double period = axis == 0 ? d.width_u() : d.width_v();
+    const double span = uv.back()[axis] - uv.front()[axis];
+    const double turns = std::round(span / period);
+    if (turns == 0.0) continue;
+    const double step = turns * period;
+    const int copies = static_cast<int>(std::ceil(3.0 / std::abs(turns))) + 1;
+    std::vector<Vec2> out;
+    out.reserve(uv.size() * static_cast<std::size_t>(2 * copies + 1) + 2);
+    for (int k = -copies; k <= copies; ++k)
+      for (const Vec2& p : uv) out.push_back(p + (k * step) * Vec2::Unit(axis));
+    const int other = 1 - axis;
+    const double edge = other == 1 ? (far_side ? d.v1 : d.v0) : (far_side ? d.u1 : d.u0);
+    Vec2 a = out.back(), b = out.front();
+    a[other] = edge;
+    b[other] = edge;
+    out.push_back(a);
+    out.push_back(b);
+    uv = std::move(out);
+    return true;
+  }
+  return false;
+}
+
 // The region of the loops on the face, with its copies a period away across closed seams.
-Region2 loops_region(const Face& face, const std::vector<MoldLoop>& loops) {
-  Region2 r;
-  for (const auto& loop : loops) r.push_back(loop_on_face(face, loop));
+Region2 loops_region(const Face& face, const std::vector<MoldLoop>& loops, bool far_side,
+                     bool& winding) {
+  Region2 r, wound;  // wound: closed along an edge, spanning the periods already
+  for (const auto& loop : loops) {
+    std::vector<Vec2> uv = loop_on_face(face, loop);
+    const bool winds = close_winding(face, uv, far_side);
+    winding = winding || winds;
+    (winds ? wound : r).push_back(std::move(uv));
+  }
   const ParamDomain& d = face.domain();
   for (int axis = 0; axis < 2; ++axis) {
     const bool closed = axis == 0 ? face.closed_u() : face.closed_v();
@@ -136,6 +176,8 @@ Region2 loops_region(const Face& face, const std::vector<MoldLoop>& loops) {
     // The copies overlap the original nowhere a loop does not wind round the seam.
     r = unite_regions(r, shifted);
   }
+  // Even-odd over all loops: the list of both is their symmetric difference.
+  r.insert(r.end(), wound.begin(), wound.end());
   return r;
 }
 
@@ -167,11 +209,12 @@ std::int32_t tag_of(const Face& face, const Vec2& a, const Vec2& b, double eps) 
 
 }  // namespace
 
-FaceCut cut_face(const Face& face, const std::vector<MoldLoop>& loops, const Tolerances&) {
+FaceCut cut_face(const Face& face, const std::vector<MoldLoop>& loops, const Tolerances&,
+                 bool far_side) {
   const Region2 own = face.boundary_loops();
-  const Region2 cut = intersect_regions(own, loops_region(face, loops));
-  const double whole = region_area(own), part = region_area(cut);
   FaceCut out;
+  const Region2 cut = intersect_regions(own, loops_region(face, loops, far_side, out.winding));
+  const double whole = region_area(own), part = region_area(cut);
   if (part <= kSameAreaRel * whole) {
     out.kind = FaceCut::kNone;
     return out;
