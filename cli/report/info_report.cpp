@@ -50,6 +50,10 @@ nlohmann::json to_json(const Mold& m) {
                {"reversed", f.reversed},
                {"area_mm2", f.area}};
     if (!f.area_measured) jf["area_mm2"] = nullptr;
+    if (f.free_edges >= 0) {
+      jf["neighbours"] = f.neighbours;
+      jf["free_edges"] = f.free_edges;
+    }
     if (f.bbox.empty)
       jf["bbox_mm"] = nullptr;
     else
@@ -87,13 +91,23 @@ std::string start_flags(const FaceStart& s, int index) {
          csv(-s.base_normal) + " --start2d 0,0 --base2d 1,0 --sweep2d 0,1 --sweep2d 0,-1";
 }
 
+// A face's neighbours in the file's topology as "1,4,6" ("-" for none or not read).
+std::string neighbour_list(const FaceInfo& f) {
+  std::string s;
+  for (int g : f.neighbours) {
+    if (!s.empty()) s += ',';
+    s += std::to_string(g);
+  }
+  return s.empty() ? "-" : s;
+}
+
 }  // namespace
 
 void print_listing(const Mold& m, std::ostream& os) {
   os << "file: " << m.source << "\n";
   os << pad("index", 7) << pad("name", 18) << pad("kind", 12) << pad("degree", 8)
      << pad("poles", 10) << pad("rational", 10) << pad("trimmed", 13) << pad("reversed", 10)
-     << pad("area_mm2", 14) << "bbox_mm (min .. max)\n";
+     << pad("area_mm2", 14) << pad("neighbours", 14) << pad("free", 6) << "bbox_mm (min .. max)\n";
   for (const auto& f : m.faces) {
     const bool has_net = f.poles_u > 0;
     std::string trim = f.trimmed ? "yes" : "no";
@@ -104,6 +118,8 @@ void print_listing(const Mold& m, std::ostream& os) {
        << pad(has_net ? std::to_string(f.poles_u) + "x" + std::to_string(f.poles_v) : "-", 10)
        << pad(f.rational ? "yes" : "no", 10) << pad(trim, 13) << pad(f.reversed ? "yes" : "no", 10)
        << pad(f.area_measured ? format("%.6g", f.area) : "invalid", 14)
+       << pad(neighbour_list(f), 14)
+       << pad(f.free_edges >= 0 ? std::to_string(f.free_edges) : "-", 6)
        << (f.bbox.empty ? "-" : point(f.bbox.min) + " .. " + point(f.bbox.max)) << "\n";
   }
   const Summary s = summarise(m);

@@ -36,6 +36,7 @@
 #include <cstdio>
 #include <iterator>
 #include <memory>
+#include <set>
 
 namespace plyfit::importers::occt {
 
@@ -230,6 +231,38 @@ bool natural_boundary(const TopoDS_Face& f, const Handle(Geom_Surface) & s, cons
 
 // The listing entry of a face: kind, degrees, orientation, area (to `area_rel`, estimated),
 // bounding box and trim status. `area_note` is set when the area misses `area_rel`.
+// Each face's neighbours and free edges in the file's own topology: the faces that share one
+// of its edges (as OpenCASCADE read them, without sewing), and its edges no other face has,
+// seams (an edge closed on the face) excepted.
+void file_neighbours(const TopTools_IndexedMapOfShape& faces, std::vector<FaceInfo>& infos) {
+  TopTools_IndexedMapOfShape edges;
+  std::vector<std::vector<int>> edge_faces;
+  std::vector<std::vector<int>> face_edges(static_cast<std::size_t>(faces.Extent()));
+  for (int i = 1; i <= faces.Extent(); ++i) {
+    TopTools_IndexedMapOfShape own;
+    TopExp::MapShapes(faces(i), TopAbs_EDGE, own);
+    for (int e = 1; e <= own.Extent(); ++e) {
+      if (BRep_Tool::IsClosed(TopoDS::Edge(own(e)), TopoDS::Face(faces(i)))) continue;
+      const int k = edges.Add(own(e));
+      if (k > static_cast<int>(edge_faces.size())) edge_faces.resize(static_cast<std::size_t>(k));
+      edge_faces[static_cast<std::size_t>(k - 1)].push_back(i - 1);
+      face_edges[static_cast<std::size_t>(i - 1)].push_back(k - 1);
+    }
+  }
+  for (std::size_t f = 0; f < face_edges.size() && f < infos.size(); ++f) {
+    std::set<int> nb;
+    int free = 0;
+    for (int e : face_edges[f]) {
+      const auto& users = edge_faces[static_cast<std::size_t>(e)];
+      free += users.size() == 1 ? 1 : 0;
+      for (int g : users)
+        if (g != static_cast<int>(f)) nb.insert(g);
+    }
+    infos[f].neighbours.assign(nb.begin(), nb.end());
+    infos[f].free_edges = free;
+  }
+}
+
 FaceInfo describe_face(const TopoDS_Face& f, int index, double area_rel, std::string& area_note) {
   FaceInfo info;
   info.index = index;
@@ -548,6 +581,7 @@ class OcctMoldFile final : public MoldFile {
         mold_.warnings.push_back("listing: " + std::to_string(short_areas) +
                                  " face areas short of the accuracy asked (first: " + first_short +
                                  ")");
+      file_neighbours(faces_, mold_.faces);
       listed_ = true;
     }
     return mold_;

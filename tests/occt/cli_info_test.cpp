@@ -1,6 +1,11 @@
 // plyfit info, run as a program on plyfit's own sample molds: the text listing, --json,
 // --format and the exit codes (the same on the CAD corpus in cli_info_corpus_test.cpp).
 
+#include <BRepPrimAPI_MakeBox.hxx>
+#include <Interface_Static.hxx>
+#include <STEPControl_Controller.hxx>
+#include <STEPControl_Writer.hxx>
+
 #include <nlohmann/json.hpp>
 
 #include <catch2/catch.hpp>
@@ -81,4 +86,42 @@ TEST_CASE("importers: plyfit info exit codes: 1 for a bad file, 2 for a bad comm
   r = run_plyfit("info --help", dir);
   CHECK(r.code == 0);
   CHECK(r.out.find("--json") != std::string::npos);
+}
+
+TEST_CASE("importers: plyfit info lists each face's neighbours and free edges from the file") {
+  // The file's own topology (no sewing): a box's six faces each share their four edges with
+  // four others; the flange + fillet + wall's faces share the two edges between them (STEP
+  // and IGES alike); a tube's seam is no free edge, its two circles are.
+  TempDir dir("cli_neighbours");
+  STEPControl_Controller::Init();
+  STEPControl_Writer w;
+  REQUIRE(w.Transfer(BRepPrimAPI_MakeBox(10, 20, 30).Shape(), STEPControl_AsIs) ==
+          IFSelect_RetDone);
+  REQUIRE(w.Write(dir.file("box.step").c_str()) == IFSelect_RetDone);
+  struct Case {
+    std::string path;
+    std::vector<std::vector<int>> neighbours;
+    std::vector<int> free;
+  };
+  const std::vector<int> none;
+  for (const Case& c : {Case{dir.file("box.step"), {}, {0, 0, 0, 0, 0, 0}},
+                        Case{sample_mold("flange-fillet-wall.step"), {{1}, {0, 2}, {1}}, {3, 2, 3}},
+                        Case{sample_mold("flange-fillet-wall.igs"), {{1}, {0, 2}, {1}}, {3, 2, 3}},
+                        Case{sample_mold("tube.step"), {none}, {2}}}) {
+    CAPTURE(c.path);
+    const Run r = run_plyfit("info --json '" + c.path + "'", dir);
+    INFO(r.err);
+    REQUIRE(r.code == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    REQUIRE(j["faces"].size() == c.free.size());
+    for (std::size_t f = 0; f < c.free.size(); ++f) {
+      CAPTURE(f);
+      CHECK(j["faces"][f]["free_edges"] == c.free[f]);
+      const auto nb = j["faces"][f]["neighbours"].get<std::vector<int>>();
+      if (c.neighbours.empty())
+        CHECK(nb.size() == 4);  // the box: the four faces round it
+      else
+        CHECK(nb == c.neighbours[f]);
+    }
+  }
 }

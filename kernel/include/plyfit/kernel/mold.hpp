@@ -31,6 +31,11 @@ struct FaceInfo {
   /// bound a region of its surface that an integration within its work cap can measure).
   bool area_measured = true;
   BBox3 bbox;  ///< bounding box, mm
+  /// The faces it shares an edge with in the file's own topology (indices, ascending; no
+  /// sewing: faces written apart share none), and how many of its edges no other face
+  /// shares (seams excepted); -1 when the file's topology was not read.
+  std::vector<int> neighbours = {};
+  int free_edges = -1;
 };
 
 /// A mold file's content: its faces and where they come from.
