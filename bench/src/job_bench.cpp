@@ -26,6 +26,8 @@ namespace {
 constexpr double kKinDrapeNodesPerSecond = 2500.0;
 // Nodes of a side of KinDrape's ply.
 constexpr int kKinDrapeSide = 48;
+// The ply's span (R 1): KinDrape's 48 nodes at d = 0.04.
+constexpr double kKinDrapeSpan = 0.04 * (kKinDrapeSide - 1);
 
 // GNU time, which reports its child's peak resident set. A child spawned from this process
 // would start with this process's own high-water mark (Linux carries it over exec), so the
@@ -150,9 +152,10 @@ Table job_table(int runs, bool* ok) {
   return t;
 }
 
-// KinDrape's hemisphere: R 1, the ply's middle node at the pole, 48 x 48 nodes, spacing such
-// that the ply spans 1.88 (less than the quarter meridian, pi/2, from the pole each way).
-Table kindrape_table(int runs, bool* ok) {
+// KinDrape's hemisphere: R 1, the ply's middle node at the pole, side x side nodes (KinDrape's
+// own is 48 x 48), spacing such that the ply spans kKinDrapeSpan (less than the quarter
+// meridian, pi/2, from the pole each way) at any side.
+Table kindrape_table(int runs, int side, bool* ok) {
   Table t;
   runs = std::max(runs, 5 * kMinRuns);
   t.header = {"case", "nodes", "drape (us)", "M nodes/s", "x KinDrape"};
@@ -163,10 +166,10 @@ Table kindrape_table(int runs, bool* ok) {
     if (ok) *ok = false;
     return t;
   }
-  const double d = 0.04, side = d * (kKinDrapeSide - 1);
-  DrapeProblem pb = problem(d, Vec2(side / 2, side / 2), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)},
+  const double d = kKinDrapeSpan / (side - 1), span = d * (side - 1);
+  DrapeProblem pb = problem(d, Vec2(span / 2, span / 2), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)},
                             Vec3(0, 0, 1), Vec3(0, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)});
-  pb.ply.rect = Vec2(side, side);
+  pb.ply.rect = Vec2(span, span);
   DrapeRun first;
   auto sec = median_drape_time(**face, pb, DrapeOptions{}, runs, &first);
   if (!sec) {
@@ -178,20 +181,36 @@ Table kindrape_table(int runs, bool* ok) {
   t.caption = fmt(
       "drape() alone on KinDrape's hemisphere (R 1, start at the pole, a %d x %d ply at d = %g), "
       "median of %d runs in one process (scratch reused, as in optimize), against KinDrape's "
-      "Python drape of the same hemisphere at about %.0f nodes/s on this class of machine.",
-      kKinDrapeSide, kKinDrapeSide, d, runs, kKinDrapeNodesPerSecond);
-  t.rows.push_back({"hemisphere R 1, 48 x 48", fmt("%.0f", nodes), fmt("%.0f", *sec * 1e6),
-                    fmt("%.2f", nodes / *sec * 1e-6),
+      "Python drape of its 48 x 48 ply at about %.0f nodes/s on this class of machine.",
+      side, side, d, runs, kKinDrapeNodesPerSecond);
+  t.rows.push_back({fmt("hemisphere R 1, %d x %d", side, side), fmt("%.0f", nodes),
+                    fmt("%.0f", *sec * 1e6), fmt("%.2f", nodes / *sec * 1e-6),
                     fmt("%.0f", nodes / *sec / kKinDrapeNodesPerSecond)});
   return t;
 }
 
-int run_job_bench(const std::vector<std::string>& args) {
-  int runs = kMinRuns;
+// The value of option `name` in args, or `fallback`.
+int int_option(const std::vector<std::string>& args, const std::string& name, int fallback) {
   for (std::size_t k = 0; k + 1 < args.size(); ++k)
-    if (args[k] == "--runs") runs = std::atoi(args[k + 1].c_str());
+    if (args[k] == name) return std::atoi(args[k + 1].c_str());
+  return fallback;
+}
+
+int run_kindrape_bench(const std::vector<std::string>& args) {
+  const int side = int_option(args, "--side", kKinDrapeSide);
+  if (side < 2) {
+    std::fprintf(stderr, "kindrape: --side %d: at least 2 nodes a side\n", side);
+    return 1;
+  }
   bool ok = true;
-  std::cout << kindrape_table(runs, &ok).markdown() << "\n";
+  std::cout << kindrape_table(int_option(args, "--runs", kMinRuns), side, &ok).markdown() << "\n";
+  return ok ? 0 : 1;
+}
+
+int run_job_bench(const std::vector<std::string>& args) {
+  const int runs = int_option(args, "--runs", kMinRuns);
+  bool ok = true;
+  std::cout << kindrape_table(runs, kKinDrapeSide, &ok).markdown() << "\n";
   std::cout << job_table(runs, &ok).markdown() << "\n";
   return ok ? 0 : 1;
 }
@@ -201,6 +220,9 @@ const BenchmarkRegistrar kRegisterJob{
               "the whole plyfit drape job at about 1 M nodes (process wall, peak RSS per node) "
               "and drape() on KinDrape's hemisphere [--runs R]",
               run_job_bench}};
+const BenchmarkRegistrar kRegisterKinDrape{Benchmark{
+    "kindrape", "drape() alone on KinDrape's hemisphere, a 48 x 48 ply or --side N [--runs R]",
+    run_kindrape_bench}};
 
 }  // namespace
 

@@ -430,11 +430,33 @@ void iges_delimiters(const std::string& g, char& pd, char& rd, size_t& rest) {
   rest = i;
 }
 
-Status check_iges_field(const std::string& field, bool bounded, const std::string& where) {
-  if (field.empty() || field == "H") return ok_status();
+// A field that is a plain decimal (an optional sign, digits, at most one point) with at most
+// kPlainDigits digits before the point: finite and within kMaxFileNumber, so it needs no
+// reading (most fields of a file are such; strtod on each was most of the check's time).
+constexpr int kPlainDigits = 8;
+static_assert(1e8 <= kMaxFileNumber, "kPlainDigits digits must stay within kMaxFileNumber");
+bool plain_small_number(const std::string& f) {
+  size_t i = (!f.empty() && (f[0] == '+' || f[0] == '-')) ? 1 : 0;
+  int whole = 0;
+  bool point = false;
+  for (; i < f.size(); ++i) {
+    if (f[i] == '.' && !point)
+      point = true;
+    else if (f[i] >= '0' && f[i] <= '9')
+      whole += point ? 0 : 1;
+    else
+      return false;
+  }
+  return whole <= kPlainDigits;
+}
+
+// The field's problem, if any; `where()` names it (built only for a problem).
+template <class Where>
+Status check_iges_field(const std::string& field, bool bounded, const Where& where) {
+  if (field.empty() || field == "H" || plain_small_number(field)) return ok_status();
   const auto v = number_value(field);
   if (!v) return ok_status();
-  return number_problem(field, *v, bounded, where);
+  return number_problem(field, *v, bounded, where());
 }
 
 }  // namespace
@@ -459,8 +481,9 @@ Status check_iges_text(const std::string& text) {
   const auto global = iges_fields(r.global, pd, rd, rest);
   for (size_t k = 0; k < global.size(); ++k) {
     const int index = static_cast<int>(k) + 3;
-    if (auto st = check_iges_field(global[k], index == 13 || index == 19,
-                                   "global section parameter " + std::to_string(index));
+    if (auto st =
+            check_iges_field(global[k], index == 13 || index == 19,
+                             [&] { return "global section parameter " + std::to_string(index); });
         !st)
       return st;
   }
@@ -468,11 +491,13 @@ Status check_iges_text(const std::string& text) {
     const auto fields = iges_fields(data, pd, rd);
     if (fields.empty()) continue;
     const int type = std::atoi(fields[0].c_str());
-    const std::string where = "DE " + std::to_string(de) + " (type " + fields[0] + "), parameter ";
     // Field 0, the entity type, is a number too (the directory entry's type is the one read).
     for (size_t k = 0; k < fields.size(); ++k)
-      if (auto st =
-              check_iges_field(fields[k], k > 0 && iges_geometry(type), where + std::to_string(k));
+      if (auto st = check_iges_field(fields[k], k > 0 && iges_geometry(type),
+                                     [&, de = de] {
+                                       return "DE " + std::to_string(de) + " (type " + fields[0] +
+                                              "), parameter " + std::to_string(k);
+                                     });
           !st)
         return st;
   }

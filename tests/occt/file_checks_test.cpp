@@ -136,6 +136,14 @@ TEST_CASE("importers: a coordinate of 1.0E+999 or 1.E308 is an error naming the 
     rejects_value(dir, v, kStepPole, 2, kIgesPole + 2);
 }
 
+TEST_CASE(
+    "importers: a coordinate past 1e8 written without an exponent is an error naming the entity") {
+  TempDir dir("file_checks_plain");
+  // Plain decimals of up to 8 digits before the point are not read (they cannot be past 1e8).
+  for (const std::string v : {"123456789.5", "-100000000.1"})
+    rejects_value(dir, v, kStepPole, 2, kIgesPole + 2);
+}
+
 TEST_CASE("importers: a huge integer count is an error naming the entity") {
   TempDir dir("file_checks_count");
   // STEP: the surface's degree in u; IGES: K1, its poles in u less one.

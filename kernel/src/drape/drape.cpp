@@ -35,20 +35,10 @@ constexpr double kEstimateMinNodes = 64.0;
 // nodes between the laid ones (all farther than that) overlaps unseen. The coverage shows it.
 constexpr double kCoverageSlack = 0.01;
 
-// Number of nodes the scan is expected to reach, to size the node vector once (no
-// reallocation copies, no doubled capacity): the face area on the swept side(s) of the base
-// plane, by the midpoint rule on a grid in (u, v), over the cell area, plus a ring of
-// boundary and path nodes; bounded by the ply rectangle and the node cap. The grid has about
-// kEstimateSamplesPerCell samples per ply cell across the face, from kEstimateGridMin to
-// kEstimateGridMax per direction (a fraction of a percent of the drape's time).
-std::size_t expected_nodes(const DrapeSurface& s, const Ply& ply, const Vec3& start,
-                           const Vec3& base_normal, const std::vector<Vec3>& sweeps,
-                           std::uint64_t cap) {
-  const double dw = ply.spec().d_weft, dp = ply.spec().d_warp;
-  const int g = std::clamp(static_cast<int>(kEstimateSamplesPerCell * s.size() / std::min(dw, dp)),
-                           kEstimateGridMin, kEstimateGridMax);
-  bool plus = false, minus = false;
-  for (const Vec3& w : sweeps) (base_normal.dot(w) > 0 ? plus : minus) = true;
+// The area of the surface on the side(s) of the base plane through `start` that `plus` and
+// `minus` name, by the midpoint rule on a g x g grid in (u, v) per face.
+double swept_area(const DrapeSurface& s, int g, const Vec3& start, const Vec3& base_normal,
+                  bool plus, bool minus) {
   double area = 0.0;
   for (std::int32_t f = 0; f < s.face_count(); ++f) {
     const SurfaceLocation chart(Vec2::Zero(), f);
@@ -67,6 +57,25 @@ std::size_t expected_nodes(const DrapeSurface& s, const Ply& ply, const Vec3& st
       }
     }
   }
+  return area;
+}
+
+// Number of nodes the scan is expected to reach, to size the node vector once (no
+// reallocation copies, no doubled capacity): the face area on the swept side(s) of the base
+// plane over the cell area, plus a ring of boundary and path nodes; bounded by the ply
+// rectangle and the node cap. Both sides swept, that is the surface's own area; one side, the
+// midpoint rule on a grid of about kEstimateSamplesPerCell samples per ply cell across the
+// face, from kEstimateGridMin to kEstimateGridMax per direction (a fraction of a percent of a
+// large drape's time, a few percent of a small one's).
+std::size_t expected_nodes(const DrapeSurface& s, const Ply& ply, const Vec3& start,
+                           const Vec3& base_normal, const std::vector<Vec3>& sweeps,
+                           std::uint64_t cap) {
+  const double dw = ply.spec().d_weft, dp = ply.spec().d_warp;
+  const int g = std::clamp(static_cast<int>(kEstimateSamplesPerCell * s.size() / std::min(dw, dp)),
+                           kEstimateGridMin, kEstimateGridMax);
+  bool plus = false, minus = false;
+  for (const Vec3& w : sweeps) (base_normal.dot(w) > 0 ? plus : minus) = true;
+  const double area = plus && minus ? s.area() : swept_area(s, g, start, base_normal, plus, minus);
   double n = area / (dw * dp);
   if (ply.spec().rect)
     n = std::min(n, (ply.spec().rect->x() / dw + 2) * (ply.spec().rect->y() / dp + 2));

@@ -399,7 +399,12 @@ void NurbsSurface::build_bezier() {
       const double* o = &hpoles_[4 * (static_cast<std::size_t>(su - p) * cv + (sv - q))];
       for (int k = 0; k < 3; ++k) patch[k] = o[k];
       // H(k, l) = (w (P - origin), w) of the window, then Bezier poles: v first, then u.
-      double Hv[detail::kMaxBasis][detail::kMaxBasis][4] = {};  // [k][n]: along v converted
+      // [k][n]: along v converted; only the window's (p + 1) x (q + 1) entries are zeroed (the
+      // whole array, sized for the largest degree, is 21 kB: zeroing it cost more than the sums).
+      double Hv[detail::kMaxBasis][detail::kMaxBasis][4];
+      for (int k = 0; k <= p; ++k)
+        for (int n = 0; n <= q; ++n)
+          for (int c = 0; c < 4; ++c) Hv[k][n][c] = 0.0;
       for (int k = 0; k <= p; ++k) {
         for (int l = 0; l <= q; ++l) {
           const double* P =

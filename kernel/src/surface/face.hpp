@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -170,6 +171,14 @@ class Face final : public DrapeSurface {
   std::vector<std::uint8_t> cells_;
   int cells_n_ = 1;
   Vec2 cell_size_ = Vec2::Ones();
+  // project()'s seeds: points sampled on the face, taken on the first projection (every drape
+  // projects its start; most faces are never projected onto, so not at create) and shared by
+  // the face's copies (the samples do not depend on its orientation).
+  struct ProjectSamples {
+    std::once_flag once;
+    std::vector<std::pair<Vec2, Vec3>> points;
+  };
+  std::shared_ptr<ProjectSamples> project_samples_ = std::make_shared<ProjectSamples>();
 };
 
 /// Samples the face on a grid of about n x n points per direction (more for many knot

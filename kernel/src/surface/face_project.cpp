@@ -25,7 +25,9 @@ constexpr std::size_t kProjectSeeds = 4;
 
 Projection Face::project(const Vec3& p) const {
   Projection best;
-  const auto samples = sample_face(*this, kProjectSamples);
+  std::call_once(project_samples_->once,
+                 [&] { project_samples_->points = sample_face(*this, kProjectSamples); });
+  const auto& samples = project_samples_->points;
   if (samples.empty()) return best;
   // Seeds: the few nearest samples.
   std::vector<size_t> order(samples.size());

@@ -44,6 +44,11 @@ inline constexpr double kExtrapolationAgreement = 1e-4;
 // ... and an extrapolated guess is used only within this fraction of the cell's step from the
 // parallelogram a + b - c (smooth regions: O(d^2) relative; near a pole (u, v) is not smooth).
 inline constexpr double kExtrapolationTrust = 0.1;
+// A guess is corrected by its neighbours' guess errors (Scanner::correct_guess) only when the
+// correction is shorter than kGuessCorrectionTrust of the guess's step from its neighbour and
+// longer than kGuessCorrectionMinRel * d (scaled (u, v) lengths).
+inline constexpr double kGuessCorrectionTrust = 0.1;
+inline constexpr double kGuessCorrectionMinRel = 1e-8;
 
 struct FrontierEntry {
   double sweep;  // distance from the base path along the sweep direction
@@ -139,13 +144,20 @@ class Scanner {
                         const DrapeNode& b, ThreadDir db, double rb);
   TwoSphereStep two_sphere_step(const DrapeNode& q, const DrapeNode& a, double ra,
                                 const DrapeNode& b, double rb) const;
+  // The rule that made a two-sphere solve's initial guess (guess_two).
+  enum class GuessKind : std::uint8_t { kNone, kCubic, kTwist, kPaper, kParallelogram };
   const DrapeNode* guess_two(const DrapeNode& q, const DrapeNode& a, ThreadDir da, double ra,
-                             const DrapeNode& b, ThreadDir db, double rb,
-                             TwoSphereStep& step) const;
+                             const DrapeNode& b, ThreadDir db, double rb, TwoSphereStep& step,
+                             GuessKind& kind) const;
+  void correct_guess(const DrapeNode& a, const DrapeNode& b, GuessKind kind,
+                     TwoSphereStep& step) const;
+  void record_guess_error(const DrapeNode& q, GuessKind kind, const std::optional<Vec2>& guess,
+                          const SolveResult& r);
   bool cell_folds(const SolveResult& r, const DrapeNode& a, const DrapeNode& b,
                   const DrapeNode& corner) const;
-  bool extrapolated_guess(const DrapeNode& q, const DrapeNode& a, ThreadDir da, const DrapeNode& b,
-                          ThreadDir db, const DrapeNode& c, TwoSphereStep& step) const;
+  GuessKind extrapolated_guess(const DrapeNode& q, const DrapeNode& a, ThreadDir da,
+                               const DrapeNode& b, ThreadDir db, const DrapeNode& c,
+                               TwoSphereStep& step) const;
   bool in_domain(const SurfaceLocation& chart, const Vec2& uv) const;
   bool one_chart(std::initializer_list<const DrapeNode*> nodes) const;
   SolveResult solve_one(const DrapeNode& q, const DrapeNode& a, ThreadDir da, double ra);
@@ -165,6 +177,13 @@ class Scanner {
   bool one_face_ = true;  // every location is in one chart: guesses need no chart checks
   double cell_ = 1.0;     // overlap radius
   OverlapGrid grid_;
+  // Per node, the error of its two-sphere solve's initial guess (solution minus guess, (u, v),
+  // as floats: it only corrects a guess) and the rule that made it (kNone: none recorded).
+  struct GuessError {
+    float du = 0.0f, dv = 0.0f;
+  };
+  std::vector<GuessError> guess_error_;
+  std::vector<GuessKind> guess_kind_;
   ThreadEnds thread_ends_;
   std::uint32_t popped_ = 0;  // frontier entries taken
   const SeedPolyline* seed_curve_ = nullptr;

@@ -101,10 +101,12 @@ bool nudge_off_vanishing_derivative(Ctx& c, Iterate& x, int& nudges) {
 
 // Only an iterate already past the domain edge, still pushed further out, has left; an
 // overshoot from inside is nonlinearity, and the line search shortens it.
-bool step_leaves_face(Ctx& c, const Iterate& x, Vec2& step, int& outside_strikes, int it) {
+bool step_leaves_face(Ctx& c, const Iterate& x, Vec2& step, int& outside_strikes, int it,
+                      bool& within) {
   const double sn = c.scaled_norm(x.at, step);
   if (sn > c.max_step) step *= c.max_step / sn;
-  if (c.within_margin(c.s.locate(x.at, x.at.uv + step))) {
+  within = c.within_margin(c.s.locate(x.at, x.at.uv + step));
+  if (within) {
     outside_strikes = 0;
     return false;
   }

@@ -70,7 +70,9 @@ Vec2 newton_step(const Eigen::Matrix2d& J, const Vec2& f);
 bool nudge_off_vanishing_derivative(Ctx& c, Iterate& x, int& nudges);
 // The step capped at c.max_step; true (c.res: left the face, after `it` iterations) when it
 // proposes to leave the domain margin kOutsideStrikes times in a row from past the edge.
-bool step_leaves_face(Ctx& c, const Iterate& x, Vec2& step, int& outside_strikes, int it);
+// `within`: the full step's point lies within the margin.
+bool step_leaves_face(Ctx& c, const Iterate& x, Vec2& step, int& outside_strikes, int it,
+                      bool& within);
 
 // Evaluates the residual functor resid(e, f, J) at x.e.
 template <class Resid>
@@ -80,13 +82,14 @@ void evaluate(Iterate& x, Resid& resid) {
 }
 
 // Backtracking line search on |f|^2 along `step`, staying within the margin; true when a
-// shorter step decreased it (x moved there).
+// shorter step decreased it (x moved there). `full_within`: the full step's point lies within
+// the margin (step_leaves_face tested it).
 template <class Resid>
-bool line_search(Ctx& c, Iterate& x, Vec2 step, Resid& resid) {
+bool line_search(Ctx& c, Iterate& x, Vec2 step, Resid& resid, bool full_within) {
   const double phi = x.f.squaredNorm();
   for (int h = 0; h <= c.st.tol.line_search_max_halvings; ++h, step *= 0.5) {
     const SurfaceLocation cand = c.s.locate(x.at, x.at.uv + step);
-    if (!c.within_margin(cand)) continue;
+    if (!(h == 0 ? full_within : c.within_margin(cand))) continue;
     Iterate y;
     y.e = c.s.eval1(cand);
     ++c.res.evaluations;
@@ -135,8 +138,9 @@ bool newton(Ctx& c, SurfaceLocation at, Resid&& resid) {
       c.res.reason = "degenerate Jacobian";
       return false;
     }
-    if (step_leaves_face(c, x, step, outside_strikes, it)) return false;
-    if (!line_search(c, x, step, resid)) {
+    bool within = false;
+    if (step_leaves_face(c, x, step, outside_strikes, it, within)) return false;
+    if (!line_search(c, x, step, resid, within)) {
       c.res.iterations += it + 1;
       stop_unconverged(c, x.at, x.e.p, x.r, "no intersection (the residual stopped decreasing)");
       return false;
