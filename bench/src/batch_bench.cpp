@@ -102,10 +102,7 @@ Table batch_table(bool* available, double* speedup) {
 namespace {
 
 int run_batch(const std::vector<std::string>&) {
-  bool available = false;
-  const Table t = batch_table(&available);
-  std::printf("%s", t.markdown().c_str());
-  return available ? 0 : 1;
+  return print_table([](bool* available) { return batch_table(available); });
 }
 
 const BenchmarkRegistrar kBatch{

@@ -98,11 +98,7 @@ constexpr int kFlatPatternMaxSize = 1000;
 ThroughputReport throughput_report(const ThroughputOptions& o) {
   ThroughputReport rep;
   auto faces = report_faces();
-  if (!faces) {
-    print_error("throughput", faces.error());
-    rep.ok = false;
-    return rep;
-  }
+  if (failed(faces, "throughput", rep.ok)) return rep;
   Table& t = rep.table;
   t.caption =
       fmt("Plies of about size^2 nodes (spacing d = sqrt(face area / size^2)), unbounded ply, "
@@ -143,18 +139,10 @@ ThroughputReport throughput_report(const ThroughputOptions& o) {
     for (int size : o.sizes) {
       const double d = spacing_for_nodes(*rf.face, static_cast<double>(size) * size);
       auto pb = rf.problem(d);
-      if (!pb) {
-        print_error(rf.name, pb.error());
-        rep.ok = false;
-        continue;
-      }
+      if (failed(pb, rf.name, rep.ok)) continue;
       DrapeRun first;
       auto tm = median_drape_time(*rf.face, *pb, {}, o.runs, &first);
-      if (!tm) {
-        print_error(rf.name, tm.error());
-        rep.ok = false;
-        continue;
-      }
+      if (failed(tm, rf.name, rep.ok)) continue;
       const double n = static_cast<double>(net_nodes(first.result));
       const double sec = *tm;
       const NetErrors err = net_errors(first.result);
@@ -191,6 +179,19 @@ ThroughputReport throughput_report(const ThroughputOptions& o) {
   return rep;
 }
 
+ThroughputOptions throughput_options(const std::vector<std::string>& args) {
+  ThroughputOptions o;
+  const std::string sizes = option_value(args, "--sizes", "");
+  if (!sizes.empty()) {
+    o.sizes.clear();
+    std::stringstream ss(sizes);
+    std::string item;
+    while (std::getline(ss, item, ',')) o.sizes.push_back(std::stoi(item));
+  }
+  o.runs = std::stoi(option_value(args, "--runs", std::to_string(kMinRuns)));
+  return o;
+}
+
 // ---------------------------------------------------------------------------------------
 // Table 2
 
@@ -198,11 +199,7 @@ ToleranceReport tolerance_report(int runs) {
   ToleranceReport rep;
   runs = std::max(runs, kToleranceRounds);
   auto faces = report_faces();
-  if (!faces) {
-    print_error("tolerance", faces.error());
-    rep.ok = false;
-    return rep;
-  }
+  if (failed(faces, "tolerance", rep.ok)) return rep;
   const double default_tol = Tolerances{}.newton_residual_rel;
   Table& t = rep.table;
   t.caption =
@@ -230,18 +227,10 @@ ToleranceReport tolerance_report(int runs) {
     const int size = sphere ? kToleranceSizeSphere : kToleranceSizeBicubic;
     const double d = spacing_for_nodes(*rf.face, static_cast<double>(size) * size);
     auto pb = rf.problem(d);
-    if (!pb) {
-      print_error(rf.name, pb.error());
-      rep.ok = false;
-      continue;
-    }
+    if (failed(pb, rf.name, rep.ok)) continue;
     // Reference net at the default tolerance, for the displacement column.
     auto ref = drape(*rf.face, *pb, {});
-    if (!ref) {
-      print_error(rf.name, ref.error());
-      rep.ok = false;
-      continue;
-    }
+    if (failed(ref, rf.name, rep.ok)) continue;
     double xmax = 0.0;
     for (const DrapeNode& n : ref->nodes)
       if (n.mapped()) xmax = std::max(xmax, n.point.cwiseAbs().maxCoeff());
@@ -258,11 +247,7 @@ ToleranceReport tolerance_report(int runs) {
         DrapeOptions opt;
         opt.tol.newton_residual_rel = tols[k];
         auto r = run_drape(*rf.face, *pb, opt);
-        if (!r) {
-          print_error(rf.name, r.error());
-          rep.ok = false;
-          return rep;
-        }
+        if (failed(r, rf.name, rep.ok)) return rep;
         times[k].push_back(r->seconds);
       }
     }
@@ -271,11 +256,7 @@ ToleranceReport tolerance_report(int runs) {
       DrapeOptions opt;
       opt.tol.newton_residual_rel = tol;
       auto res = drape(*rf.face, *pb, opt);
-      if (!res) {
-        print_error(rf.name, res.error());
-        rep.ok = false;
-        continue;
-      }
+      if (failed(res, rf.name, rep.ok)) continue;
       const double tm = median(times[k]);
       const DrapeResult& r = *res;
       const NetErrors err = net_errors(r, distance);
@@ -375,11 +356,7 @@ ConvergenceReport convergence_report() {
   {  // Cylinder at 45 degrees: max shear.
     const double R = 10, H = 40, alpha = 120 * kDegToRad;
     auto f = builtin_face("cylinder", {{"R", R}, {"H", H}, {"angle", 120}});
-    if (!f) {
-      print_error("convergence", f.error());
-      rep.ok = false;
-      return rep;
-    }
+    if (failed(f, "convergence", rep.ok)) return rep;
     const double a = kPi / 3, L = std::max(R * alpha, H);
     const Vec3 s3(R * std::cos(a), R * std::sin(a), 20), tang(-std::sin(a), std::cos(a), 0);
     Series s{"cylinder at 45 deg: max shear (rad)", {}, {}};
@@ -388,11 +365,7 @@ ConvergenceReport convergence_report() {
       const double d = L / k;
       auto r = drape(**f, problem(d, Vec2(0, 0), Vec2(1, 1), {Vec2(-1, 1), Vec2(1, -1)}, s3, tang,
                                   {tang, -tang}));
-      if (!r) {
-        print_error("cylinder", r.error());
-        rep.ok = false;
-        return rep;
-      }
+      if (failed(r, "cylinder", rep.ok)) return rep;
       s.d.push_back(d);
       s.err.push_back(net_errors(*r).max_shear);
       nodes.push_back(static_cast<double>(net_nodes(*r)));
@@ -426,11 +399,7 @@ ConvergenceReport convergence_report() {
   {
     const double R = 10, H = 20, alpha = kPi / 2;
     auto f = builtin_face("cylinder", {{"R", R}, {"H", H}, {"angle", 90}});
-    if (!f) {
-      print_error("convergence", f.error());
-      rep.ok = false;
-      return rep;
-    }
+    if (failed(f, "convergence", rep.ok)) return rep;
     const double a = 0.37;
     outline("cylinder sector", *f, Vec3(R * std::cos(a), R * std::sin(a), 7.3),
             Vec3(-std::sin(a), std::cos(a), 0), std::max(R * alpha, H), R * alpha * H,
@@ -439,11 +408,7 @@ ConvergenceReport convergence_report() {
   {
     const double r0 = 20, r1 = 10, H = 15, alpha = kPi / 2;
     auto f = builtin_face("cone", {{"r0", r0}, {"r1", r1}, {"H", H}, {"angle", 90}});
-    if (!f) {
-      print_error("convergence", f.error());
-      rep.ok = false;
-      return rep;
-    }
+    if (failed(f, "convergence", rep.ok)) return rep;
     const double L = std::hypot(r0 - r1, H);
     const double ro = r0 * L / (r0 - r1), ri = r1 * L / (r0 - r1), phi = alpha * (r0 - r1) / L;
     const double a = kPi / 4;
@@ -811,16 +776,7 @@ int run_overlap_ab(const std::vector<std::string>& args) {
 }
 
 int run_throughput(const std::vector<std::string>& args) {
-  ThroughputOptions o;
-  const std::string sizes = option_value(args, "--sizes", "");
-  if (!sizes.empty()) {
-    o.sizes.clear();
-    std::stringstream ss(sizes);
-    std::string item;
-    while (std::getline(ss, item, ',')) o.sizes.push_back(std::stoi(item));
-  }
-  o.runs = std::stoi(option_value(args, "--runs", std::to_string(kMinRuns)));
-  const ThroughputReport r = throughput_report(o);
+  const ThroughputReport r = throughput_report(throughput_options(args));
   std::printf("%s\n%s", r.table.markdown().c_str(), r.fit.markdown().c_str());
   return r.ok ? 0 : 1;
 }

@@ -77,6 +77,15 @@ NetErrors net_errors(const DrapeResult& r,
 /// Prints "plyfit-bench: WHAT: the error's text" on stderr.
 void print_error(const std::string& what, const Error& e);
 
+/// True when `r` failed: its error printed (print_error) and `ok` cleared.
+template <typename T>
+bool failed(const Result<T>& r, const std::string& what, bool& ok) {
+  if (r) return false;
+  print_error(what, r.error());
+  ok = false;
+  return true;
+}
+
 /// "complete" or "partial (warnings...)".
 std::string drape_status(const DrapeResult& r);
 

@@ -138,10 +138,7 @@ Table profile_table(bool* available) {
 namespace {
 
 int run_profile(const std::vector<std::string>&) {
-  bool available = false;
-  const Table t = profile_table(&available);
-  std::printf("%s", t.markdown().c_str());
-  return available ? 0 : 1;
+  return print_table(profile_table);
 }
 
 const BenchmarkRegistrar kProfileDrape{

@@ -104,15 +104,7 @@ int run_report(const std::vector<std::string>& args) {
   const auto start = std::chrono::steady_clock::now();
   const std::string out = option_value(args, "--out", PLYFIT_SOURCE_DIR);
   const int runs = std::stoi(option_value(args, "--runs", std::to_string(kMinRuns)));
-  ThroughputOptions tho;
-  tho.runs = runs;
-  const std::string sizes = option_value(args, "--sizes", "");
-  if (!sizes.empty()) {
-    tho.sizes.clear();
-    std::stringstream ss(sizes);
-    std::string item;
-    while (std::getline(ss, item, ',')) tho.sizes.push_back(std::stoi(item));
-  }
+  const ThroughputOptions tho = throughput_options(args);
   const std::string src = PLYFIT_SOURCE_DIR;
   const std::string tmpl = read_file(src + "/bench/BENCHMARKS.template.md");
   if (tmpl.empty()) {

@@ -51,15 +51,12 @@ Result<const Importer*> importer_for(const std::string& path, const ImportOption
   if (!options.format.empty()) {
     imp = find_importer(options.format);
     if (!imp)
-      return Error{"unknown format '" + options.format + "' (supported: " + supported_extensions() +
-                   ")"};
+      return Error{ErrorCode::kImportFormatUnknown, {}, {options.format, supported_extensions()}};
   } else {
     std::string ext = std::filesystem::path(path).extension().string();
     if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
     imp = find_importer(ext);
-    if (!imp)
-      return Error{path + ": unknown file extension '" + ext +
-                   "' (supported: " + supported_extensions() + "; --format overrides)"};
+    if (!imp) return Error{ErrorCode::kFileExtensionUnknown, path, {ext, supported_extensions()}};
   }
   return imp;
 }

@@ -74,6 +74,8 @@ std::string unit_name(int flag, const std::string& given) {
   return given.empty() ? n : n + " (" + given + ")";
 }
 
+}  // namespace
+
 Result<occt::ReadOutput> read_iges(const std::string& path, occt::Deadline& deadline) {
   IGESControl_Reader reader;
   if (auto st = occt::read_file(reader, path, "IGES"); !st) return st.error();
@@ -91,16 +93,6 @@ Result<occt::ReadOutput> read_iges(const std::string& path, occt::Deadline& dead
 
   occt::transfer_roots(reader, deadline, iges_name, out);
   return out;
-}
-
-}  // namespace
-
-Result<std::unique_ptr<MoldFile>> open_iges(const std::string& path, const ImportOptions& options) {
-  return occt::open_with(path, "iges", options, read_iges);
-}
-
-Result<std::vector<FileCurve>> curves_iges(const std::string& path, const ImportOptions& options) {
-  return occt::curves_with(path, "iges", options, read_iges);
 }
 
 }  // namespace plyfit::importers

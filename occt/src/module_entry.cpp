@@ -9,21 +9,18 @@ namespace plyfit::importers {
 
 namespace {
 
-using OpenFunction = Result<std::unique_ptr<MoldFile>> (*)(const std::string& path,
-                                                           const ImportOptions& options);
-using CurvesFunction = Result<std::vector<FileCurve>> (*)(const std::string& path,
-                                                          const ImportOptions& options);
+using ReadFileFunction = Result<occt::ReadOutput> (*)(const std::string& path,
+                                                      occt::Deadline& deadline);
 
 struct Reader {
   const char* key;
-  OpenFunction open;
-  CurvesFunction curves;
+  ReadFileFunction read;
 };
 
 // One line per format (its registry entry, with the extensions, is in registry.cpp).
 constexpr Reader kReaders[] = {
-    {"step", &open_step, &curves_step},
-    {"iges", &open_iges, &curves_iges},
+    {"step", &read_step},
+    {"iges", &read_iges},
 };
 
 Result<const Reader*> reader(const std::string& key, const std::string& path) {
@@ -36,14 +33,14 @@ Result<std::unique_ptr<MoldFile>> open(const std::string& key, const std::string
                                        const ImportOptions& options) {
   auto r = reader(key, path);
   if (!r) return r.error();
-  return (*r)->open(path, options);
+  return occt::open_with(path, (*r)->key, options, (*r)->read);
 }
 
 Result<std::vector<FileCurve>> curves(const std::string& key, const std::string& path,
                                       const ImportOptions& options) {
   auto r = reader(key, path);
   if (!r) return r.error();
-  return (*r)->curves(path, options);
+  return occt::curves_with(path, (*r)->key, options, (*r)->read);
 }
 
 const OcctImporterApi kApi{plyfit::occt::kOcctModuleAbi, &open, &curves};

@@ -37,6 +37,7 @@
 #include <iterator>
 #include <memory>
 #include <set>
+#include <utility>
 
 namespace plyfit::importers::occt {
 
@@ -104,41 +105,41 @@ Handle(Geom_Surface) basis_of(Handle(Geom_Surface) s) {
   return s;
 }
 
+// A polynomial patch's kind, degrees, pole counts and rationality (B-spline or Bezier).
+template <typename Patch>
+void describe_patch(const Patch& p, const char* kind, FaceInfo& info) {
+  info.kind = kind;
+  info.degree_u = p.UDegree();
+  info.degree_v = p.VDegree();
+  info.poles_u = p.NbUPoles();
+  info.poles_v = p.NbVPoles();
+  info.rational = p.IsURational() || p.IsVRational();
+}
+
+// The name of a surface kind plyfit lists by name, "other" for the rest.
+const char* kind_name(const Handle(Geom_Surface) & s) {
+  static const std::pair<Handle(Standard_Type), const char*> kKinds[] = {
+      {STANDARD_TYPE(Geom_Plane), "plane"},
+      {STANDARD_TYPE(Geom_CylindricalSurface), "cylinder"},
+      {STANDARD_TYPE(Geom_ConicalSurface), "cone"},
+      {STANDARD_TYPE(Geom_SphericalSurface), "sphere"},
+      {STANDARD_TYPE(Geom_ToroidalSurface), "torus"},
+      {STANDARD_TYPE(Geom_SurfaceOfRevolution), "revolution"},
+      {STANDARD_TYPE(Geom_SurfaceOfLinearExtrusion), "extrusion"},
+      {STANDARD_TYPE(Geom_OffsetSurface), "offset"}};
+  for (const auto& [type, name] : kKinds)
+    if (s->IsKind(type)) return name;
+  return "other";
+}
+
 void describe_surface(const Handle(Geom_Surface) & surface, FaceInfo& info) {
   const Handle(Geom_Surface) s = basis_of(surface);
-  if (auto b = Handle(Geom_BSplineSurface)::DownCast(s)) {
-    info.kind = "bspline";
-    info.degree_u = b->UDegree();
-    info.degree_v = b->VDegree();
-    info.poles_u = b->NbUPoles();
-    info.poles_v = b->NbVPoles();
-    info.rational = b->IsURational() || b->IsVRational();
-  } else if (auto z = Handle(Geom_BezierSurface)::DownCast(s)) {
-    info.kind = "bezier";
-    info.degree_u = z->UDegree();
-    info.degree_v = z->VDegree();
-    info.poles_u = z->NbUPoles();
-    info.poles_v = z->NbVPoles();
-    info.rational = z->IsURational() || z->IsVRational();
-  } else if (s->IsKind(STANDARD_TYPE(Geom_Plane))) {
-    info.kind = "plane";
-  } else if (s->IsKind(STANDARD_TYPE(Geom_CylindricalSurface))) {
-    info.kind = "cylinder";
-  } else if (s->IsKind(STANDARD_TYPE(Geom_ConicalSurface))) {
-    info.kind = "cone";
-  } else if (s->IsKind(STANDARD_TYPE(Geom_SphericalSurface))) {
-    info.kind = "sphere";
-  } else if (s->IsKind(STANDARD_TYPE(Geom_ToroidalSurface))) {
-    info.kind = "torus";
-  } else if (s->IsKind(STANDARD_TYPE(Geom_SurfaceOfRevolution))) {
-    info.kind = "revolution";
-  } else if (s->IsKind(STANDARD_TYPE(Geom_SurfaceOfLinearExtrusion))) {
-    info.kind = "extrusion";
-  } else if (s->IsKind(STANDARD_TYPE(Geom_OffsetSurface))) {
-    info.kind = "offset";
-  } else {
-    info.kind = "other";
-  }
+  if (auto b = Handle(Geom_BSplineSurface)::DownCast(s))
+    describe_patch(*b, "bspline", info);
+  else if (auto z = Handle(Geom_BezierSurface)::DownCast(s))
+    describe_patch(*z, "bezier", info);
+  else
+    info.kind = kind_name(s);
 }
 
 bool is_nurbs_type(const Handle(Geom_Surface) & s) {
@@ -634,8 +635,7 @@ class OcctMoldFile final : public MoldFile {
   Status check_index(int index) const {
     const int n = faces_.Extent();
     if (index >= 0 && index < n) return ok_status();
-    return Error{mold_.source + ": face " + std::to_string(index) + " out of range (the file has " +
-                 std::to_string(n) + " faces, 0.." + std::to_string(n - 1) + ")"};
+    return Error{ErrorCode::kFaceIndexRange, mold_.source, {std::int64_t{index}, std::int64_t{n}}};
   }
 
   // Fills mold_.faces[i], with its area to kAreaRelPrecise when `precise` (a listed face gets
@@ -738,8 +738,8 @@ Result<ReadOutput> read_guarded(const std::string& path, const std::string& form
   });
   if (!out) return out.error();
   if (deadline->expired())
-    return Error{path + ": reading took longer than the time limit (" +
-                 std::to_string(static_cast<int>(options.time_limit_s)) + " s)"};
+    return Error{
+        ErrorCode::kReadTimeLimit, path, {std::int64_t{static_cast<int>(options.time_limit_s)}}};
   return out;
 }
 
@@ -753,8 +753,8 @@ Result<std::unique_ptr<MoldFile>> open_with(const std::string& path, const std::
   TopTools_IndexedMapOfShape faces;
   TopExp::MapShapes(ro.shape, TopAbs_FACE, faces);
   if (faces.IsEmpty())
-    return Error{path + ": no faces (nothing in the file transfers to a surface" +
-                 (ro.warnings.empty() ? std::string() : "; " + ro.warnings.front()) + ")"};
+    return Error{
+        ErrorCode::kFileNoFaces, path, {ro.warnings.empty() ? std::string() : ro.warnings.front()}};
 
   Mold mold;
   mold.source = path;

@@ -1,23 +1,18 @@
 #pragma once
-// The readers of the OpenCASCADE module: each format is one file defining one open_*()
-// function, listed once in occt_module_entry.cpp (and once, with its extensions, in the
-// registry: registry.cpp).
+// The readers of the OpenCASCADE module: each format is one file defining one read_*()
+// function (the file read into a shape, with its schema, unit, warnings and entity names),
+// listed once in module_entry.cpp (and once, with its extensions, in the registry:
+// registry.cpp). Everything after the read (face walk, listing, conversion, curves) is shared.
 
-#include <plyfit/importers/importers.hpp>
+#include "mold_file.hpp"
 
-#include <memory>
 #include <string>
-#include <vector>
 
 namespace plyfit::importers {
 
-/// Opens a STEP file (step_importer.cpp).
-Result<std::unique_ptr<MoldFile>> open_step(const std::string& path, const ImportOptions& options);
-/// Opens an IGES file (iges_importer.cpp).
-Result<std::unique_ptr<MoldFile>> open_iges(const std::string& path, const ImportOptions& options);
-/// Reads the curves of a STEP file (step_importer.cpp).
-Result<std::vector<FileCurve>> curves_step(const std::string& path, const ImportOptions& options);
-/// Reads the curves of an IGES file (iges_importer.cpp).
-Result<std::vector<FileCurve>> curves_iges(const std::string& path, const ImportOptions& options);
+/// Reads a STEP file (step_reader.cpp).
+Result<occt::ReadOutput> read_step(const std::string& path, occt::Deadline& deadline);
+/// Reads an IGES file (iges_reader.cpp).
+Result<occt::ReadOutput> read_iges(const std::string& path, occt::Deadline& deadline);
 
 }  // namespace plyfit::importers

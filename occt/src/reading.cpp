@@ -65,20 +65,19 @@ Result<Sniffed> check_file_head(const std::string& path, const std::string& form
   namespace fs = std::filesystem;
   std::error_code ec;
   const auto st = fs::status(path, ec);
-  if (ec || !fs::exists(st)) return Error{path + ": no such file"};
-  if (!fs::is_regular_file(st)) return Error{path + ": not a regular file"};
+  if (ec || !fs::exists(st)) return Error{ErrorCode::kFileMissing, path};
+  if (!fs::is_regular_file(st)) return Error{ErrorCode::kFileNotRegular, path};
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error{ErrorCode::kFileNotReadable, path};
   const std::string head = read_head(in, 4096);
-  if (head.find_first_not_of(" \t\r\n") == std::string::npos) return Error{path + ": empty file"};
+  if (head.find_first_not_of(" \t\r\n") == std::string::npos)
+    return Error{ErrorCode::kFileEmpty, path};
   const Sniffed want = format_key == "step" ? Sniffed::kStep : Sniffed::kIges;
   const Sniffed got = sniff(head);
   const std::string upper = format_key == "step" ? "STEP" : "IGES";
   if (got != want) {
-    std::string hint;
-    if (got == Sniffed::kStep) hint = "; it looks like STEP (--format step)";
-    if (got == Sniffed::kIges) hint = "; it looks like IGES (--format iges)";
-    return Error{path + ": not a " + upper + " file" + hint};
+    const std::string looks = got == Sniffed::kStep ? "STEP" : got == Sniffed::kIges ? "IGES" : "";
+    return Error{ErrorCode::kFileWrongFormat, path, {upper, looks}};
   }
   const auto file_size = fs::file_size(path, ec);
   if (!ec && file_size > 4096) {
@@ -89,9 +88,7 @@ Result<Sniffed> check_file_head(const std::string& path, const std::string& form
     in.seekg(0);
   }
   if (!looks_complete(want, read_head(in, 4096)))
-    return Error{path + ": truncated " + upper + " file (" +
-                 (want == Sniffed::kStep ? "no END-ISO-10303-21 trailer" : "no terminate section") +
-                 ")"};
+    return Error{ErrorCode::kFileTruncated, path, {upper}};
   return want;
 }
 

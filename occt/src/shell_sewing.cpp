@@ -162,7 +162,7 @@ Result<Selection> select_faces(const ShellInput& in, const std::vector<int>& giv
     auto info = in.describe(i);  // an index out of range is an error naming the file here
     if (!info) return info.error();
     if (!seen.insert(i).second)
-      return Error{in.source + ": face " + std::to_string(i) + " is listed twice"};
+      return Error{ErrorCode::kFaceListedTwice, in.source, {std::int64_t{i}}};
     if (!info->bbox.empty) {
       sel.box.add(info->bbox.min);
       sel.box.add(info->bbox.max);
@@ -404,8 +404,11 @@ Result<ShellData> sew_faces(const ShellInput& in, const std::vector<int>& given,
   const std::string what = in.source + ": sewing " + face_list(indices);
   const double size = sel.box.diagonal();
   if (!(size > 0.0)) return Error{what + ": the faces have zero size"};
-  if (!(in.options.sewing_tolerance >= 0.0) || !std::isfinite(in.options.sewing_tolerance))
-    return Error{what + ": invalid sewing tolerance " + mm(in.options.sewing_tolerance)};
+  if (!(in.options.sewing_tolerance >= 0.0) || !std::isfinite(in.options.sewing_tolerance)) {
+    Error e{ErrorCode::kSewingToleranceInvalid, in.source, {in.options.sewing_tolerance}};
+    e.where = "sewing " + face_list(indices);
+    return e;
+  }
 
   Sewn sewn;
   sewn.faces.resize(n);

@@ -33,6 +33,8 @@ std::string step_name(const Handle(Standard_Transient) & entity) {
   return name;
 }
 
+}  // namespace
+
 Result<occt::ReadOutput> read_step(const std::string& path, occt::Deadline& deadline) {
   STEPControl_Reader reader;
   if (auto st = occt::read_file(reader, path, "STEP"); !st) return st.error();
@@ -60,16 +62,6 @@ Result<occt::ReadOutput> read_step(const std::string& path, occt::Deadline& dead
 
   occt::transfer_roots(reader, deadline, step_name, out);
   return out;
-}
-
-}  // namespace
-
-Result<std::unique_ptr<MoldFile>> open_step(const std::string& path, const ImportOptions& options) {
-  return occt::open_with(path, "step", options, read_step);
-}
-
-Result<std::vector<FileCurve>> curves_step(const std::string& path, const ImportOptions& options) {
-  return occt::curves_with(path, "step", options, read_step);
 }
 
 }  // namespace plyfit::importers

@@ -56,13 +56,17 @@ struct CliRun {
   std::string out, err;
 };
 
-/// Runs `plyfit ARGS` (a shell-quoted argument string) in `cwd` under kRunLimitSeconds.
+/// Runs `plyfit ARGS` (a shell-quoted argument string) in `cwd` under a time limit of
+/// `limit_s` seconds (coreutils timeout: exit code 124 when it had to stop it; 128 + N when a
+/// signal N killed it), with the environment variables `env` ("NAME=value ...") set.
 inline CliRun plyfit_run(const std::string& args, const Scratch& scratch,
-                         const std::string& cwd = "") {
+                         const std::string& cwd = "", const std::string& env = "",
+                         int limit_s = kRunLimitSeconds) {
   const std::string out = scratch.file("run.stdout"), err = scratch.file("run.stderr");
-  const std::string cmd = (cwd.empty() ? "" : "cd '" + cwd + "' && ") + "timeout -k 5 " +
-                          std::to_string(kRunLimitSeconds) + " '" + PLYFIT_BIN + "' " + args +
-                          " > '" + out + "' 2> '" + err + "' < /dev/null";
+  const std::string cmd = (cwd.empty() ? "" : "cd '" + cwd + "' && ") +
+                          (env.empty() ? "" : "env " + env + " ") + "timeout -k 5 " +
+                          std::to_string(limit_s) + " '" + PLYFIT_BIN + "' " + args + " > '" + out +
+                          "' 2> '" + err + "' < /dev/null";
   const int status = std::system(cmd.c_str());
   CliRun r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);

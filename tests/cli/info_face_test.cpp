@@ -59,17 +59,7 @@ TEST_CASE("cli: plyfit info --face finds a point inside the trims of the trimmed
   for (const std::string name : {"plate-hole.igs", "dish.step", "tube-window.step"}) {
     const std::string file = std::string(PLYFIT_SOURCE_DIR) + "/samples/molds/" + name;
     INFO(name);
-    const CliRun r = plyfit_run("info '" + file + "' --face 0 --json", tmp);
-    INFO(r.err);
-    REQUIRE(r.code == 0);
-    const json j = json::parse(r.out);
-    auto f = importers::load_face(file, 0);
-    REQUIRE(f.ok());
-    const Vec2 uv(j["uv"][0].get<double>(), j["uv"][1].get<double>());
-    CHECK(test::face_of(*f).contains(uv));
-    CHECK((f->eval1(uv).p - vec(j["point"])).norm() <= 1e-9 * f->size());
-    CHECK((f->normal(uv).n - vec(j["normal"])).norm() <= 1e-9);
-    drape_from(file, j["flags"].get<std::string>(), tmp);
+    check_face_start(file, 0, tmp);
   }
 }
 

@@ -42,6 +42,7 @@
 #include <catch2/catch.hpp>
 
 #include "occt/occt_reference.hpp"
+#include "occt/write_shapes.hpp"
 
 #include <set>
 #include "surface/face.hpp"
@@ -125,25 +126,6 @@ TopoDS_Shape analytic_shapes() {
                BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, 0), gp::DZ()), 3, 1, 6).Shape(), t, false)
                .Shape());
   return c;
-}
-
-void write_step(const TopoDS_Shape& s, const std::string& path, const char* unit) {
-  Message::DefaultMessenger()->ChangePrinters().Clear();
-  STEPControl_Controller::Init();
-  Interface_Static::SetCVal("write.step.unit", unit);
-  STEPControl_Writer w;
-  REQUIRE(w.Transfer(s, STEPControl_AsIs) == IFSelect_RetDone);
-  REQUIRE(w.Write(path.c_str()) == IFSelect_RetDone);
-  Interface_Static::SetCVal("write.step.unit", "MM");
-}
-
-void write_iges(const TopoDS_Shape& s, const std::string& path, const char* unit) {
-  Message::DefaultMessenger()->ChangePrinters().Clear();
-  IGESControl_Controller::Init();
-  IGESControl_Writer w(unit, 1);  // BRep mode: 186/514/510 with analytic surfaces
-  REQUIRE(w.AddShape(s));
-  w.ComputeModel();
-  REQUIRE(w.Write(path.c_str()));
 }
 
 // The kind of a surface, named independently of the importer.

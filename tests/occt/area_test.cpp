@@ -29,6 +29,7 @@
 
 #include "face_measure.hpp"  // occt/src
 #include "occt/occt_reference.hpp"
+#include "occt/write_shapes.hpp"
 
 #include <algorithm>
 #include "surface/face.hpp"
@@ -44,14 +45,6 @@ constexpr double kDescribedRel = 1e-9;
 // OpenCASCADE's STEP writer prints reals with about 15 significant digits: the written faces
 // are exact to this, relative.
 constexpr double kWrittenRel = 1e-13;
-
-void write_step(const TopoDS_Shape& s, const std::string& path) {
-  Message::DefaultMessenger()->ChangePrinters().Clear();
-  STEPControl_Controller::Init();
-  STEPControl_Writer w;
-  REQUIRE(w.Transfer(s, STEPControl_AsIs) == IFSelect_RetDone);
-  REQUIRE(w.Write(path.c_str()) == IFSelect_RetDone);
-}
 
 // A bicubic B-spline with interior knots whose poles lie on an affine map of (u, v) at the
 // Greville abscissae: by linear precision it is that map exactly, so |S_u x S_v| is constant.

@@ -23,6 +23,7 @@
 #include <catch2/catch.hpp>
 
 #include "cli/cli_util.hpp"
+#include "occt/write_shapes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -58,23 +59,6 @@ TopoDS_Shape compound(const TopoDS_Edge& a, const TopoDS_Edge& b) {
   return c;
 }
 
-void write_step(const TopoDS_Shape& shape, const std::string& path) {
-  Message::DefaultMessenger()->ChangePrinters().Clear();
-  STEPControl_Controller::Init();
-  STEPControl_Writer w;
-  REQUIRE(w.Transfer(shape, STEPControl_AsIs) == IFSelect_RetDone);
-  REQUIRE(w.Write(path.c_str()) == IFSelect_RetDone);
-}
-
-void write_iges(const TopoDS_Shape& shape, const std::string& path) {
-  Message::DefaultMessenger()->ChangePrinters().Clear();
-  IGESControl_Controller::Init();
-  IGESControl_Writer w("MM", 1);
-  REQUIRE(w.AddShape(shape));
-  w.ComputeModel();
-  REQUIRE(w.Write(path.c_str()));
-}
-
 // The area enclosed by a closed polyline in the plane z = const (shoelace).
 double plane_area(const std::vector<Vec3>& p) {
   double a = 0.0;
@@ -89,6 +73,15 @@ double plane_area(const std::vector<Vec3>& p) {
 std::string drape_args(const std::string& boundary, const std::string& out) {
   return "drape --mold builtin:plate --seed 50,30,0 --rosette 1,0,0 --boundary '" + boundary +
          "' --spacing 1 --quiet -o '" + out + "'";
+}
+
+// report.json of a drape of the plate inside the boundary file `boundary` (it must succeed).
+json drape_report(const std::string& boundary, const Scratch& tmp) {
+  const std::string out = tmp.file("out");
+  const CliRun r = plyfit_run(drape_args(boundary, out), tmp);
+  INFO(r.err);
+  REQUIRE(r.code == 0);
+  return json::parse(slurp(out + "/report.json"));
 }
 
 }  // namespace
@@ -146,11 +139,7 @@ TEST_CASE("cli: a STEP circle bounds the plate's ply: outline area 400 pi to 0.1
   write_step(BRepBuilderAPI_MakeEdge(circle()).Edge(), tmp.file("circle.step"));
   for (const std::string spec : {"circle.step", "circle.step:0"}) {
     INFO(spec);
-    const std::string out = tmp.file("out");
-    const CliRun r = plyfit_run(drape_args(tmp.file(spec), out), tmp);
-    INFO(r.err);
-    REQUIRE(r.code == 0);
-    const json j = json::parse(slurp(out + "/report.json"));
+    const json j = drape_report(tmp.file(spec), tmp);
     const double exact = 400 * kPiC;
     CHECK(j["flat_outline_exact"]["area"].get<double>() == Approx(exact).epsilon(1e-3));
     CHECK(j["ply"]["boundary"]["area"].get<double>() == Approx(exact).epsilon(1e-3));
@@ -163,11 +152,7 @@ TEST_CASE("cli: two open STEP edges chain into the loop; a gap too large is boun
   write_iges(compound(arc(0, kPiC), arc(kPiC, 2 * kPiC)), tmp.file("arcs.igs"));
   for (const std::string name : {"arcs.step", "arcs.igs"}) {
     INFO(name);
-    const std::string out = tmp.file("out");
-    const CliRun r = plyfit_run(drape_args(tmp.file(name), out), tmp);
-    INFO(r.err);
-    REQUIRE(r.code == 0);
-    const json j = json::parse(slurp(out + "/report.json"));
+    const json j = drape_report(tmp.file(name), tmp);
     CHECK(j["flat_outline_exact"]["area"].get<double>() == Approx(400 * kPiC).epsilon(1e-3));
     REQUIRE(j["ply"]["boundary"]["loops"].size() == 1);
   }

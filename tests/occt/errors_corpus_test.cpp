@@ -22,10 +22,7 @@ TEST_CASE("importers: truncated and corrupted copies of real files give errors, 
 
 TEST_CASE("importers: the plyfit binary survives every corrupted copy of real files", "[slow]") {
   TempDir dir("corrupt_bin_corpus");
-  for (const auto& p : corrupted_copies(shared_cad("trj8_c2-db-214.stp"), "stp", dir, 31))
-    binary_rejects(p, dir);
-  for (const auto& p : corrupted_copies(shared_cad("occ22470.igs"), "igs", dir, 32))
-    binary_rejects(p, dir);
+  binary_survives_corrupted(shared_cad("trj8_c2-db-214.stp"), shared_cad("occ22470.igs"), dir);
 }
 
 TEST_CASE("importers: bad face indices and a past time limit on real files are errors") {

@@ -158,8 +158,4 @@ inline fs::path fresh_dir(const std::string& name) {
   return p;
 }
 
-inline std::string slurp(const fs::path& p) {
-  return read_bytes(p.string());
-}
-
 }  // namespace plyfit::test

@@ -31,7 +31,7 @@
 #include <sstream>
 
 using namespace plyfit;
-using namespace plyfit::test;  // export_cases.hpp: Case, cases(), fresh_dir(), slurp()
+using namespace plyfit::test;  // export_cases.hpp: Case, cases(), fresh_dir(); slurp()
 namespace fs = std::filesystem;
 
 namespace {

@@ -12,6 +12,18 @@
 
 namespace plyfit::test {
 
+/// plyfit info FILE as a table: exit 0, nothing on stderr, the header, one line per face
+/// (`faces`), the summary and the warnings line, and nothing from OpenCASCADE's own printers.
+inline Run check_info_table(const std::string& path, const TempDir& dir, int faces) {
+  const Run r = run_plyfit("info '" + path + "'", dir);
+  INFO(r.out << r.err);
+  REQUIRE(r.code == 0);
+  CHECK(r.err.empty());
+  CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 2 + faces + 2);
+  CHECK(r.out.find("***") == std::string::npos);
+  return r;
+}
+
 /// Runs `plyfit info --json PATH` and checks that every face entry matches the library's
 /// listing; returns the parsed output.
 inline nlohmann::json check_info_json(const std::string& path, const TempDir& dir) {

@@ -44,6 +44,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "cli/cli_util.hpp"
 #include "test_util.hpp"
 
 #include <sys/wait.h>
@@ -354,58 +355,26 @@ inline double check_trim_accuracy(const std::string& path) {
   return worst;
 }
 
-/// A fresh temporary folder, removed with the object.
-struct TempDir {
-  std::filesystem::path path;
-  explicit TempDir(const std::string& tag) {
-    path = std::filesystem::temp_directory_path() /
-           ("plyfit_test_" + tag + "_" + std::to_string(::getpid()));
-    std::filesystem::remove_all(path);
-    std::filesystem::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path, ec);
-  }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-};
+// The OpenCASCADE tests' names for the helpers of cli/cli_util.hpp.
+using TempDir = Scratch;
+using Run = CliRun;
 
 inline std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  return slurp(path);
 }
 
 inline void write_bytes(const std::string& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  out << bytes;
+  spit(path, bytes);
 }
 
 /// A run of plyfit must end within this many seconds (a corrupted file must not hang it; the
 /// largest shared file reads in well under one).
 constexpr int kHangLimitSeconds = 60;
 
-/// Exit code and output of a run of the plyfit binary.
-struct Run {
-  int code = -1;
-  std::string out, err;
-};
-
-/// Runs the built plyfit binary with `args` under a time limit (coreutils timeout: exit code
-/// 124 when it had to stop it; 128 + N when a signal N killed it), with the environment
+/// Runs the built plyfit binary with `args` under kHangLimitSeconds, with the environment
 /// variables `env` ("NAME=value ...") set.
 inline Run run_plyfit(const std::string& args, const TempDir& dir, const std::string& env = "") {
-  const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
-  const std::string cmd = (env.empty() ? "" : "env " + env + " ") + "timeout -k 5 " +
-                          std::to_string(kHangLimitSeconds) + " '" + PLYFIT_BIN + "' " + args +
-                          " > '" + out + "' 2> '" + err + "'";
-  const int status = std::system(cmd.c_str());
-  Run r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  r.out = read_bytes(out);
-  r.err = read_bytes(err);
-  return r;
+  return plyfit_run(args, dir, "", env, kHangLimitSeconds);
 }
 
 }  // namespace plyfit::test

@@ -48,6 +48,23 @@ int wires_of(const TopoDS_Face& f) {
   return n;
 }
 
+// Calls check(path, face, reference) on face 0 of each sample mold (the trimmed ones alone
+// when `trimmed_only`), as STEP and as IGES, converted and as OpenCASCADE reads it.
+template <typename Check>
+void for_each_sample_face(bool trimmed_only, Check&& check) {
+  for (const auto& s : kSamples) {
+    if (trimmed_only && !s.trimmed) continue;
+    for (const char* ext : {".step", ".igs"}) {
+      const std::string path = sample_mold(s.file + ext);
+      INFO(path);
+      auto face = importers::load_face(path, 0);
+      REQUIRE(face.ok());
+      const Reference ref = read_reference(path, is_iges(path));
+      check(path, *face, ref);
+    }
+  }
+}
+
 }  // namespace
 
 TEST_CASE("importers: plyfit's sample molds are valid shapes for OpenCASCADE") {
@@ -97,33 +114,18 @@ TEST_CASE("importers: the sample molds list the trims, holes and seams OpenCASCA
 
 TEST_CASE("importers: converted sample molds agree with OpenCASCADE's evaluation") {
   Rng rng(5);
-  for (const auto& s : kSamples) {
-    for (const char* ext : {".step", ".igs"}) {
-      const std::string path = sample_mold(s.file + ext);
-      INFO(path);
-      auto face = importers::load_face(path, 0);
-      REQUIRE(face.ok());
-      const Reference ref = read_reference(path, is_iges(path));
-      const double worst = check_surface(test::face_of(*face), ref.face(0), 200, rng);
-      WARN(path << ": worst surface deviation " << worst << " of the face size");
-    }
-  }
+  for_each_sample_face(false, [&](const std::string& path, const auto& face, const Reference& ref) {
+    const double worst = check_surface(test::face_of(face), ref.face(0), 200, rng);
+    WARN(path << ": worst surface deviation " << worst << " of the face size");
+  });
 }
 
 TEST_CASE("importers: contains() agrees with OpenCASCADE's classifier on the sample molds") {
   Rng rng(9);
-  for (const auto& s : kSamples) {
-    if (!s.trimmed) continue;
-    for (const char* ext : {".step", ".igs"}) {
-      const std::string path = sample_mold(s.file + ext);
-      INFO(path);
-      auto face = importers::load_face(path, 0);
-      REQUIRE(face.ok());
-      const Reference ref = read_reference(path, is_iges(path));
-      CHECK(check_contains(test::face_of(*face), face_in_converted_parameters(ref.face(0)), 3000,
-                           rng) >= 2500);
-    }
-  }
+  for_each_sample_face(true, [&](const std::string&, const auto& face, const Reference& ref) {
+    CHECK(check_contains(test::face_of(face), face_in_converted_parameters(ref.face(0)), 3000,
+                         rng) >= 2500);
+  });
 }
 
 TEST_CASE("importers: sample mold trim polylines follow the face edges within the trim tolerance") {

@@ -24,8 +24,11 @@
 #include <catch2/catch.hpp>
 
 #include "occt/shell_checks.hpp"
+#include "occt/write_shapes.hpp"
 #include "surface/face.hpp"
 #include "surface/shell/shell.hpp"
+
+#include <tuple>
 
 using namespace plyfit;
 using namespace plyfit::test;
@@ -38,18 +41,10 @@ void write_with_precision(const TopoDS_Shape& shape, const std::string& path, do
   Message::DefaultMessenger()->ChangePrinters().Clear();
   Interface_Static::SetIVal("write.precision.mode", 2);  // write.precision.val
   Interface_Static::SetRVal("write.precision.val", precision);
-  if (path.find(".igs") != std::string::npos) {
-    IGESControl_Controller::Init();
-    IGESControl_Writer w("MM", 1);
-    REQUIRE(w.AddShape(shape));
-    w.ComputeModel();
-    REQUIRE(w.Write(path.c_str()));
-  } else {
-    STEPControl_Controller::Init();
-    STEPControl_Writer w;
-    REQUIRE(w.Transfer(shape, STEPControl_AsIs) == IFSelect_RetDone);
-    REQUIRE(w.Write(path.c_str()) == IFSelect_RetDone);
-  }
+  if (path.find(".igs") != std::string::npos)
+    write_iges(shape, path);
+  else
+    write_step(shape, path);
   Interface_Static::SetIVal("write.precision.mode", 0);
 }
 
@@ -287,23 +282,24 @@ TEST_CASE("importers: bad face lists for a shell are one-line errors naming the 
   write_with_precision(two_plates(0.0), path, 1e-6);
   auto file = importers::open_mold(path);
   REQUIRE(file.ok());
-  for (const auto& [faces, text] : std::vector<std::pair<std::vector<int>, std::string>>{
-           {{0, 2}, "face 2 out of range"},
-           {{-1}, "face -1 out of range"},
-           {{1, 0, 1}, "face 1 is listed twice"}}) {
+  for (const auto& [faces, code, face] : std::vector<std::tuple<std::vector<int>, ErrorCode, int>>{
+           {{0, 2}, ErrorCode::kFaceIndexRange, 2},
+           {{-1}, ErrorCode::kFaceIndexRange, -1},
+           {{1, 0, 1}, ErrorCode::kFaceListedTwice, 1}}) {
     auto s = (*file)->convert_shell(faces);
     REQUIRE_FALSE(s.ok());
     INFO(exporters::describe(s.error()));
     CHECK(exporters::describe(s.error()).rfind(path + ": ", 0) == 0);
-    CHECK(exporters::describe(s.error()).find(text) != std::string::npos);
+    CHECK(s.error().code == code);
+    CHECK(s.error().values.at(0) == MessageValue{std::int64_t{face}});
     CHECK(exporters::describe(s.error()).find('\n') == std::string::npos);
   }
   importers::ImportOptions negative;
   negative.sewing_tolerance = -0.01;
   auto bad = importers::load_shell(path, {}, negative);
   REQUIRE_FALSE(bad.ok());
-  CHECK(exporters::describe(bad.error())
-            .rfind(path + ": sewing faces 0, 1: invalid sewing tolerance", 0) == 0);
+  CHECK(bad.error().code == ErrorCode::kSewingToleranceInvalid);
+  CHECK(bad.error().input == path);
   std::vector<std::string> warnings;
   auto missing = importers::load_shell(dir.file("none.step"), {}, {}, &warnings);
   REQUIRE_FALSE(missing.ok());

@@ -28,6 +28,15 @@ inline std::size_t seam_gaps(const DrapeResult& r) {
   return gaps;
 }
 
+/// A drape over a shell that crosses its edges cleanly: no node failed, in conflict or laid
+/// over cloth, and no seam gap.
+inline void check_clean_crossing(const DrapeResult& r) {
+  CHECK(r.metrics.nodes.failed == 0);
+  CHECK(r.metrics.nodes.conflict == 0);
+  CHECK(r.metrics.nodes.overlap == 0);
+  CHECK(seam_gaps(r) == 0);
+}
+
 // Two nets with the same nodes: every node reached by one is reached by the other with the
 // same status, and mapped nodes lie within tol of each other. Returns the mapped count.
 inline std::size_t same_net(const DrapeResult& a, const DrapeResult& b, double tol) {

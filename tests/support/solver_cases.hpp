@@ -6,9 +6,21 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace plyfit::support {
+
+/// Both points p of the sphere |p| = R at distance d from its points a and b, in closed form:
+/// p.a = p.b = (2R^2 - d^2)/2, so p = alpha a + beta b + t n with n normal to a and b.
+inline std::pair<Vec3, Vec3> sphere_points_at(const Vec3& a, const Vec3& b, double R, double d) {
+  const double k = (2 * R * R - d * d) / 2, aa = a.dot(a), ab = a.dot(b), bb = b.dot(b);
+  const double det = aa * bb - ab * ab;
+  const Vec3 p0 = a * ((k * bb - k * ab) / det) + b * ((k * aa - k * ab) / det);
+  const Vec3 n = a.cross(b).normalized();
+  const double t = std::sqrt(R * R - p0.squaredNorm());
+  return {p0 + t * n, p0 - t * n};
+}
 
 /// A point at 3D distance r from S(uv0) along the surface curve uv0 + t dir (t > 0), by
 /// bisection; false if none is found or it is off the face.

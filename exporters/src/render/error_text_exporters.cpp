@@ -4,53 +4,31 @@
 
 namespace plyfit::exporters::render {
 
-std::string text_file_not_created(const Values&) {
-  return "cannot create the file (folder missing or not writable?)";
-}
+PLYFIT_SENTENCE(text_file_not_created, "cannot create the file (folder missing or not writable?)");
 
-std::string text_file_already_closed(const Values&) {
-  return "file already closed";
-}
+PLYFIT_SENTENCE(text_file_already_closed, "file already closed");
 
-std::string text_file_write_failed(const Values&) {
-  return "write failed (disk full?)";
-}
+PLYFIT_SENTENCE(text_file_write_failed, "write failed (disk full?)");
 
-std::string text_file_not_renamed(const Values& x) {
-  return "cannot rename the finished file into place: " + x.text(0);
-}
+PLYFIT_SENTENCE(text_file_not_renamed, "cannot rename the finished file into place: {t0}");
 
-std::string text_output_folder_not_created(const Values& x) {
-  return "cannot create the output folder: " + x.text(0);
-}
+PLYFIT_SENTENCE(text_output_folder_not_created, "cannot create the output folder: {t0}");
 
-std::string text_unknown_output(const Values& x) {
-  return "unknown output '" + x.text(0) + "' (known: " + x.text(1) + ")";
-}
+PLYFIT_SENTENCE(text_unknown_output, "unknown output '{t0}' (known: {t1})");
 
-std::string text_curve_rational(const Values&) {
-  return "rational curves are not written";
-}
+PLYFIT_SENTENCE(text_curve_rational, "rational curves are not written");
 
-std::string text_curve_invalid(const Values&) {
-  return "invalid curve";
-}
+PLYFIT_SENTENCE(text_curve_invalid, "invalid curve");
 
-std::string text_curve_set_not_built(const Values&) {
-  return "cannot build a curve set";
-}
+PLYFIT_SENTENCE(text_curve_set_not_built, "cannot build a curve set");
 
-std::string text_thread_curve_not_built(const Values& x) {
-  return "cannot build a " + x.text(0) + " curve";
-}
+PLYFIT_SENTENCE(text_thread_curve_not_built, "cannot build a {t0} curve");
 
-std::string text_boundary_loop_too_small(const Values& x) {
-  return "cannot build the " + x.text(0) +
-         " curve: the loop has fewer than 3 distinct points on the mold";
-}
+PLYFIT_SENTENCE(
+    text_boundary_loop_too_small,
+    "cannot build the {t0} curve: the loop has fewer than 3 distinct points on the mold");
 
-std::string text_mold_writer_other_build(const Values& x) {
-  return "plyfit's OpenCASCADE module " + x.text(0) + " is from another build of plyfit";
-}
+PLYFIT_SENTENCE(text_mold_writer_other_build,
+                "plyfit's OpenCASCADE module {t0} is from another build of plyfit");
 
 }  // namespace plyfit::exporters::render

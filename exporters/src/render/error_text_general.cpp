@@ -3,20 +3,12 @@
 
 namespace plyfit::exporters::render {
 
-std::string text_internal(const Values& x) {
-  return "internal error: " + x.text(0);
-}
+PLYFIT_SENTENCE(text_internal, "internal error: {t0}");
 
-std::string text_cancelled(const Values&) {
-  return "cancelled";
-}
+PLYFIT_SENTENCE(text_cancelled, "cancelled");
 
-std::string text_text(const Values& x) {
-  return x.text(0);
-}
+PLYFIT_SENTENCE(text_text, "{t0}");
 
-std::string warning_note(const Values& x) {
-  return x.text(0);
-}
+PLYFIT_SENTENCE(warning_note, "{t0}");
 
 }  // namespace plyfit::exporters::render

@@ -3,9 +3,7 @@
 
 namespace plyfit::exporters::render {
 
-std::string text_seed_not_finite(const Values&) {
-  return "the seed point must be finite";
-}
+PLYFIT_SENTENCE(text_seed_not_finite, "the seed point must be finite");
 
 std::string text_seed_off_mold(const Values& x) {
   if (x.number(0) < 0) return "no point of the mold could be found near the seed";
@@ -13,23 +11,16 @@ std::string text_seed_off_mold(const Values& x) {
          x.brief(1) + "): a wrong unit, frame or mold?";
 }
 
-std::string text_rosette_zero(const Values&) {
-  return "the rosette direction must be a finite non-zero vector";
-}
+PLYFIT_SENTENCE(text_rosette_zero, "the rosette direction must be a finite non-zero vector");
 
-std::string text_rosette_along_normal(const Values& x) {
-  return "the rosette direction lies " + x.brief(0) +
-         " deg from the surface normal at the seed: its projection onto the surface (the 0 deg "
-         "direction) is undefined; give a direction along the surface";
-}
+PLYFIT_SENTENCE(
+    text_rosette_along_normal,
+    "the rosette direction lies {b0} deg from the surface normal at the seed: its projection onto "
+    "the surface (the 0 deg direction) is undefined; give a direction along the surface");
 
-std::string text_ply_angle_range(const Values&) {
-  return "the ply angle must be in [-180, 180] degrees";
-}
+PLYFIT_SENTENCE(text_ply_angle_range, "the ply angle must be in [-180, 180] degrees");
 
-std::string text_boundary_empty(const Values&) {
-  return "the boundary has no curve";
-}
+PLYFIT_SENTENCE(text_boundary_empty, "the boundary has no curve");
 
 std::string text_boundary_curve_points(const Values& x) {
   if (x.number(2) == 0.0) return "boundary curve " + x.text(0) + " has a point that is not finite";
@@ -37,11 +28,9 @@ std::string text_boundary_curve_points(const Values& x) {
          " points: a closed loop needs at least 3, an open curve 2";
 }
 
-std::string text_boundary_gap(const Values& x) {
-  return "boundary curve " + x.text(0) + " ends at (" + x.text(1) + ") " + x.brief(2) +
-         " mm from any other curve's end, more than the tolerance " + x.brief(3) +
-         " mm: the curves do not close into loops";
-}
+PLYFIT_SENTENCE(text_boundary_gap,
+                "boundary curve {t0} ends at ({t1}) {b2} mm from any other curve's end, more than "
+                "the tolerance {b3} mm: the curves do not close into loops");
 
 std::string text_boundary_off_mold(const Values& x) {
   if (x.number(1) < 0)
@@ -51,18 +40,15 @@ std::string text_boundary_off_mold(const Values& x) {
          " mm: a wrong curve, unit or frame?";
 }
 
-std::string text_boundary_seed_outside(const Values&) {
-  return "the seed does not lie inside the ply boundary's region on the mold";
-}
+PLYFIT_SENTENCE(text_boundary_seed_outside,
+                "the seed does not lie inside the ply boundary's region on the mold");
 
-std::string text_seed_curve_off_mold(const Values& x) {
-  return "the seed curve lies " + x.brief(0) + " mm from the mold at (" + x.text(2) +
-         "), more than the tolerance " + x.brief(1) + " mm: a wrong curve, unit or frame?";
-}
+PLYFIT_SENTENCE(text_seed_curve_off_mold,
+                "the seed curve lies {b0} mm from the mold at ({t2}), more than the tolerance {b1} "
+                "mm: a wrong curve, unit or frame?");
 
-std::string text_seed_not_on_curve(const Values& x) {
-  return "the start lies " + x.brief(0) + " mm from the seed curve, more than the tolerance " +
-         x.brief(1) + " mm: put the seed on the curve";
-}
+PLYFIT_SENTENCE(text_seed_not_on_curve,
+                "the start lies {b0} mm from the seed curve, more than the tolerance {b1} mm: put "
+                "the seed on the curve");
 
 }  // namespace plyfit::exporters::render

@@ -3,28 +3,18 @@
 
 namespace plyfit::exporters::render {
 
-std::string text_start_needs_one_face(const Values&) {
-  return "a start is suggested for one face, not a shell";
-}
+PLYFIT_SENTENCE(text_start_needs_one_face, "a start is suggested for one face, not a shell");
 
-std::string text_start_face_no_boundary(const Values&) {
-  return "the face has no boundary";
-}
+PLYFIT_SENTENCE(text_start_face_no_boundary, "the face has no boundary");
 
-std::string text_start_face_no_inside_point(const Values&) {
-  return "no point of the face found inside its trims";
-}
+PLYFIT_SENTENCE(text_start_face_no_inside_point, "no point of the face found inside its trims");
 
-std::string text_start_face_no_tangent(const Values&) {
-  return "the face has no tangent plane at its middle";
-}
+PLYFIT_SENTENCE(text_start_face_no_tangent, "the face has no tangent plane at its middle");
 
-std::string text_search_needs_one_face(const Values&) {
-  return "the search of initial conditions drapes one face, not a shell";
-}
+PLYFIT_SENTENCE(text_search_needs_one_face,
+                "the search of initial conditions drapes one face, not a shell");
 
-std::string text_search_path_normal_at_seed(const Values&) {
-  return "the scene's base-path direction is normal to the face at the seed";
-}
+PLYFIT_SENTENCE(text_search_path_normal_at_seed,
+                "the scene's base-path direction is normal to the face at the seed");
 
 }  // namespace plyfit::exporters::render

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace plyfit::exporters::render {
@@ -25,6 +26,18 @@ struct Values {
   /// number(k) with std::to_string's six decimals (an input echoed as given).
   std::string fixed(std::size_t k) const { return std::to_string(number(k)); }
 };
+
+/// A code's sentence with its values in place: {nK} is count(K) in decimal, {tK} text(K),
+/// {bK} brief(K), {fK} fixed(K), {qK} text(K) in single quotes (K one digit).
+std::string fill(std::string_view sentence, const Values& x);
+
+/// Defines the text function `name` of a code whose text is one sentence with its values in
+/// place (fill()); used as PLYFIT_SENTENCE(text_code, "sentence");
+#define PLYFIT_SENTENCE(name, sentence) \
+  std::string name(const Values& x) {   \
+    return fill(sentence, x);           \
+  }                                     \
+  static_assert(true)
 
 #define PLYFIT_DECLARE_TEXT(name, snake) std::string text_##snake(const Values& x);
 PLYFIT_ERROR_CODES(PLYFIT_DECLARE_TEXT)

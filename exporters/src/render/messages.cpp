@@ -3,6 +3,7 @@
 
 #include "render/message_text.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 namespace plyfit::exporters {
@@ -36,18 +37,47 @@ std::string Values::brief(std::size_t k) const {
   return os.str();
 }
 
+namespace {
+
+// The text of a sentence's slot {KIND K} (fill()).
+std::string slot_text(char kind, std::size_t k, const Values& x) {
+  if (kind == 'n') return x.n(k);
+  if (kind == 'b') return x.brief(k);
+  if (kind == 'f') return x.fixed(k);
+  if (kind == 'q') return '\'' + x.text(k) + '\'';
+  return x.text(k);
+}
+
+}  // namespace
+
+std::string fill(std::string_view sentence, const Values& x) {
+  std::string out;
+  std::size_t i = 0;
+  for (auto open = sentence.find('{'); open != std::string_view::npos;
+       open = sentence.find('{', i)) {
+    out.append(sentence, i, open - i);
+    const bool slot = open + 3 < sentence.size() && sentence[open + 3] == '}';
+    const auto k =
+        static_cast<std::size_t>(sentence[std::min(open + 2, sentence.size() - 1)] - '0');
+    out += slot ? slot_text(sentence[open + 1], k, x) : std::string(1, '{');
+    i = slot ? open + 4 : open + 1;
+  }
+  out.append(sentence, i);
+  return out;
+}
+
 }  // namespace render
 
 namespace {
 
 // Each code's text function, in the order of its enumeration.
 using TextFn = std::string (*)(const render::Values&);
-#define PLYFIT_TEXT_ENTRY(name, snake) &render::text_##snake,
-constexpr TextFn kErrorTexts[] = {PLYFIT_ERROR_CODES(PLYFIT_TEXT_ENTRY)};
-#undef PLYFIT_TEXT_ENTRY
-#define PLYFIT_TEXT_ENTRY(name, snake) &render::warning_##snake,
-constexpr TextFn kWarningTexts[] = {PLYFIT_WARNING_CODES(PLYFIT_TEXT_ENTRY)};
-#undef PLYFIT_TEXT_ENTRY
+#define PLYFIT_ERROR_TEXT(name, snake) &render::text_##snake,
+#define PLYFIT_WARNING_TEXT(name, snake) &render::warning_##snake,
+constexpr TextFn kErrorTexts[] = {PLYFIT_ERROR_CODES(PLYFIT_ERROR_TEXT)};
+constexpr TextFn kWarningTexts[] = {PLYFIT_WARNING_CODES(PLYFIT_WARNING_TEXT)};
+#undef PLYFIT_ERROR_TEXT
+#undef PLYFIT_WARNING_TEXT
 
 // The text of `code` with `values` by its function in `texts` (the code's name when it has
 // none: a code out of range).

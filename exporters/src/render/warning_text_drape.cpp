@@ -15,25 +15,19 @@ std::string percent(const Values& x, std::size_t k) {
 
 }  // namespace
 
-std::string warning_start_far(const Values& x) {
-  return "the 3D start lies " + x.brief(0) + " mm from the surface, more than " + x.brief(1) +
-         " times its size (" + x.brief(2) +
-         " mm, the bounding-box diagonal): the drape starts at the nearest point of the surface, "
-         "(" +
-         x.brief(3) + ", " + x.brief(4) + ", " + x.brief(5) +
-         "), far from where it was asked to; check the start, the face and the unit";
-}
+PLYFIT_SENTENCE(
+    warning_start_far,
+    "the 3D start lies {b0} mm from the surface, more than {b1} times its size ({b2} mm, the "
+    "bounding-box diagonal): the drape starts at the nearest point of the surface, ({b3}, {b4}, "
+    "{b5}), far from where it was asked to; check the start, the face and the unit");
 
-std::string warning_no_cell_mapped(const Values&) {
-  return "the drape maps no cell: the cloth leaves the face at the base path on every swept side "
-         "(do the sweep directions point into the face from the base path?)";
-}
+PLYFIT_SENTENCE(warning_no_cell_mapped,
+                "the drape maps no cell: the cloth leaves the face at the base path on every swept "
+                "side (do the sweep directions point into the face from the base path?)");
 
-std::string warning_sweep_maps_no_node(const Values& x) {
-  return "sweep direction " + x.n(0) +
-         " maps no node: the cloth leaves the face at the base path on its side (the start on "
-         "the face's edge?)";
-}
+PLYFIT_SENTENCE(warning_sweep_maps_no_node,
+                "sweep direction {n0} maps no node: the cloth leaves the face at the base path on "
+                "its side (the start on the face's edge?)");
 
 // values: the coverage, then the nodes stopped inside the surface by the shear limit, overlap,
 // failure, conflict and the base path's end.
@@ -50,54 +44,40 @@ std::string warning_uncovered_area(const Values& x) {
                         : "the cloth stops inside it (" + stops + ")");
 }
 
-std::string warning_path_ends(const Values& x) {
-  return "the base path ends at ply (" + x.brief(0) + ", " + x.brief(1) +
-         "): the base plane lies " + x.brief(2) +
-         " deg from the surface's tangent plane there and its section turns back (or ends where "
-         "the plane touches the surface) within one link ahead, so the path cannot go on; a "
-         "base-plane normal more nearly along the surface there carries the path further";
-}
+PLYFIT_SENTENCE(warning_path_ends,
+                "the base path ends at ply ({b0}, {b1}): the base plane lies {b2} deg from the "
+                "surface's tangent plane there and its section turns back (or ends where the plane "
+                "touches the surface) within one link ahead, so the path cannot go on; a "
+                "base-plane normal more nearly along the surface there carries the path further");
 
-std::string warning_cancelled(const Values&) {
-  return "cancelled";
-}
+PLYFIT_SENTENCE(warning_cancelled, "cancelled");
 
-std::string warning_node_cap(const Values& x) {
-  return "stopped at the node cap of " + x.n(0) + " nodes";
-}
+PLYFIT_SENTENCE(warning_node_cap, "stopped at the node cap of {n0} nodes");
 
 std::string warning_cloth_on_itself(const Values& x) {
   return "the mapped cells cover " + percent(x, 0) +
          "% of the surface: the cloth lies on itself somewhere";
 }
 
-std::string warning_failed_nodes(const Values& x) {
-  return x.n(0) + " node(s) where the solver found no solution";
-}
+PLYFIT_SENTENCE(warning_failed_nodes, "{n0} node(s) where the solver found no solution");
 
-std::string warning_conflict_nodes(const Values& x) {
-  return x.n(0) +
-         " conflict node(s): two fronts of cloth met there and disagree (no point of the surface "
-         "fits all their links), so the cloth cannot be laid there as one piece: a dart or a "
-         "splice is needed there, or another start or base path";
-}
+PLYFIT_SENTENCE(warning_conflict_nodes,
+                "{n0} conflict node(s): two fronts of cloth met there and disagree (no point of "
+                "the surface fits all their links), so the cloth cannot be laid there as one "
+                "piece: a dart or a splice is needed there, or another start or base path");
 
-std::string warning_thread_ends(const Values& x) {
-  return x.n(0) + " node(s), the first at ply (" + x.brief(1) + ", " + x.brief(2) +
-         "), marked outside: a thread continued from one neighbour cannot follow the surface "
-         "for one link there (the section of its plane, square to the surface, turns back: the "
-         "surface curls tighter than the thread spacing); a finer spacing follows it further";
-}
+PLYFIT_SENTENCE(warning_thread_ends,
+                "{n0} node(s), the first at ply ({b1}, {b2}), marked outside: a thread continued "
+                "from one neighbour cannot follow the surface for one link there (the section of "
+                "its plane, square to the surface, turns back: the surface curls tighter than the "
+                "thread spacing); a finer spacing follows it further");
 
-std::string warning_path_slit(const Values& x) {
-  return "the base path stops at ply (" + x.brief(0) + ", " + x.brief(1) +
-         ") while the cloth goes on beyond it along the path's line (the base plane's section "
-         "ends there: at a gap in the surface that is no hole of one face, such as a missing "
-         "face or a notch outside the face's outer boundary, or where the section leaves the "
-         "face or curls back on itself): " +
-         x.n(2) +
-         " thread link(s) across the path's line there join the two sweeps' cloth unsolved "
-         "(a slit in the flat pattern)";
-}
+PLYFIT_SENTENCE(
+    warning_path_slit,
+    "the base path stops at ply ({b0}, {b1}) while the cloth goes on beyond it along the path's "
+    "line (the base plane's section ends there: at a gap in the surface that is no hole of one "
+    "face, such as a missing face or a notch outside the face's outer boundary, or where the "
+    "section leaves the face or curls back on itself): {n2} thread link(s) across the path's line "
+    "there join the two sweeps' cloth unsolved (a slit in the flat pattern)");
 
 }  // namespace plyfit::exporters::render

@@ -8,6 +8,7 @@
 
 #include "support/problems.hpp"
 #include "support/shells.hpp"
+#include "support/solver_cases.hpp"
 #include "support/surfaces.hpp"
 #include "support/warnings.hpp"
 
@@ -892,12 +893,7 @@ TEST_CASE("drape: a cell sheared nearly flat across two faces of sphere-8 is map
   REQUIRE(q->mapped());
   // The closed-form solutions (as in solvers_test.cpp): c is one, q must be the other.
   const Vec3 &pa = a->point, &pb = b->point;
-  const double k = (2 * R * R - d * d) / 2, aa = pa.dot(pa), ab = pa.dot(pb), bb = pb.dot(pb);
-  const double det = aa * bb - ab * ab;
-  const Vec3 p0 = pa * ((k * bb - k * ab) / det) + pb * ((k * aa - k * ab) / det);
-  const Vec3 n = pa.cross(pb).normalized();
-  const double t = std::sqrt(R * R - p0.squaredNorm());
-  const Vec3 s1 = p0 + t * n, s2 = p0 - t * n;
+  const auto [s1, s2] = support::sphere_points_at(pa, pb, R, d);
   const bool c_is_s1 = (c->point - s1).norm() < (c->point - s2).norm();
   CHECK((c->point - (c_is_s1 ? s1 : s2)).norm() < 1e-8 * d);
   CHECK((q->point - (c_is_s1 ? s2 : s1)).norm() < 1e-8 * d);

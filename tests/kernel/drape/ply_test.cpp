@@ -12,6 +12,18 @@ Ply make(PlySpec s) {
   REQUIRE(p.ok());
   return std::move(p).value();
 }
+// Path node k: at `pos`, on the link from `from` along `dir` that it splits. Returns it.
+const PathNode* check_split(Ply& p, int k, Vec2 pos, NodeId from, ThreadDir dir) {
+  INFO("path node " << k);
+  const PathNode* n = p.path_node(k);
+  REQUIRE(n);
+  CHECK(n->pos.x() == Approx(pos.x()));
+  CHECK(n->pos.y() == Approx(pos.y()));
+  REQUIRE(n->link_from);
+  CHECK(*n->link_from == from);
+  CHECK(n->link_dir == dir);
+  return n;
+}
 }  // namespace
 
 TEST_CASE("ply: auxiliary points where the path crosses threads, with split links (Fig. 7)") {
@@ -28,20 +40,9 @@ TEST_CASE("ply: auxiliary points where the path crosses threads, with split link
   CHECK_FALSE(n0->link_from);
   // Ahead: the path y = 0.5 + (x - 0.25) / 2 crosses x = 1 at y = 0.875 (a warp link split),
   // x = 2 at y = 1.375, y = 2 at x = 3.25 (a weft link split), x = 3, ...
-  const PathNode* n1 = p.path_node(1);
-  REQUIRE(n1);
-  CHECK(n1->pos.x() == Approx(1.0));
-  CHECK(n1->pos.y() == Approx(0.875));
-  REQUIRE(n1->link_from);
-  CHECK(*n1->link_from == NodeId::regular(1, 0));
-  CHECK(n1->link_dir == ThreadDir::kPlusY);
-  const PathNode* n4 = p.path_node(4);
-  REQUIRE(n4);
-  CHECK(n4->pos.x() == Approx(3.25));
-  CHECK(n4->pos.y() == Approx(2.0));
-  REQUIRE(n4->link_from);
-  CHECK(*n4->link_from == NodeId::regular(3, 1));
-  CHECK(n4->link_dir == ThreadDir::kPlusX);
+  const PathNode* n1 =
+      check_split(p, 1, Vec2(1.0, 0.875), NodeId::regular(1, 0), ThreadDir::kPlusY);
+  check_split(p, 4, Vec2(3.25, 2.0), NodeId::regular(3, 1), ThreadDir::kPlusX);
   // The warp link (1,0)-(1,1) is split: from (1,0) the neighbour is path node 1 at 0.875.
   auto up = p.neighbour(1, 0, ThreadDir::kPlusY);
   REQUIRE(up);

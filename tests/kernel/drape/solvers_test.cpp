@@ -473,14 +473,8 @@ TEST_CASE("solvers: a cell sheared nearly flat across two faces of sphere-8 is s
   const Shell& sh = *made;
   const Vec3 a = Vec3(-5.15837763509, -0.952660671787, -19.2998336215).normalized() * R;
   const Vec3 b = Vec3(-2.79642230406, 3.05670182342, -19.5662105749).normalized() * R;
-  // Both solutions in closed form: |p| = R, |p - a| = |p - b| = d, i.e. p.a = (2R^2 - d^2)/2,
-  // p.b likewise, p = alpha a + beta b + t n with n normal to a and b.
-  const double k = (2 * R * R - d * d) / 2, aa = a.dot(a), ab = a.dot(b), bb = b.dot(b);
-  const double det = aa * bb - ab * ab;
-  const Vec3 p0 = a * ((k * bb - k * ab) / det) + b * ((k * aa - k * ab) / det);
-  const Vec3 n = a.cross(b).normalized();
-  const double t = std::sqrt(R * R - p0.squaredNorm());
-  const Vec3 s1 = p0 + t * n, s2 = p0 - t * n;
+  // Both solutions in closed form: |p| = R, |p - a| = |p - b| = d.
+  const auto [s1, s2] = support::sphere_points_at(a, b, R, d);
   // The cell's fourth corner is the solution on the side +1 about the outward normal; the
   // node is the other one.
   auto side = [&](const Vec3& p) { return (p / R).dot((b - a).cross(p - a)); };

@@ -67,6 +67,31 @@ void check_loops(const FlatPattern& fp, double d) {
   }
 }
 
+// The errors of the previous (coarser) spacing's outline: a finer one must be closer.
+struct OutlineErrors {
+  double area = 0, perimeter = 0;
+};
+
+// The flat pattern of a sector drape along `tang` from s3 at spacing d: one simple loop whose
+// area and perimeter are within kOutlineRel of the exact A and P, and closer than `prev`'s.
+FlatPattern developed(const Face& f, double d, Vec3 s3, Vec3 tang, double A, double P,
+                      OutlineErrors& prev) {
+  const FlatPattern fp =
+      drape_flat(f, d, Vec2(0, 1), {Vec2(-1, 0), Vec2(1, 0)}, s3, tang, {tang, -tang});
+  REQUIRE(fp.outline.size() == 1);
+  check_loops(fp, d);
+  const double ea = std::abs(fp.area - A) / A, ep = std::abs(fp.perimeter - P) / P;
+  INFO("d = " << d << " area error " << ea << " perimeter error " << ep);
+  CHECK(ea < kOutlineRel);
+  CHECK(ep < kOutlineRel);
+  if (prev.area > 0) {
+    CHECK(ea < prev.area);
+    CHECK(ep < prev.perimeter);
+  }
+  prev = {ea, ep};
+  return fp;
+}
+
 }  // namespace
 
 TEST_CASE("flat pattern: a cylinder sector develops into the rectangle R alpha x H") {
@@ -75,23 +100,9 @@ TEST_CASE("flat pattern: a cylinder sector develops into the rectangle R alpha x
   const double a = 0.37;  // start off-centre, at an arbitrary height
   const Vec3 s3(R * std::cos(a), R * std::sin(a), 7.3), tang(-std::sin(a), std::cos(a), 0);
   const double size = std::max(R * alpha, H);  // ~20
-  double prev_area = 0, prev_per = 0;
+  OutlineErrors prev;
   for (double d : {size / 50, size / 100}) {
-    const FlatPattern fp =
-        drape_flat(f, d, Vec2(0, 1), {Vec2(-1, 0), Vec2(1, 0)}, s3, tang, {tang, -tang});
-    REQUIRE(fp.outline.size() == 1);
-    check_loops(fp, d);
-    const double ea = std::abs(fp.area - R * alpha * H) / (R * alpha * H);
-    const double ep = std::abs(fp.perimeter - 2 * (R * alpha + H)) / (2 * (R * alpha + H));
-    INFO("d = " << d << " area error " << ea << " perimeter error " << ep);
-    CHECK(ea < kOutlineRel);
-    CHECK(ep < kOutlineRel);
-    if (prev_area > 0) {
-      CHECK(ea < prev_area);
-      CHECK(ep < prev_per);
-    }
-    prev_area = ea;
-    prev_per = ep;
+    const FlatPattern fp = developed(f, d, s3, tang, R * alpha * H, 2 * (R * alpha + H), prev);
     // The staircase is coarser and inside.
     REQUIRE_FALSE(fp.staircase.empty());
     CHECK(fp.staircase[0].area < fp.area);
@@ -106,23 +117,8 @@ TEST_CASE("flat pattern: a cone sector develops into the annular sector") {
   const double A = phi / 2 * (ro * ro - ri * ri), P = phi * (ro + ri) + 2 * L;
   const double a = kPi / 4;
   const Vec3 s3(15 * std::cos(a), 15 * std::sin(a), 7.5), tang(-std::sin(a), std::cos(a), 0);
-  double prev_area = 0, prev_per = 0;
-  for (double d : {ro * phi / 50, ro * phi / 100}) {
-    const FlatPattern fp =
-        drape_flat(f, d, Vec2(0, 1), {Vec2(-1, 0), Vec2(1, 0)}, s3, tang, {tang, -tang});
-    REQUIRE(fp.outline.size() == 1);
-    check_loops(fp, d);
-    const double ea = std::abs(fp.area - A) / A, ep = std::abs(fp.perimeter - P) / P;
-    INFO("d = " << d << " area error " << ea << " perimeter error " << ep);
-    CHECK(ea < kOutlineRel);
-    CHECK(ep < kOutlineRel);
-    if (prev_area > 0) {
-      CHECK(ea < prev_area);
-      CHECK(ep < prev_per);
-    }
-    prev_area = ea;
-    prev_per = ep;
-  }
+  OutlineErrors prev;
+  for (double d : {ro * phi / 50, ro * phi / 100}) developed(f, d, s3, tang, A, P, prev);
 }
 
 TEST_CASE(

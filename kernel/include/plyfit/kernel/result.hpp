@@ -123,6 +123,18 @@ namespace plyfit {
   X(BuiltinParameterSyntax, builtin_parameter_syntax)                                       \
   X(BuiltinParameterValue, builtin_parameter_value)                                         \
   /* importers and the OpenCASCADE module */                                                \
+  X(FileMissing, file_missing)                                                              \
+  X(FileNotRegular, file_not_regular)                                                       \
+  X(FileEmpty, file_empty)                                                                  \
+  X(FileWrongFormat, file_wrong_format)                                                     \
+  X(FileTruncated, file_truncated)                                                          \
+  X(ImportFormatUnknown, import_format_unknown)                                             \
+  X(FileExtensionUnknown, file_extension_unknown)                                           \
+  X(FaceIndexRange, face_index_range)                                                       \
+  X(ReadTimeLimit, read_time_limit)                                                         \
+  X(FileNoFaces, file_no_faces)                                                             \
+  X(FaceListedTwice, face_listed_twice)                                                     \
+  X(SewingToleranceInvalid, sewing_tolerance_invalid)                                       \
   X(FileNotReadable, file_not_readable)                                                     \
   X(FileNumberNotFinite, file_number_not_finite)                                            \
   X(FileNumberTooLarge, file_number_too_large)                                              \
