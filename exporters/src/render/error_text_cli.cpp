@@ -159,6 +159,11 @@ std::string text_material_angle_not_a_number(const Values& x) {
          (x.text(1) == "limit" ? " or none" : "");
 }
 
+std::string text_material_roll_width(const Values& x) {
+  return "material " + quoted(x, 0) + ": roll-width: " + quoted(x, 1) +
+         " is not a positive number of millimetres";
+}
+
 std::string text_material_angle_range(const Values& x) {
   return "material " + quoted(x, 0) + ": " + x.text(1) + ": " + x.text(2) +
          " is not in [0, 90] degrees";
