@@ -26,6 +26,10 @@ using detail::Box2;
 // The label text is at most this fraction of the piece's extent high.
 constexpr double kMaxTextRel = 1.0 / 20.0;
 constexpr const char* kRollLayer = "ROLL";
+// A part fits across the roll to within this fraction of its width: the rounding of its
+// coordinates (a piece spliced to the roll's width less the margins comes out that wide, to
+// the last digits).
+constexpr double kFitRel = 1e-9;
 // ACI colours the plies' layers cycle through (red, yellow, green, cyan, blue, magenta).
 constexpr int kPlyColours[] = {1, 2, 3, 4, 5, 6};
 
@@ -59,11 +63,12 @@ std::vector<CutPlace> shelf_pack(const Plybook& book, const std::vector<Part>& p
     box.add(p.loops);
     if (box.empty()) continue;
     const Vec2 size = box.size();
-    if (size.x() > w - 2.0 * gap) {
+    const double room = (w - 2.0 * gap) * (1.0 + kFitRel);
+    if (size.x() > room) {
       sheet.left_out.push_back(Error{ErrorCode::kPieceWiderThanRoll, p.name, {size.x(), w}});
       continue;
     }
-    if (x + size.x() > w - gap) {
+    if (x - gap + size.x() > room) {
       shelf_y += shelf_h + gap;
       x = gap;
       shelf_h = 0.0;
