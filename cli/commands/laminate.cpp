@@ -30,6 +30,9 @@ const OptionTable& laminate_options() {
       jobs_option("plies"),
       output_option("DIR", "output folder (each ply into DIR/<ply name>/)"),
       quiet_option(),
+      {"splice-stagger", "MM", "",
+       "seams of plies of one fibre direction keep at least this far apart on the part (mm; "
+       "instead of the file's splice-stagger)"},
   };
   return table;
 }
@@ -53,6 +56,14 @@ const CommandHelp kLaminateHelp = {
     "partial) and every file was written, 1 otherwise, 130 when interrupted.\n",
     print_laminate_keys};
 
+// A ply split for its roll: its pieces and seams as the shop documents show them.
+void add_pieces(exporters::PlySheet& s, const SplicePlan& plan) {
+  for (const SplicePiece& p : plan.pieces) s.pieces.push_back({p.name, p.area, p.width(), p.loops});
+  for (const Seam& seam : plan.seams) s.seams.push_back({seam.x, seam.stagger_distance});
+  s.splice_stagger = plan.stagger;
+  s.stagger_met = plan.stagger_met;
+}
+
 exporters::PlySheet sheet_of(const PlyRun& r) {
   exporters::PlySheet s;
   s.sequence = r.ply.sequence;
@@ -75,6 +86,7 @@ exporters::PlySheet sheet_of(const PlyRun& r) {
     s.warnings = r.outcome.warnings;
     s.files = r.outcome.files;
     s.cut = r.outcome.cut;
+    if (r.outcome.splices && r.outcome.splices->split()) add_pieces(s, *r.outcome.splices);
   }
   return s;
 }
@@ -125,6 +137,15 @@ int run_laminate(const std::vector<std::string>& args) {
   const fs::path dir = *o.text("output");
   auto laminate = read_laminate(o.all("laminate").front(), dir.string());
   if (!laminate) return error_exit(kExitFailure, laminate.error());
+  if (o.given("splice-stagger")) {
+    auto stagger = o.number("splice-stagger");
+    if (!stagger) return error_exit(kExitUsage, stagger.error(), o.namer());
+    if (!(*stagger >= 0.0))
+      return error_exit(kExitUsage,
+                        Error{ErrorCode::kSpliceStaggerNegative, "splice-stagger", {*stagger}},
+                        o.namer());
+    laminate->splice_stagger = *stagger;
+  }
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec)

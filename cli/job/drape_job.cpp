@@ -8,6 +8,7 @@
 
 #include <plyfit/exporters/exporters.hpp>
 #include <plyfit/kernel/ply.hpp>
+#include <plyfit/kernel/splice.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -240,6 +241,7 @@ Status read_material(const Options& o, DrapeJob& job) {
   auto material = find_material(*table, job.material);
   if (!material) return Error(material.error()).in("material");
   job.material_label = material->label;
+  if (material->roll_width > 0.0) job.roll_width = material->roll_width;
   job.lock_angle_deg = material->limit_deg;
   if (o.given("lock-angle")) {
     auto x = o.number("lock-angle");
@@ -261,6 +263,24 @@ Status read_material(const Options& o, DrapeJob& job) {
   if (!angle) return angle.error();
   job.ply_angle_deg = *angle;
   return ok_status();
+}
+
+// The splices: --roll-width (over the material's) and --splice-overlap, checked against the
+// spacing now rather than after the drape.
+Status read_splices(const Options& o, DrapeJob& job) {
+  if (o.given("roll-width")) {
+    auto w = o.number("roll-width");
+    if (!w) return w.error();
+    job.roll_width = *w;
+  }
+  auto overlap = o.number("splice-overlap");
+  if (!overlap) return overlap.error();
+  job.splice_overlap = *overlap;
+  if (!job.roll_width) return ok_status();
+  SpliceOptions so;
+  so.roll_width = *job.roll_width;
+  so.overlap = job.splice_overlap;
+  return check_splice_options(so, job.problem.ply.d_weft);
 }
 
 Status read_numerics(const Options& o, DrapeJob& job) {
@@ -334,6 +354,7 @@ Result<DrapeJob> make_job(const RawOptions& raw, bool need_output) {
       [&] { return read_start(o, job); },
       [&] { return read_boundary(o, job); },
       [&] { return read_material(o, job); },
+      [&] { return read_splices(o, job); },
       [&] { return read_numerics(o, job); },
       [&] { return read_outputs(o, job); },
   };

@@ -12,8 +12,10 @@
 #include <plyfit/kernel/flat_pattern.hpp>
 #include <plyfit/kernel/optimize.hpp>
 #include <plyfit/kernel/result.hpp>
+#include <plyfit/kernel/splice.hpp>
 
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -27,6 +29,12 @@ namespace plyfit::cli {
 
 /// The keys of a drape job (flags --key, scene keys `key`), in help order.
 const OptionTable& drape_options();
+
+/// Seams of other plies a ply's seams keep at least `distance` from (on the part).
+struct SpliceStagger {
+  std::vector<std::vector<Vec3>> seams;
+  double distance = 0.0;
+};
 
 /// Every input of a drape, converted and validated.
 struct DrapeJob {
@@ -65,6 +73,13 @@ struct DrapeJob {
   std::optional<CurveFileSpec> seed_curve_file;
   /// `problem` is already the problem on the mold (job_problem() applied: seed, angle).
   bool problem_on_mold = false;
+  /// --roll-width (or the material's roll width): split the flat pattern into pieces no wider
+  /// across the warp; empty: no splices.
+  std::optional<double> roll_width;
+  double splice_overlap = 0.0;  ///< --splice-overlap (mm)
+  /// The seams this ply's keep apart from, asked for once the drape is done (plyfit laminate's
+  /// stagger across plies); empty: none.
+  std::function<SpliceStagger()> stagger;
   std::string material = "woven";  ///< name in the materials table
   std::string material_label;      ///< the material's label
   std::string materials_file;      ///< materials table file; empty: plyfit's own
@@ -98,6 +113,8 @@ struct JobOutcome {
   std::vector<std::string> mold_warnings;
   /// The flat pattern's cut outline (FlatPattern::cut), for drawings of several plies.
   std::vector<OutlineLoop> cut;
+  /// The pieces and seams, when the job has a roll width (SplicePlan::split() when cut).
+  std::shared_ptr<const SplicePlan> splices;
 };
 
 /// A job's surface, loaded once for every job that drapes it (plyfit laminate's plies share

@@ -74,6 +74,14 @@ const OptionTable& drape_options() {
        "lock angle - 5)",
        false, "material"},
       {"ply-name", "TEXT", "ply", "ply name for labels", false, "material"},
+      {"roll-width", "MM", "",
+       "split a flat pattern wider than this across the warp into pieces along warp threads "
+       "(splices), each no wider (default: the material's roll-width; none: no splices)",
+       false, "material"},
+      {"splice-overlap", "MM", "0",
+       "with --roll-width: each piece left of a seam laps this far over its neighbour (0: a "
+       "butt joint)",
+       false, "material"},
       {"ply-angle", "DEG", "0",
        "ply angle: the warp turned from the rosette's 0 deg about the outward normal, "
        "counter-clockwise seen from outside (with the start keys, their drape turned by it)",

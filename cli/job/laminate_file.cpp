@@ -1,9 +1,10 @@
 // read_laminate: a laminate file's sections into one scene (raw values) per ply, in stacking
 // order. The scene keys are read by the scene files' own reader (add_scene_key); the laminate
-// adds roll-width, sequence and angle, and sets each ply's name, angle and output folder.
+// adds splice-stagger, sequence and angle, and sets each ply's name, angle and output folder.
 
 #include "job/laminate_file.hpp"
 
+#include "job/drape_job.hpp"
 #include "job/ini.hpp"
 #include "job/scene_file.hpp"
 
@@ -178,7 +179,9 @@ LaminatePly make_ply(const Section& laminate, const Section& s, const std::strin
 
 const OptionTable& laminate_keys() {
   static const OptionTable table = {
-      {"roll-width", "MM", "1000", "[laminate]: the roll's width in the cut drawing (cut.dxf), mm"},
+      {"splice-stagger", "MM", "0",
+       "[laminate]: seams of plies of one fibre direction (angle mod 180) keep at least this "
+       "far apart on the part, mm (plies with roll-width)"},
       {"sequence", "N", "",
        "[ply NAME]: the ply's place in the stack (plies are stacked by it; default: the "
        "previous ply's plus 1, the first 1)"},
@@ -198,10 +201,21 @@ Result<Laminate> read_laminate(const std::string& path, const std::string& outdi
   const auto& [laminate, plies] = *sections;
   Laminate lam;
   lam.path = path;
+  // The roll: the plies' roll-width scene key, given in [laminate], is also the cut drawing's.
+  const Options ls(laminate.scene, drape_options());
+  if (ls.given("roll-width")) {
+    auto roll =
+        ls.number_in("roll-width", Range{0.0, std::numeric_limits<double>::infinity(), true});
+    if (!roll) return in_section(roll.error(), laminate.origin);
+    lam.roll_width = *roll;
+  }
   const Options lo(laminate.own, laminate_keys());
-  auto roll = lo.number_in("roll-width", Range{0.0, std::numeric_limits<double>::infinity(), true});
-  if (!roll) return in_section(roll.error(), laminate.origin);
-  lam.roll_width = *roll;
+  auto stagger = lo.number("splice-stagger");
+  if (!stagger) return in_section(stagger.error(), laminate.origin);
+  if (!(*stagger >= 0.0))
+    return in_section(Error{ErrorCode::kSpliceStaggerNegative, "splice-stagger", {*stagger}},
+                      laminate.origin);
+  lam.splice_stagger = *stagger;
   std::set<long> taken;
   long previous = 0;
   for (const Section& s : plies) {

@@ -1,8 +1,8 @@
 #pragma once
-// Laminate files (plyfit laminate): a [laminate] section (the mold, the rosette, the roll width
-// and any scene key as the plies' default) and one [ply NAME] section per ply in stacking order
-// (sequence, angle and any scene key that differs). A ply is the laminate's keys overridden by
-// its section's: one set of raw values per ply, read by make_job like a scene file's.
+// Laminate files (plyfit laminate): a [laminate] section (the mold, the rosette, the roll width,
+// the seams' stagger and any scene key as the plies' default) and one [ply NAME] section per ply in
+// stacking order (sequence, angle and any scene key that differs). A ply is the laminate's keys
+// overridden by its section's: one set of raw values per ply, read by make_job like a scene file's.
 
 #include "commands/command_line.hpp"
 
@@ -11,8 +11,8 @@
 
 namespace plyfit::cli {
 
-/// The keys a laminate file has besides the scene keys: roll-width in [laminate], sequence and
-/// angle in a [ply NAME] section.
+/// The keys a laminate file has besides the scene keys: splice-stagger in [laminate], sequence
+/// in a [ply NAME] section, angle in either.
 const OptionTable& laminate_keys();
 
 /// One ply of a laminate: its name, its place in the stack and its scene (raw values).
@@ -25,7 +25,8 @@ struct LaminatePly {
 /// A laminate file read: its plies in stacking order (by sequence).
 struct Laminate {
   std::string path;
-  double roll_width = 0.0;  ///< mm, the cut drawing's roll
+  double roll_width = 1000.0;   ///< mm, the cut drawing's roll ([laminate] roll-width)
+  double splice_stagger = 0.0;  ///< mm, between seams of plies of one fibre direction
   std::vector<LaminatePly> plies;
 };
 

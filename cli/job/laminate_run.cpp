@@ -5,6 +5,10 @@
 
 #include "commands/commands.hpp"
 
+#include <plyfit/exporters/laminate.hpp>
+
+#include <cmath>
+#include <condition_variable>
 #include <exception>
 #include <map>
 #include <memory>
@@ -48,6 +52,8 @@ std::vector<PlyRun> make_jobs(const Laminate& laminate) {
     auto job = make_job(p.raw);
     if (job) {
       job->name_input = ply_namer(p);
+      // Pieces are cut to fit the cut drawing's roll, which keeps a margin at each edge.
+      if (job->roll_width) *job->roll_width *= 1.0 - 2.0 * exporters::kCutGapRel;
       r.job = std::move(job).value();
     } else {
       fail(r, job.error());
@@ -81,6 +87,52 @@ std::vector<std::shared_ptr<const LoadedSurface>> load_surfaces(std::vector<PlyR
   return of_ply;
 }
 
+// Fibre directions (ply angles) closer than this mod 180 degrees are one direction, whose
+// plies' seams are staggered.
+constexpr double kSameFibreDeg = 0.5;
+
+// The seams of the plies laid so far, for the stagger: a ply's seams keep apart from those of
+// the plies of its fibre direction below it, so it waits for them (they were taken before it,
+// and wait only for plies below them).
+class SeamBoard {
+ public:
+  SeamBoard(const std::vector<PlyRun>& runs, double distance)
+      : done_(runs.size(), false), seams_(runs.size()), distance_(distance) {
+    for (const PlyRun& r : runs) angle_.push_back(r.job ? r.job->ply_angle_deg : 0.0);
+  }
+  // What ply k's seams keep apart from: the seams of the plies below it of its direction.
+  SpliceStagger below(std::size_t k) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    SpliceStagger st;
+    st.distance = distance_;
+    for (std::size_t j = 0; j < k; ++j) {
+      if (std::abs(std::remainder(angle_[j] - angle_[k], 180.0)) > kSameFibreDeg) continue;
+      changed_.wait(lock, [&] { return done_[j]; });
+      st.seams.insert(st.seams.end(), seams_[j].begin(), seams_[j].end());
+    }
+    return st;
+  }
+  // Ply k is done (whatever became of it): its seams, if it was split.
+  void publish(std::size_t k, const PlyRun& r) {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      if (r.outcome.splices)
+        for (const Seam& s : r.outcome.splices->seams)
+          for (const auto& line : s.polylines) seams_[k].push_back(line);
+      done_[k] = true;
+    }
+    changed_.notify_all();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  std::vector<bool> done_;
+  std::vector<std::vector<std::vector<Vec3>>> seams_;
+  std::vector<double> angle_;
+  double distance_;
+};
+
 // One ply's drape; an exception (a bug) fails the ply, not the laminate.
 void drape_one(PlyRun& r, const LoadedSurface& surface, const std::atomic<bool>* cancel) {
   r.ran = true;
@@ -109,12 +161,18 @@ std::vector<PlyRun> drape_plies(const Laminate& laminate, int jobs, const std::a
                                 const std::function<void(const PlyRun&)>& on_done) {
   std::vector<PlyRun> runs = make_jobs(laminate);
   const auto surfaces = load_surfaces(runs);
+  SeamBoard board(runs, laminate.splice_stagger);
+  if (laminate.splice_stagger > 0.0)
+    for (std::size_t k = 0; k < runs.size(); ++k)
+      if (runs[k].job && runs[k].job->roll_width)
+        runs[k].job->stagger = [&board, k] { return board.below(k); };
   std::mutex done_mutex;
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
     for (std::size_t k = next++; k < runs.size(); k = next++) {
       if (surfaces[k] && !(cancel && cancel->load())) drape_one(runs[k], *surfaces[k], cancel);
       if (!runs[k].ran && surfaces[k]) runs[k].outcome.status = "cancelled";
+      board.publish(k, runs[k]);
       const std::lock_guard<std::mutex> lock(done_mutex);
       if (on_done) on_done(runs[k]);
     }

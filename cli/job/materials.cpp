@@ -15,7 +15,7 @@ extern const char* const kBuiltinMaterialsText;
 namespace {
 
 /// The keys a material takes, as the unknown-key error lists them.
-constexpr const char* kMaterialKeys = "label, warning, limit";
+constexpr const char* kMaterialKeys = "label, warning, limit, roll-width";
 
 /// Which angles a material's section gave, and where the section starts.
 struct Seen {
@@ -69,6 +69,13 @@ Status set_key(const IniLine& l, MaterialTable& table, std::vector<Seen>& seen) 
     if (!x) return x.error();
     (l.key == "warning" ? m.warning_deg : m.limit_deg) = *x;
     (l.key == "warning" ? s.warning : s.limit) = true;
+  } else if (l.key == "roll-width") {
+    char* end = nullptr;
+    const double x = std::strtod(l.value.c_str(), &end);
+    if (l.value.empty() || end != l.value.c_str() + l.value.size() || !std::isfinite(x) ||
+        !(x > 0.0))
+      return Error{ErrorCode::kMaterialRollWidth, "", {m.name, l.value}};
+    m.roll_width = x;
   } else {
     return Error{ErrorCode::kUnknownKey, "", {l.key, m.name, std::string(kMaterialKeys)}};
   }

@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 #include <chrono>
+#include <cmath>
 #include <iostream>
 
 namespace plyfit::cli {
@@ -84,6 +85,30 @@ JobOutcome outcome_of(const DrapeJob& job, const MoldSurface& surface, const Dra
   return out;
 }
 
+// The pieces of the flat pattern on the job's roll (none without a roll width), their seams
+// kept from the other plies' seams the job is given, a warning when they could not be.
+Result<std::shared_ptr<const SplicePlan>> splice_job(const DrapeJob& job, DrapeResult& res,
+                                                     const FlatPattern& flat) {
+  if (!job.roll_width) return std::shared_ptr<const SplicePlan>();
+  SpliceOptions so;
+  so.roll_width = *job.roll_width;
+  so.overlap = job.splice_overlap;
+  so.ply_name = job.ply_name;
+  if (job.stagger) {
+    SpliceStagger st = job.stagger();
+    so.avoid = std::move(st.seams);
+    so.stagger = st.distance;
+  }
+  auto plan = splice_pattern(flat, res, so);
+  if (!plan) return plan.error();
+  if (!plan->stagger_met) {
+    double nearest = INFINITY;
+    for (const Seam& s : plan->seams) nearest = std::min(nearest, s.stagger_distance);
+    res.warnings.push_back({WarningCode::kSpliceStaggerUnmet, {so.stagger, nearest}});
+  }
+  return std::make_shared<const SplicePlan>(std::move(plan).value());
+}
+
 }  // namespace
 
 Result<LoadedSurface> load_job_surface(const DrapeJob& job) {
@@ -126,6 +151,8 @@ Result<JobOutcome> run_job_on(const DrapeJob& job, const LoadedSurface& loaded,
   FlatPatternOptions fo;
   fo.min_width = job.min_width;
   const FlatPattern flat = flat_pattern(surface, *res, fo);
+  auto splices = splice_job(job, *res, flat);
+  if (!splices) return splices.error();
   run.total_ms = run.import_ms + ms_since(t0);
   exporters::ExportOptions eo = export_options(job);
   auto ply = ply_report(job, surface, *res);
@@ -133,12 +160,14 @@ Result<JobOutcome> run_job_on(const DrapeJob& job, const LoadedSurface& loaded,
   eo.ply = *ply;
   eo.ply->boundary = bounded->report;
   eo.ply_angle_deg = ply->laid_angle_deg;  // the label says what the drape laid
-  const exporters::ExportContext ctx{*problem, *res, surface, &flat, run, eo};
+  exporters::ExportContext ctx{*problem, *res, surface, &flat, run, eo};
+  ctx.splices = *splices && (*splices)->split() ? splices->get() : nullptr;
   if (!job.outdir.empty())
     if (auto s = exporters::write_outputs(ctx, job.outdir, job.outputs); !s) return s.error();
   JobOutcome out = outcome_of(job, surface, *res, flat);
   out.mold_warnings = run.warnings;
   out.cut = flat.cut;
+  out.splices = *splices;
   out.total_ms = run.import_ms + ms_since(t0);
   return out;
 }

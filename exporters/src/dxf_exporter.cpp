@@ -5,6 +5,9 @@
 //               (FlatPattern::cut: the exact outline without slivers and notches narrower
 //               than the minimum width; the exact outline is in report.json)
 //   HOLES       closed LWPOLYLINEs: its inner loops (holes), clockwise
+//   PIECE_<name> a flat pattern split for the roll (--roll-width): instead of OUTLINE and
+//               HOLES, each piece's loops on a layer of its own, with its name and grain arrow
+//   SEAMS       LINEs: the seams between the pieces (warp lines x = s clipped to the outline)
 //   THREADS     LINEs: the warp (x = i d_weft) and weft (y = j d_warp) grid lines clipped to
 //               the outline (even-odd over all loops); only when ExportOptions::dxf_threads
 //               (otherwise the layer is not in the file at all)
@@ -33,6 +36,7 @@
 
 #include <plyfit/exporters/exporters.hpp>
 #include <plyfit/kernel/flat_pattern.hpp>
+#include <plyfit/kernel/splice.hpp>
 
 #include "dxf/document.hpp"
 #include "dxf/labels.hpp"
@@ -52,6 +56,11 @@ namespace {
 using detail::Box2;
 using render::degrees_text;
 using render::fixed_text;
+
+// A pattern split for the roll: each piece's layer is this and its name; the seams' layer.
+constexpr const char* kPiecePrefix = "PIECE_";
+constexpr const char* kSeamsLayer = "SEAMS";
+constexpr int kSeamsColour = 6;  // magenta
 
 // What the drawing covers: the outline, the mapped nodes and the start, and its extent (at
 // least one thread spacing).
@@ -168,12 +177,47 @@ std::vector<std::string> label_lines(const ExportContext& ctx) {
   };
 }
 
+// The layers of a pattern split for the roll: flat.dxf's, SEAMS and one per piece.
+std::vector<dxf::Layer> piece_layers(const SplicePlan& plan, bool threads) {
+  std::vector<dxf::Layer> layers;
+  for (const auto& l : dxf::kLayers)
+    if (threads || std::string(l.name) != dxf::kThreadsLayer) layers.push_back({l.name, l.colour});
+  layers.push_back({kSeamsLayer, kSeamsColour});
+  for (const SplicePiece& p : plan.pieces) layers.push_back({kPiecePrefix + p.name, 7});
+  return layers;
+}
+
+// Each piece on its own layer, labelled with its name beside its grain arrow, and the seams
+// (the warp lines where pieces meet) on SEAMS.
+void add_pieces(dxf::Writer& e, const SplicePlan& plan, const std::vector<OutlineLoop>& loops,
+                double extent, const Vec2& lo) {
+  for (const SplicePiece& p : plan.pieces) {
+    const std::string layer = kPiecePrefix + p.name;
+    for (const auto& l : p.loops) e.polyline(layer.c_str(), l.points, true);
+    const std::vector<std::string> lines = {"PIECE: " + p.name};
+    const render::BlockShape shape = dxf::label_shape(lines);
+    const render::BlockPlace place =
+        render::place_block(p.loops, shape, extent, render::label_text_height(extent), lo);
+    dxf::add_labels(e, lines, shape, place, layer.c_str(), layer.c_str());
+  }
+  for (const Seam& s : plan.seams)
+    for (const auto& [a, b] : clip_line(loops, 0, s.x))
+      e.line(kSeamsLayer, Vec2(s.x, a), Vec2(s.x, b));
+}
+
 std::string build_dxf(const ExportContext& ctx) {
   const std::vector<OutlineLoop> no_loops;
   const std::vector<OutlineLoop>& loops = ctx.flat ? ctx.flat->cut : no_loops;
   Extents ext = drawing_extents(ctx.result, ctx.problem.ply, loops);
-  dxf::Writer e;  // the entities first: their handles set $HANDSEED
-  add_outline(e, loops);
+  std::vector<dxf::Layer> layers;
+  if (ctx.splices) layers = piece_layers(*ctx.splices, ctx.options.dxf_threads);
+  // The entities first: their handles set $HANDSEED.
+  dxf::Writer e(layers.empty() ? static_cast<unsigned>(dxf::kFirstEntityHandle)
+                               : dxf::first_entity_handle(layers));
+  if (ctx.splices)
+    add_pieces(e, *ctx.splices, loops, ext.extent, ext.box.lo);
+  else
+    add_outline(e, loops);
   if (ctx.options.dxf_threads && !loops.empty())
     add_thread_grid(e, loops, ctx.problem.ply, ext.box);
   const std::vector<Vec2> path = base_path_points(ctx.result);
@@ -188,7 +232,7 @@ std::string build_dxf(const ExportContext& ctx) {
   ext.box.add(place.top_left);
   ext.box.add(place.top_left + Vec2(shape.width_at(place.h), -shape.height_at(place.h)));
   if (ext.box.empty()) ext.box.add(Vec2::Zero());
-  return dxf::document(e, {ext.box.lo, ext.box.hi, place.h, ctx.options.dxf_threads, {}});
+  return dxf::document(e, {ext.box.lo, ext.box.hi, place.h, ctx.options.dxf_threads, layers});
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <plyfit/exporters/exporters.hpp>
 #include <plyfit/exporters/messages.hpp>
 #include <plyfit/kernel/flat_pattern.hpp>
+#include <plyfit/kernel/splice.hpp>
 
 #include "net_util.hpp"
 #include "plugins.hpp"
@@ -273,6 +274,47 @@ void add_flat_outline(nlohmann::json& j, const FlatPattern& fp) {
       {"area", fp.area}, {"perimeter", fp.perimeter}, {"loops", loops_json(fp.outline)}};
 }
 
+// The pieces of a pattern split for the roll, and the seams between them.
+void add_splices(nlohmann::json& j, const SplicePlan& plan) {
+  nlohmann::json pieces = nlohmann::json::array();
+  for (std::size_t k = 0; k < plan.pieces.size(); ++k) {
+    const SplicePiece& p = plan.pieces[k];
+    nlohmann::json counts = nlohmann::json::array(), seams = nlohmann::json::array();
+    for (const auto& l : p.loops) counts.push_back(l.points.size());
+    if (k > 0) seams.push_back(plan.seams[k - 1].x);
+    if (k < plan.seams.size()) seams.push_back(plan.seams[k].x);
+    pieces.push_back({{"name", p.name},
+                      {"area", p.area},
+                      {"width", p.width()},
+                      {"x_min", p.x_min},
+                      {"x_max", p.x_max},
+                      {"seams_x", seams},
+                      {"loop_points", counts},
+                      {"loops", loops_json(p.loops)}});
+  }
+  nlohmann::json seams = nlohmann::json::array();
+  for (const Seam& s : plan.seams) {
+    nlohmann::json lines = nlohmann::json::array();
+    for (const auto& l : s.polylines) lines.push_back(vecs(l));
+    seams.push_back(
+        {{"x", s.x},
+         {"length", s.length},
+         {"length_3d", s.length3d},
+         {"shear_max_deg", s.shear_max * kRadToDeg},
+         {"shear_mean_deg", s.shear_mean * kRadToDeg},
+         {"stagger_distance",
+          s.stagger_distance < 0 ? nlohmann::json(nullptr) : nlohmann::json(s.stagger_distance)},
+         {"polylines", lines}});
+  }
+  j["pieces"] = pieces;
+  j["splices"] = {{"roll_width", plan.roll_width},
+                  {"overlap", plan.overlap},
+                  {"stagger", plan.stagger},
+                  {"stagger_met", plan.stagger_met},
+                  {"pattern_width", plan.pattern_width},
+                  {"seams", seams}};
+}
+
 }  // namespace
 
 std::string report_json(const ExportContext& ctx) {
@@ -291,6 +333,7 @@ std::string report_json(const ExportContext& ctx) {
   j["nodes"] = nodes_json(r.metrics);
   add_metrics(j, r.metrics, std::min(ctx.problem.ply.d_weft, ctx.problem.ply.d_warp));
   if (ctx.flat) add_flat_outline(j, *ctx.flat);
+  if (ctx.splices) add_splices(j, *ctx.splices);
   j["memory_bytes_per_node"] = r.bytes_per_node();
   j["timing_ms"] = {
       {"import", ctx.run.import_ms}, {"drape", ctx.run.drape_ms}, {"total", ctx.run.total_ms}};

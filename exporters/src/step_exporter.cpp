@@ -6,7 +6,8 @@
 // set without curves is left out. With a flat pattern, the 3D ply boundary follows (the exact
 // outline's loops on the mold, OutlineLoop::points3d, e.g. for laser projection): the outer
 // loops as closed polylines in the set `ply_boundary`, each hole as a closed polyline in its
-// own set `ply_hole_N` (N = 1, 2, ... in outline order) (boundary_sets()).
+// own set `ply_hole_N` (N = 1, 2, ... in outline order) (boundary_sets()). A pattern split for
+// the roll adds its seams on the part as open polylines in the set `splice_seams`.
 //
 // Curves are the kernel's: polyline_curve() (degree 1, through the nodes) by default, or
 // interpolate_cubic() for ExportOptions::curve_degree 3; a run the cubic interpolation rejects
@@ -18,6 +19,7 @@
 #include <plyfit/exporters/step_curves.hpp>
 #include <plyfit/kernel/flat_pattern.hpp>
 #include <plyfit/kernel/nurbs.hpp>
+#include <plyfit/kernel/splice.hpp>
 
 #include "plugins.hpp"
 
@@ -100,6 +102,15 @@ Result<std::vector<StepCurveSet>> net_curve_sets(const ExportContext& ctx) {
     auto boundary = boundary_sets(*ctx.flat);
     if (!boundary) return boundary.error();
     for (auto& set : *boundary) sets.push_back(std::move(set));
+  }
+  if (ctx.splices) {  // the seams between the pieces, on the part: open polylines
+    std::vector<std::vector<Vec3>> seams;
+    for (const Seam& seam : ctx.splices->seams)
+      for (const auto& line : seam.polylines)
+        if (line.size() >= 2) seams.push_back(line);
+    auto set = polyline_set("splice_seams", seams, false);
+    if (!set) return Error{ErrorCode::kCurveSetNotBuilt}.because(set.error());
+    sets.push_back(std::move(set).value());
   }
   if (ctx.options.ply && ctx.options.ply->boundary) {  // the boundary as given, on the mold
     auto set = polyline_set("boundary_curves", ctx.options.ply->boundary->loops, true);

@@ -143,13 +143,14 @@ TEST_CASE("cli laminate: a bad laminate file is one error line with its code, no
       {"[ply A]\n[ply A]\n", "ply_repeated"},
       {"[ply a/b]\n", "ply_name_invalid"},
       {"[ply A]\nsequence = 1\n[ply B]\nsequence = 1\n", "sequence_repeated"},
-      {"[ply A]\nroll-width = 10\n", "key_not_in_laminate"},
+      {"[ply A]\nsplice-stagger = 10\n", "key_not_in_laminate"},
       {"[laminate]\nsequence = 3\n[ply A]\n", "key_not_in_laminate"},
       {"[ply A]\noutput = x\n", "key_not_in_laminate"},
       {"[ply A]\nply-angle = 45\n", "key_not_in_laminate"},
       {"[ply A]\nspacingg = 1\n", "unknown_key"},
       {"[laminate]\nroll-width = 0\n[ply A]\n", "out_of_range"},
       {"[ply A]\nsequence = x\n", "not_a_number"},
+      {"[laminate]\nsplice-stagger = -1\n[ply A]\n", "splice_stagger_negative"},
       {"[ply A]\nsequence = 1.5\n", "not_an_integer"},
   };
   for (const auto& [text, code] : cases) {
@@ -168,10 +169,13 @@ TEST_CASE("cli laminate: a bad laminate file is one error line with its code, no
 
 TEST_CASE("cli laminate: a piece wider than the roll is left out of cut.dxf, and said so") {
   // The octant's pieces are 31.4 (D, 90 deg), 31.5 (C), 32.0 (A) and 32.3 mm (B) wide; the roll
-  // keeps 1 % of its width free at each edge: 0.98 x 32.4 = 31.75 mm takes D and C only.
+  // keeps 1 % of its width free at each edge: 0.98 x 32.4 = 31.75 mm takes D and C only. A and
+  // B are given a roll of their own wide enough not to be spliced (docs/splices.md).
   Scratch s("laminate_roll");
   std::string text = laminate_text();
   text.replace(text.find("roll-width = 200"), 16, "roll-width = 32.4");
+  for (const char* ply : {"[ply A]\n", "[ply B]\n"})
+    text.insert(text.find(ply) + std::string(ply).size(), "roll-width = 1000\n");
   spit(s.file("lam.ini"), text);
   const CliRun r = plyfit_run("laminate lam.ini -o out --quiet", s, s.path.string());
   CHECK(r.code == 1);

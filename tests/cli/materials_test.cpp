@@ -190,12 +190,15 @@ TEST_CASE(
     INFO(n);
     const auto row = table_row(doc, "`" + n + "`");
     REQUIRE(row);
-    REQUIRE(row->size() == 4);
-    const std::string entry = table.substr(table.find("[" + n + "]"));
+    REQUIRE(row->size() == 5);
+    std::string entry = table.substr(table.find("[" + n + "]"));
+    entry = entry.substr(0, entry.find("\n[", 1));  // this section alone
     CHECK((*row)[1].find(dumped(entry, "label")) != std::string::npos);
     CHECK((*row)[2] == dumped(entry, "warning") + "°");
     const std::string limit = dumped(entry, "limit");
     CHECK((*row)[3] == (limit == "none" ? limit : limit + "°"));
+    const std::string roll = dumped(entry, "roll-width");
+    CHECK((*row)[4] == (roll == "<absent>" ? "none" : roll + " mm"));
   }
   // The scene example is samples/sphere-octant-a.ini, verbatim.
   const std::string sample = source_file("samples/sphere-octant-a.ini");

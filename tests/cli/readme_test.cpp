@@ -347,7 +347,13 @@ TEST_CASE("cli: docs/report-json.md lists every field of report.json, and no oth
                      "' --outputs json -o '" + s.file("bounded") + "'",
                  s);
   REQUIRE(bounded.code == 0);
-  for (const char* dir : {"face", "shell", "bounded"})
+  // And a ply split for its roll (pieces, splices): the sample on the cylinder sector.
+  const CliRun spliced =
+      plyfit_run("drape '" + std::string(PLYFIT_SOURCE_DIR) +
+                     "/samples/cylinder-spliced.ini' --outputs json -o '" + s.file("spliced") + "'",
+                 s);
+  REQUIRE(spliced.code == 0);
+  for (const char* dir : {"face", "shell", "bounded", "spliced"})
     field_paths(nlohmann::json::parse(slurp(s.file(std::string(dir) + "/report.json"))), "",
                 fields);
   REQUIRE(fields.size() >= 100);

@@ -9,7 +9,10 @@ own DIR/<ply>/flat.dxf, reading them with ezdxf:
   (not turned: the grain is kept), their area (outer minus holes) the ply book's flat area;
 - the plies' boxes lie inside the roll and no two overlap;
 - each ply is labelled on its layer: its name, angle and material, and the grain arrow
-  ("WARP" and three lines).
+  ("WARP" and three lines);
+- a ply split for its roll (plybook.json `pieces`) is its pieces instead, each a part as above
+  on a layer named after it, its loops flat.dxf's PIECE_<name> loops moved, its area the
+  piece's, its label "PIECE: <name> (PLY <ply>, SEQ n)".
 
 usage: check_cut_dxf.py DIR
 """
@@ -48,11 +51,13 @@ def box(loops):
     return min(xs), min(ys), max(xs), max(ys)
 
 
-def check_ply(msp, d, ply, problems):
-    name = ply["name"]
+def check_part(msp, d, ply, part, problems):
+    """A part on the roll: a whole ply (part None) or a piece of a ply split for its roll."""
+    name = part["name"] if part else ply["name"]
     cut = loops_on(msp, {name})
-    flat = loops_on(ezdxf.readfile(os.path.join(d, name, "flat.dxf")).modelspace(),
-                    {"OUTLINE", "HOLES"})
+    flat_layers = {"PIECE_" + name} if part else {"OUTLINE", "HOLES"}
+    flat = loops_on(ezdxf.readfile(os.path.join(d, ply["name"], "flat.dxf")).modelspace(),
+                    flat_layers)
     if len(cut) != len(flat) or not cut:
         problems.append(f"{name}: {len(cut)} loops in cut.dxf, {len(flat)} in flat.dxf")
         return None
@@ -66,13 +71,15 @@ def check_ply(msp, d, ply, problems):
             problems.append(f"{name}: a loop is not flat.dxf's moved by one offset (turned?)")
             return None
     a = sum(area(l) for l in cut)
-    if abs(a - ply["flat_area_mm2"]) > AREA_REL * ply["flat_area_mm2"]:
-        problems.append(f"{name}: area {a} against the ply book's {ply['flat_area_mm2']}")
+    want = part["area_mm2"] if part else ply["flat_area_mm2"]
+    if abs(a - want) > AREA_REL * want:
+        problems.append(f"{name}: area {a} against the ply book's {want}")
     texts = [t.dxf.text for t in msp.query("TEXT") if t.dxf.layer == name]
     angle = f"{ply['angle_deg']:.2f}".rstrip("0").rstrip(".")
     if angle == "-0":
         angle = "0"
-    for want in (f"PLY: {name} ", "ANGLE: " + angle, "MATERIAL: " + ply["material"], "WARP"):
+    first = f"PIECE: {name} (PLY {ply['name']}, " if part else f"PLY: {name} "
+    for want in (first, "ANGLE: " + angle, "MATERIAL: " + ply["material"], "WARP"):
         if not any(t.startswith(want) for t in texts):
             problems.append(f"{name}: no label starting {want!r} (has {texts})")
     lines = [e for e in msp.query("LINE") if e.dxf.layer == name]
@@ -90,16 +97,17 @@ def main():
     w = book["roll_width_mm"]
     drawn = [p for p in book["plies"] if p["status"] in ("ok", "partial")]
     layers = {l.dxf.name for l in doc.layers} - {"0", "Defpoints"}
-    if layers != {"ROLL"} | {p["name"] for p in drawn}:
+    parts = [(p, q) for p in drawn for q in (p.get("pieces") or [None])]
+    if layers != {"ROLL"} | {q["name"] if q else p["name"] for p, q in parts}:
         problems.append(f"layers {sorted(layers)}")
     edges = sorted(round(e.dxf.start[0], 9) for e in msp.query("LINE") if e.dxf.layer == "ROLL")
     if edges != [0.0, round(w, 9)]:
         problems.append(f"roll edges at x = {edges}, not 0 and {w}")
     boxes = {}
-    for p in drawn:
-        b = check_ply(msp, d, p, problems)
+    for p, q in parts:
+        b = check_part(msp, d, p, q, problems)
         if b:
-            boxes[p["name"]] = b
+            boxes[q["name"] if q else p["name"]] = b
     for n, (x0, y0, x1, y1) in boxes.items():
         if x0 < 0 or x1 > w or y0 < 0:
             problems.append(f"{n}: box {x0, y0, x1, y1} outside the roll [0, {w}]")

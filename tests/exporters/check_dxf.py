@@ -17,7 +17,9 @@ DIR/report.json, as a cutter or nesting program would use it:
 - the degree sign is a real character: the file declares $DWGCODEPAGE ANSI_1252, its bytes
   hold 0xB0 (the sign in cp1252), ezdxf decodes the PLY ANGLE and SHEAR labels to U+00B0,
   and no AutoCAD %%d code is left; the PLY ANGLE label shows inputs.ply_angle_deg;
-- SHEAR_WARN closed polylines present or absent as expected.
+- SHEAR_WARN closed polylines present or absent as expected;
+- a ply split for the roll (report.json `pieces`): OUTLINE and HOLES empty, each piece's loops
+  on PIECE_<name> with the piece's area, its label inside it, its seams on SEAMS.
 
 usage: check_dxf.py DIR --shear-warn yes|no [--threads yes|no]
 """
@@ -124,6 +126,59 @@ def text_box(e):
     return p.x, p.y, p.x + n * h, p.y + h
 
 
+def outline_loops(msp, report, check):
+    """OUTLINE (counter-clockwise) and HOLES (clockwise) loops, counted against report.json."""
+    loops = []
+    outer = holes = 0
+    for layer, sign in (("OUTLINE", 1), ("HOLES", -1)):
+        for e in msp.query("*[layer=='%s']" % layer):
+            check(e.dxftype() == "LWPOLYLINE", "%s holds a %s" % (layer, e.dxftype()))
+            if e.dxftype() != "LWPOLYLINE":
+                continue
+            check(e.closed, "%s polyline not closed" % layer)
+            pts = [(p[0], p[1]) for p in e.get_points("xy")]
+            check(signed_area(pts) * sign > 0, "%s loop runs the wrong way (area %r)" % (layer, signed_area(pts)))
+            loops.append(pts)
+            outer += sign > 0
+            holes += sign < 0
+    report_loops = report["flat_outline"]["loops"]
+    check(outer == sum(1 for l in report_loops if not l["hole"]),
+          "%d OUTLINE loops, report.json has %d outer loops" % (outer, sum(1 for l in report_loops if not l["hole"])))
+    check(holes == sum(1 for l in report_loops if l["hole"]),
+          "%d HOLES loops, report.json has %d holes" % (holes, sum(1 for l in report_loops if l["hole"])))
+    return loops
+
+
+def check_pieces(msp, names, report, check):
+    """A ply split for the roll: each piece's closed loops on PIECE_<name> with the piece's
+    area, its label inside it, and a SEAMS line per seam."""
+    for piece in report["pieces"]:
+        layer = "PIECE_" + piece["name"]
+        check(layer in names, "layer %s missing" % layer)
+        plines = [e for e in msp.query("LWPOLYLINE") if e.dxf.layer == layer]
+        check(len(plines) == len(piece["loops"]),
+              "%s: %d loops, report.json %d" % (layer, len(plines), len(piece["loops"])))
+        ploops = [[(p[0], p[1]) for p in e.get_points("xy")] for e in plines]
+        for e in plines:
+            check(e.closed, "%s polyline not closed" % layer)
+        total = sum(signed_area(p) for p in ploops)
+        check(abs(total - piece["area"]) <= AREA_REL * piece["area"],
+              "%s area %.17g, report.json %.17g" % (layer, total, piece["area"]))
+        texts = [e for e in msp.query("TEXT") if e.dxf.layer == layer]
+        check(any(decoded(t.dxf.text) == "PIECE: " + piece["name"] for t in texts),
+              "%s: no label PIECE: %s" % (layer, piece["name"]))
+        for t in texts:
+            p = t.dxf.insert
+            check(inside(ploops, p.x, p.y), "%s label outside the piece" % layer)
+    seams = [e for e in msp.query("LINE") if e.dxf.layer == "SEAMS"]
+    check(len(seams) >= len(report["splices"]["seams"]),
+          "%d SEAMS lines for %d seams" % (len(seams), len(report["splices"]["seams"])))
+    for e in seams:
+        x = e.dxf.start.x
+        check(any(abs(x - s["x"]) <= AREA_REL * max(1.0, abs(x)) for s in report["splices"]["seams"]),
+              "SEAMS line at x = %r is no seam of report.json" % x)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("dir")
@@ -158,24 +213,17 @@ def main():
     msp = doc.modelspace()
 
     # OUTLINE (counter-clockwise) and HOLES (clockwise): closed polylines, area against report.
-    loops = []
-    outer = holes = 0
-    for layer, sign in (("OUTLINE", 1), ("HOLES", -1)):
-        for e in msp.query("*[layer=='%s']" % layer):
-            check(e.dxftype() == "LWPOLYLINE", "%s holds a %s" % (layer, e.dxftype()))
-            if e.dxftype() != "LWPOLYLINE":
-                continue
-            check(e.closed, "%s polyline not closed" % layer)
-            pts = [(p[0], p[1]) for p in e.get_points("xy")]
-            check(signed_area(pts) * sign > 0, "%s loop runs the wrong way (area %r)" % (layer, signed_area(pts)))
-            loops.append(pts)
-            outer += sign > 0
-            holes += sign < 0
-    report_loops = report["flat_outline"]["loops"]
-    check(outer == sum(1 for l in report_loops if not l["hole"]),
-          "%d OUTLINE loops, report.json has %d outer loops" % (outer, sum(1 for l in report_loops if not l["hole"])))
-    check(holes == sum(1 for l in report_loops if l["hole"]),
-          "%d HOLES loops, report.json has %d holes" % (holes, sum(1 for l in report_loops if l["hole"])))
+    # A ply split for the roll has them empty and its pieces on layers of their own instead;
+    # the outline the other checks use is then report.json's cut outline.
+    pieces = report.get("pieces")
+    if pieces:
+        for layer in ("OUTLINE", "HOLES"):
+            check(not list(msp.query("*[layer=='%s']" % layer)),
+                  "%s holds entities, but the ply is cut as pieces" % layer)
+        check_pieces(msp, names, report, check)
+        loops = [[(p[0], p[1]) for p in l["points"]] for l in report["flat_outline"]["loops"]]
+    else:
+        loops = outline_loops(msp, report, check)
     expected = report["flat_outline"]["area"]
     total = sum(signed_area(p) for p in loops)
     check(expected > 0, "report.json's outline area is %r" % expected)
@@ -279,7 +327,10 @@ def main():
 
     return finish("check_dxf", path, failures,
                   "%d outline loops, %d holes, area %.12g, %d thread lines, %d shear-warning cells, "
-                  "%d labels inside" % (outer, holes, total, len(threads), len(warn), len(texts)))
+                  "%d labels inside%s" % (sum(signed_area(p) > 0 for p in loops),
+                                          sum(signed_area(p) < 0 for p in loops), total,
+                                          len(threads), len(warn), len(texts),
+                                          ", %d pieces" % len(pieces) if pieces else ""))
 
 
 if __name__ == "__main__":

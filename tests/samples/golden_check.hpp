@@ -91,6 +91,18 @@ inline bool has_boundary(const json& report) {
   return !report.at("ply").at("boundary").is_null();
 }
 
+/// The figures of a ply split for the roll (compared to kGoldenRel too): each piece's area and
+/// width, each seam's place; the golden's "pieces" holds their number (compared exactly).
+inline std::vector<std::string> splice_relative(const json& report) {
+  std::vector<std::string> out;
+  if (!report.contains("pieces")) return out;
+  for (std::size_t k = 0; k < report["pieces"].size(); ++k)
+    for (const char* f : {"area", "width"}) out.push_back("/pieces/" + std::to_string(k) + "/" + f);
+  for (std::size_t k = 0; k < report["splices"]["seams"].size(); ++k)
+    out.push_back("/splices/seams/" + std::to_string(k) + "/x");
+  return out;
+}
+
 /// The compared figures of a report, keyed by JSON pointer.
 inline json golden_of(const json& report) {
   json g = json::object();
@@ -98,6 +110,8 @@ inline json golden_of(const json& report) {
   for (const auto& p : kRelative) g[p] = report.at(json::json_pointer(p));
   if (has_boundary(report))
     for (const auto& p : kBoundaryRelative) g[p] = report.at(json::json_pointer(p));
+  if (report.contains("pieces")) g["pieces"] = report["pieces"].size();
+  for (const auto& p : splice_relative(report)) g[p] = report.at(json::json_pointer(p));
   return g;
 }
 
@@ -163,6 +177,14 @@ inline void check_goldens(const std::vector<fs::path>& scenes) {
     CHECK(has_boundary(report) == golden.contains(kBoundaryRelative.front()));
     if (has_boundary(report))
       relative.insert(relative.end(), kBoundaryRelative.begin(), kBoundaryRelative.end());
+    // A golden with pieces needs a report with as many, and the other way round.
+    CHECK(report.contains("pieces") == golden.contains("pieces"));
+    if (report.contains("pieces") && golden.contains("pieces")) {
+      CHECK(report["pieces"].size() == golden["pieces"].get<std::size_t>());
+      if (report["pieces"].size() != golden["pieces"].get<std::size_t>()) continue;
+    }
+    const auto spliced = splice_relative(report);
+    relative.insert(relative.end(), spliced.begin(), spliced.end());
     for (const auto& p : relative) {
       INFO(p);
       const double a = report.at(json::json_pointer(p)).get<double>();

@@ -4,7 +4,8 @@
 // nothing). Pieces go in stacking order onto shelves across the roll: a piece that does not fit
 // beside the last one on its shelf starts the next shelf above the tallest piece of this one.
 // Layers: ROLL (the roll's two edges), then one per ply, named after it, holding its outline,
-// holes, grain arrow and labels (name and sequence, angle, material).
+// holes, grain arrow and labels (name and sequence, angle, material). A ply split for its roll
+// is cut as its pieces, each a part of its own on a layer named after it (ply name + letter).
 
 #include <plyfit/exporters/laminate.hpp>
 
@@ -25,31 +26,56 @@ using detail::Box2;
 // The label text is at most this fraction of the piece's extent high.
 constexpr double kMaxTextRel = 1.0 / 20.0;
 constexpr const char* kRollLayer = "ROLL";
+// A part fits across the roll to within this fraction of its width: the rounding of its
+// coordinates (a piece spliced to the roll's width less the margins comes out that wide, to
+// the last digits).
+constexpr double kFitRel = 1e-9;
 // ACI colours the plies' layers cycle through (red, yellow, green, cyan, blue, magenta).
 constexpr int kPlyColours[] = {1, 2, 3, 4, 5, 6};
 
-// The pieces' places: shelves across the roll from x = gap to roll_width - gap.
-std::vector<CutPlace> shelf_pack(const Plybook& book, CutSheet& sheet) {
+// What is cut: a ply, or each piece of a ply split for the roll.
+struct Part {
+  std::size_t ply;
+  int piece;
+  const std::string& name;
+  const std::vector<OutlineLoop>& loops;
+};
+
+std::vector<Part> parts_of(const Plybook& book) {
+  std::vector<Part> parts;
+  for (std::size_t k = 0; k < book.plies.size(); ++k) {
+    const PlySheet& p = book.plies[k];
+    if (p.pieces.empty()) parts.push_back({k, -1, p.name, p.cut});
+    for (std::size_t i = 0; i < p.pieces.size(); ++i)
+      parts.push_back({k, static_cast<int>(i), p.pieces[i].name, p.pieces[i].loops});
+  }
+  return parts;
+}
+
+// The parts' places: shelves across the roll from x = gap to roll_width - gap.
+std::vector<CutPlace> shelf_pack(const Plybook& book, const std::vector<Part>& parts,
+                                 CutSheet& sheet) {
   const double w = book.roll_width, gap = kCutGapRel * w;
   std::vector<CutPlace> places;
   double x = gap, shelf_y = gap, shelf_h = 0.0;
-  for (std::size_t k = 0; k < book.plies.size(); ++k) {
-    const PlySheet& p = book.plies[k];
+  for (const Part& p : parts) {
     Box2 box;
-    box.add(p.cut);
+    box.add(p.loops);
     if (box.empty()) continue;
     const Vec2 size = box.size();
-    if (size.x() > w - 2.0 * gap) {
+    const double room = (w - 2.0 * gap) * (1.0 + kFitRel);
+    if (size.x() > room) {
       sheet.left_out.push_back(Error{ErrorCode::kPieceWiderThanRoll, p.name, {size.x(), w}});
       continue;
     }
-    if (x + size.x() > w - gap) {
+    if (x - gap + size.x() > room) {
       shelf_y += shelf_h + gap;
       x = gap;
       shelf_h = 0.0;
     }
     CutPlace c;
-    c.ply = k;
+    c.ply = p.ply;
+    c.piece = p.piece;
     c.lo = Vec2(x, shelf_y);
     c.hi = c.lo + size;
     c.offset = c.lo - box.lo;
@@ -68,28 +94,39 @@ std::vector<OutlineLoop> moved(const std::vector<OutlineLoop>& loops, const Vec2
   return out;
 }
 
-// A placed ply: its loops and its label block, all on its own layer.
+// The name of a placed part: its ply's, or its piece's.
+const std::string& part_name(const Plybook& book, const CutPlace& c) {
+  const PlySheet& p = book.plies[c.ply];
+  return c.piece < 0 ? p.name : p.pieces[static_cast<std::size_t>(c.piece)].name;
+}
+
+// A placed part: its loops and its label block, all on its own layer.
 void add_piece(dxf::Writer& e, const PlySheet& p, const CutPlace& c) {
-  const std::vector<OutlineLoop> loops = moved(p.cut, c.offset);
-  for (const auto& l : loops) e.polyline(p.name.c_str(), l.points, true);
+  const bool whole = c.piece < 0;
+  const std::string& name = whole ? p.name : p.pieces[static_cast<std::size_t>(c.piece)].name;
+  const std::vector<OutlineLoop> loops =
+      moved(whole ? p.cut : p.pieces[static_cast<std::size_t>(c.piece)].loops, c.offset);
+  for (const auto& l : loops) e.polyline(name.c_str(), l.points, true);
+  const std::string seq = std::to_string(p.sequence);
   const std::vector<std::string> lines = {
-      "PLY: " + p.name + " (SEQ " + std::to_string(p.sequence) + ")",
+      whole ? "PLY: " + p.name + " (SEQ " + seq + ")"
+            : "PIECE: " + name + " (PLY " + p.name + ", SEQ " + seq + ")",
       "ANGLE: " + render::degrees_text(p.angle_deg, 2), "MATERIAL: " + p.material};
   const render::BlockShape shape = dxf::label_shape(lines);
   const double extent = std::max(c.hi.x() - c.lo.x(), c.hi.y() - c.lo.y());
   const render::BlockPlace place =
       render::place_block(loops, shape, extent, kMaxTextRel * extent, c.lo);
-  dxf::add_labels(e, lines, shape, place, p.name.c_str(), p.name.c_str());
+  dxf::add_labels(e, lines, shape, place, name.c_str(), name.c_str());
 }
 
 }  // namespace
 
 CutSheet cut_sheet(const Plybook& book) {
   CutSheet sheet;
-  sheet.places = shelf_pack(book, sheet);
+  sheet.places = shelf_pack(book, parts_of(book), sheet);
   std::vector<dxf::Layer> layers = {{"0", 7}, {kRollLayer, 8}};
   for (std::size_t k = 0; k < sheet.places.size(); ++k)
-    layers.push_back({book.plies[sheet.places[k].ply].name,
+    layers.push_back({part_name(book, sheet.places[k]),
                       kPlyColours[k % (sizeof(kPlyColours) / sizeof(kPlyColours[0]))]});
   dxf::Writer e(dxf::first_entity_handle(layers));
   const double w = book.roll_width, len = std::max(sheet.length, kCutGapRel * w);

@@ -117,11 +117,41 @@ std::string ply_section(const PlySheet& p, std::size_t k, const std::string& dir
     o << "<p class=\"no-picture\">No picture: the ply was not draped, or its outputs leave out "
          "svg.</p>\n";
   o << "</div>\n";
+  if (!p.pieces.empty()) {
+    o << "<p class=\"pieces\">" << p.pieces.size() << " pieces for the roll:";
+    for (const auto& q : p.pieces)
+      o << " " << xml_escape(q.name) << " (" << fixed_text(q.width, 1) << " mm wide, "
+        << fixed_text(q.area, 1) << " mm&#178;)";
+    o << "</p>\n";
+  }
   for (const auto& w : p.warnings)
     o << "<p class=\"warning\">" << xml_escape(message(w)) << " [" << to_string(w.code)
       << "]</p>\n";
   o << "</section>\n";
   return o.str();
+}
+
+// A ply split for its roll: its pieces and its seams with the distances they keep.
+void add_pieces(nlohmann::json& j, const PlySheet& p) {
+  nlohmann::json pieces = nlohmann::json::array(), seams = nlohmann::json::array();
+  for (const auto& q : p.pieces)
+    pieces.push_back({{"name", q.name}, {"area_mm2", q.area}, {"width_mm", q.width}});
+  for (const auto& s : p.seams)
+    seams.push_back(
+        {{"x", s.x},
+         {"stagger_distance_mm",
+          s.stagger_distance < 0 ? nlohmann::json(nullptr) : nlohmann::json(s.stagger_distance)}});
+  j["pieces"] = pieces;
+  j["seams"] = seams;
+  j["splice_stagger_mm"] = p.splice_stagger;
+  j["stagger_met"] = p.stagger_met;
+}
+
+// The names of a ply's pieces, space-separated (empty: one piece).
+std::string piece_names(const PlySheet& p) {
+  std::string s;
+  for (const auto& q : p.pieces) s += (s.empty() ? "" : " ") + q.name;
+  return s;
 }
 
 }  // namespace
@@ -141,17 +171,19 @@ std::string plybook_json(const Plybook& book) {
       warnings.push_back({{"code", to_string(w.code)}, {"text", message(w)}});
     nlohmann::json files = nlohmann::json::array();
     for (const auto& f : p.files) files.push_back(p.name + "/" + f);
-    plies.push_back({{"sequence", p.sequence},
-                     {"name", p.name},
-                     {"angle_deg", p.angle_deg},
-                     {"material", p.material},
-                     {"status", p.status},
-                     {"error", p.error},
-                     {"error_code", p.error_code},
-                     {"flat_area_mm2", p.flat_area},
-                     {"shear_max_deg", p.shear_max_deg},
-                     {"warnings", warnings},
-                     {"files", files}});
+    nlohmann::json ply = {{"sequence", p.sequence},
+                          {"name", p.name},
+                          {"angle_deg", p.angle_deg},
+                          {"material", p.material},
+                          {"status", p.status},
+                          {"error", p.error},
+                          {"error_code", p.error_code},
+                          {"flat_area_mm2", p.flat_area},
+                          {"shear_max_deg", p.shear_max_deg},
+                          {"warnings", warnings},
+                          {"files", files}};
+    if (!p.pieces.empty()) add_pieces(ply, p);
+    plies.push_back(std::move(ply));
   }
   const nlohmann::json j = {{"laminate", book.laminate},
                             {"roll_width_mm", book.roll_width},
@@ -163,7 +195,7 @@ std::string plybook_json(const Plybook& book) {
 std::string plybook_csv(const Plybook& book) {
   std::ostringstream o;
   o << "sequence,name,angle_deg,material,status,flat_area_mm2,shear_max_deg,warnings,files,"
-       "error,error_code\n";
+       "error,error_code,pieces\n";
   for (const auto& p : book.plies) {
     std::string files;
     for (const auto& f : p.files) {
@@ -174,7 +206,8 @@ std::string plybook_csv(const Plybook& book) {
       << csv_field(p.material) << "," << p.status << ","
       << (drawn(p) ? render::exact_text(p.flat_area) : "") << ","
       << (drawn(p) ? render::exact_text(p.shear_max_deg) : "") << "," << csv_field(warning_codes(p))
-      << "," << csv_field(files) << "," << csv_field(p.error) << "," << p.error_code << "\n";
+      << "," << csv_field(files) << "," << csv_field(p.error) << "," << p.error_code << ","
+      << csv_field(piece_names(p)) << "\n";
   }
   return o.str();
 }

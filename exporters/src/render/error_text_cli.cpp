@@ -115,6 +115,11 @@ std::string text_material_angle_not_a_number(const Values& x) {
 
 PLYFIT_SENTENCE(text_material_angle_range, "material {q0}: {t1}: {t2} is not in [0, 90] degrees");
 
+std::string text_material_roll_width(const Values& x) {
+  return "material " + quoted(x, 0) + ": roll-width: " + quoted(x, 1) +
+         " is not a positive number of millimetres";
+}
+
 PLYFIT_SENTENCE(text_material_angle_missing, "material {q0} needs a {t1} angle");
 
 PLYFIT_SENTENCE(text_warning_above_limit,

@@ -5,6 +5,8 @@
 #include <boost/geometry/geometries/point_xy.hpp>
 #include <boost/geometry/geometries/polygon.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace plyfit {
@@ -98,6 +100,109 @@ Region2 unite_regions(const Region2& a, const Region2& b) {
 
 double region_area(const Region2& r) {
   return bg::area(to_multi(r));
+}
+
+}  // namespace plyfit
+
+namespace plyfit {
+
+namespace {
+
+// A chain of a loop inside a half-plane: from where it enters (or a vertex, for a loop that
+// never leaves) to where it leaves.
+struct Chain {
+  std::vector<ClipVertex> points;
+  double entry_y = 0.0, exit_y = 0.0;
+};
+
+// The loops of `in` clipped to the half-plane side * x <= side * c (side = 1: x <= c; -1:
+// x >= c). In the frame turned by 180 degrees for side -1 (orientation kept), the boundary
+// along the line runs up (+y): from each exit to the entry next above it.
+std::vector<std::vector<ClipVertex>> clip_half(const std::vector<std::vector<ClipVertex>>& in,
+                                               double c, double side) {
+  auto x_of = [&](const Vec2& p) { return side * p.x(); };
+  auto y_of = [&](const Vec2& p) { return side * p.y(); };
+  const double cc = side * c;
+  std::vector<std::vector<ClipVertex>> out;
+  std::vector<Chain> chains;
+  for (const auto& loop : in) {
+    const std::size_t n = loop.size();
+    std::size_t first_exit = n;
+    for (std::size_t k = 0; k < n && first_exit == n; ++k)
+      if (x_of(loop[k].p) <= cc && x_of(loop[(k + 1) % n].p) > cc) first_exit = k;
+    if (first_exit == n) {  // no exit: wholly inside or wholly outside
+      if (n > 0 && x_of(loop[0].p) <= cc) out.push_back(loop);
+      continue;
+    }
+    Chain chain;
+    bool inside = false;
+    for (std::size_t s = 2; s <= n + 1; ++s) {  // the edges after the first exit, round to it
+      const std::size_t k = (first_exit + s) % n;
+      const ClipVertex& a = loop[(k + n - 1) % n];
+      const ClipVertex& b = loop[k];
+      const bool a_in = x_of(a.p) <= cc, b_in = x_of(b.p) <= cc;
+      if (a_in != b_in) {
+        const double t = (cc - x_of(a.p)) / (x_of(b.p) - x_of(a.p));
+        ClipVertex v = a;  // on a's edge of the input: a's own edge and t compose linearly
+        v.p = a.p + t * (b.p - a.p);
+        v.p.x() = c;
+        const ClipVertex& next = b;
+        v.t = a.t + t * ((next.edge == a.edge && next.loop == a.loop ? next.t : 1.0) - a.t);
+        if (!a_in) {
+          chain = Chain{{v}, y_of(v.p), 0.0};
+          inside = true;
+        } else {
+          chain.points.push_back(v);
+          chain.exit_y = y_of(v.p);
+          // A chain that only touches the line (all its points one) is no boundary.
+          const bool touch = std::all_of(chain.points.begin(), chain.points.end(),
+                                         [&](const ClipVertex& q) { return q.p == v.p; });
+          if (!touch) chains.push_back(std::move(chain));
+          chain = Chain{};
+          inside = false;
+        }
+      }
+      if (b_in && inside && (b.p - chain.points.back().p).squaredNorm() > 0.0)
+        chain.points.push_back(b);
+    }
+  }
+  // Link each chain's exit to the entry next above it on the line.
+  std::vector<int> next(chains.size(), -1);
+  for (std::size_t a = 0; a < chains.size(); ++a) {
+    double best = INFINITY;
+    for (std::size_t b = 0; b < chains.size(); ++b)
+      if (chains[b].entry_y >= chains[a].exit_y && chains[b].entry_y < best) {
+        best = chains[b].entry_y;
+        next[a] = static_cast<int>(b);
+      }
+  }
+  std::vector<bool> used(chains.size(), false);
+  for (std::size_t a = 0; a < chains.size(); ++a) {
+    if (used[a]) continue;
+    std::vector<ClipVertex> loop;
+    for (int k = static_cast<int>(a); k >= 0 && !used[static_cast<std::size_t>(k)];
+         k = next[static_cast<std::size_t>(k)]) {
+      used[static_cast<std::size_t>(k)] = true;
+      for (const ClipVertex& v : chains[static_cast<std::size_t>(k)].points)
+        if (loop.empty() || (v.p - loop.back().p).squaredNorm() > 0.0) loop.push_back(v);
+    }
+    while (loop.size() > 1 && (loop.front().p - loop.back().p).squaredNorm() == 0.0)
+      loop.pop_back();
+    if (loop.size() >= 3) out.push_back(std::move(loop));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::vector<ClipVertex>> clip_to_slab(const Region2& loops, double lo, double hi) {
+  std::vector<std::vector<ClipVertex>> in;
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    std::vector<ClipVertex> loop;
+    for (std::size_t k = 0; k < loops[l].size(); ++k) loop.push_back({loops[l][k], l, k, 0.0});
+    in.push_back(std::move(loop));
+  }
+  return clip_half(clip_half(in, hi, 1.0), lo, -1.0);
 }
 
 }  // namespace plyfit

@@ -14,7 +14,8 @@
 
 namespace plyfit {
 struct FlatPattern;  // kernel/flat_pattern.hpp
-}
+struct SplicePlan;   // kernel/splice.hpp
+}  // namespace plyfit
 
 namespace plyfit::exporters {
 
@@ -90,6 +91,9 @@ struct ExportContext {
   const FlatPattern* flat;     ///< may be null
   const RunInfo& run;
   const ExportOptions& options;
+  /// The pieces and seams of a flat pattern split for the roll (SplicePlan::split()); null:
+  /// the pattern is one piece.
+  const SplicePlan* splices = nullptr;
 };
 
 /// A registered writer.

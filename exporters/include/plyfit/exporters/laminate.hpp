@@ -11,6 +11,20 @@
 
 namespace plyfit::exporters {
 
+/// A piece of a ply split for the roll (kernel SplicePiece), as the shop documents show it.
+struct PieceSheet {
+  std::string name;  ///< ply name + letter; its cut.dxf layer
+  double area = 0.0;
+  double width = 0.0;              ///< across the warp
+  std::vector<OutlineLoop> loops;  ///< ply coordinates
+};
+
+/// A seam between two pieces of a ply.
+struct SeamSheet {
+  double x = 0.0;                ///< ply coordinate across the warp
+  double stagger_distance = -1;  ///< to the nearest seam of the plies below of its direction
+};
+
 /// One ply of a laminate as its shop documents show it.
 struct PlySheet {
   long sequence = 0;
@@ -25,6 +39,12 @@ struct PlySheet {
   std::vector<Warning> warnings;
   std::vector<std::string> files;  ///< the files in its folder
   std::vector<OutlineLoop> cut;    ///< the cut outline, ply coordinates (warp along +y)
+  /// A ply split for its roll: its pieces (each its own part in cut.dxf) and seams; empty: one
+  /// piece, `cut`.
+  std::vector<PieceSheet> pieces;
+  std::vector<SeamSheet> seams;
+  double splice_stagger = 0.0;  ///< the stagger its seams were to keep (mm)
+  bool stagger_met = true;
 };
 
 /// A laminate's plies in stacking order.
@@ -47,6 +67,7 @@ std::string plybook_html(const Plybook& book, const std::string& dir);
 /// woven ply may only be turned by 180 degrees, which leaves its box as it is).
 struct CutPlace {
   std::size_t ply = 0;  ///< index in Plybook::plies
+  int piece = -1;       ///< index in its PlySheet::pieces; -1: the whole ply
   Vec2 offset = Vec2::Zero();
   Vec2 lo = Vec2::Zero(), hi = Vec2::Zero();  ///< its box on the roll
 };
@@ -57,7 +78,7 @@ struct CutSheet {
   std::string dxf;               ///< cut.dxf
   std::vector<CutPlace> places;  ///< the plies placed
   double length = 0.0;           ///< roll used, mm
-  std::vector<Error> left_out;   ///< plies not drawn (piece_wider_than_roll), input = name
+  std::vector<Error> left_out;   ///< parts not drawn (piece_wider_than_roll), input = name
 };
 /// Gap between pieces and from the roll's edges, as a fraction of the roll's width.
 constexpr double kCutGapRel = 0.01;

@@ -40,4 +40,20 @@ Region2 unite_regions(const Region2& a, const Region2& b);
 /// The area of an even-odd region.
 double region_area(const Region2& r);
 
+/// A vertex of a clipped loop, by where it lies on the input: on edge `edge` of loop `loop`
+/// (from its vertex `edge` to the next), at `t` in [0, 1) along it (0: the vertex itself), so
+/// that a caller carries anything the input's vertices hold (a 3D point) to it.
+struct ClipVertex {
+  Vec2 p;
+  std::size_t loop = 0, edge = 0;
+  double t = 0.0;
+};
+
+/// The part of a region of oriented loops (outer loops counter-clockwise, holes clockwise, none
+/// crossing another) in the slab lo <= x <= hi: loops of the same orientations. Exact: every
+/// input vertex inside is kept as it is, the crossings of x = lo and x = hi are on the input's
+/// edges, and the new edges run along those lines (as Boost.Geometry's booleans, which snap
+/// points to a grid of about 1e-6 of the extent and drop collinear vertices, are not).
+std::vector<std::vector<ClipVertex>> clip_to_slab(const Region2& loops, double lo, double hi);
+
 }  // namespace plyfit

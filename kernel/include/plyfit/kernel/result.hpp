@@ -65,6 +65,12 @@ namespace plyfit {
   X(BoundaryGap, boundary_gap)                                                              \
   X(BoundaryOffMold, boundary_off_mold)                                                     \
   X(BoundarySeedOutside, boundary_seed_outside)                                             \
+  /* kernel: splices */                                                                     \
+  X(RollNarrowerThanCells, roll_narrower_than_cells)                                        \
+  X(SpliceOverlapNegative, splice_overlap_negative)                                         \
+  X(SpliceOverlapTooWide, splice_overlap_too_wide)                                          \
+  X(SpliceValueNotFinite, splice_value_not_finite)                                          \
+  X(SpliceStaggerNegative, splice_stagger_negative)                                         \
   /* kernel: seed curve from a file */                                                      \
   X(SeedCurveOffMold, seed_curve_off_mold)                                                  \
   X(SeedNotOnCurve, seed_not_on_curve)                                                      \
@@ -195,6 +201,7 @@ namespace plyfit {
   X(MaterialLabelEmpty, material_label_empty)                                               \
   X(MaterialAngleNotANumber, material_angle_not_a_number)                                   \
   X(MaterialAngleRange, material_angle_range)                                               \
+  X(MaterialRollWidth, material_roll_width)                                                 \
   X(MaterialAngleMissing, material_angle_missing)                                           \
   X(WarningAboveLimit, warning_above_limit)                                                 \
   X(LimitNotPositive, limit_not_positive)                                                   \
@@ -304,7 +311,9 @@ struct Error {
   X(FailedNodes, failed_nodes)           \
   X(ConflictNodes, conflict_nodes)       \
   X(ThreadEnds, thread_ends)             \
-  X(PathSlit, path_slit)
+  X(PathSlit, path_slit)                 \
+  /* kernel: splices */                  \
+  X(SpliceStaggerUnmet, splice_stagger_unmet)
 
 /// What a run reports that is not an error (see PLYFIT_WARNING_CODES).
 enum class WarningCode : std::uint16_t {
