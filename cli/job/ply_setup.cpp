@@ -8,8 +8,28 @@
 
 namespace plyfit::cli {
 
+namespace {
+
+// The darts' curves (every curve of each --dart file, open: a CSV block's closing link is not
+// part of the cut).
+Status read_darts(const DrapeJob& job, DrapeProblem& pb) {
+  pb.darts.clear();
+  for (const CurveFileSpec& spec : job.darts) {
+    auto curves = read_curves(spec);
+    if (!curves) return Error(curves.error()).in("dart");
+    for (const BoundaryCurve& c : *curves) pb.darts.push_back(c.points);
+  }
+  return ok_status();
+}
+
+}  // namespace
+
 Result<DrapeProblem> job_problem(const DrapeJob& job, const MoldSurface& surface) {
-  if (job.problem_on_mold) return job.problem;
+  if (job.problem_on_mold) {
+    DrapeProblem pb = job.problem;
+    if (auto st = read_darts(job, pb); !st) return st.error();
+    return pb;
+  }
   const double angle = job.ply_angle_deg * kDegToRad;
   Result<DrapeProblem> pb = [&]() -> Result<DrapeProblem> {
     if (!job.seed) return turned_problem(surface, job.problem, angle);
@@ -36,6 +56,7 @@ Result<DrapeProblem> job_problem(const DrapeJob& job, const MoldSurface& surface
                                    ? c.closed
                                    : c.points.size() > 2 && c.points.front() == c.points.back();
   }
+  if (auto st = read_darts(job, *pb); !st) return st.error();
   return pb;
 }
 

@@ -15,6 +15,8 @@
 //   SHEAR_WARN  closed LWPOLYLINEs around the mapped cells whose shear exceeds
 //               ExportOptions::warn_shear (cell shear: the largest |90 deg - gamma| over the
 //               cell's corners that have a thread angle)
+//   DART        open LWPOLYLINEs: each dart's two cut lines (DartResult::line_left and
+//               line_right, from the dart's first point to its tip); only with darts
 //   LABELS      TEXT inside the outline: ply name, material, ply angle, spacing, outline
 //               area, shear, and the mold's file name (never its folder) with the face
 // The labels and the arrow form a block centred on the pole of inaccessibility of the outline
@@ -179,6 +181,10 @@ std::string build_dxf(const ExportContext& ctx) {
   const std::vector<Vec2> path = base_path_points(ctx.result);
   const double marker = render::kMarkerRel * ext.extent;
   add_markings(e, ctx, path, marker);
+  for (const DartResult& dart : ctx.result.darts) {
+    if (dart.line_left.size() >= 2) e.polyline("DART", dart.line_left, false);
+    if (dart.line_right.size() >= 2) e.polyline("DART", dart.line_right, false);
+  }
   const std::vector<std::string> lines = label_lines(ctx);
   const render::BlockShape shape = dxf::label_shape(lines);
   const render::BlockPlace place =
@@ -188,7 +194,8 @@ std::string build_dxf(const ExportContext& ctx) {
   ext.box.add(place.top_left);
   ext.box.add(place.top_left + Vec2(shape.width_at(place.h), -shape.height_at(place.h)));
   if (ext.box.empty()) ext.box.add(Vec2::Zero());
-  return dxf::document(e, {ext.box.lo, ext.box.hi, place.h, ctx.options.dxf_threads, {}});
+  return dxf::document(
+      e, {ext.box.lo, ext.box.hi, place.h, ctx.options.dxf_threads, !ctx.result.darts.empty(), {}});
 }
 
 }  // namespace
