@@ -83,3 +83,24 @@ TEST_CASE("cli: --darts takes auto or none, and names the option otherwise") {
   CHECK(c["darts"]["laid"] == true);
   CHECK(c["darts"]["darts"].empty());
 }
+
+TEST_CASE("cli: automatic darts lay the closed hemisphere sample within a 40 degree lock") {
+  Scratch tmp("darts_cli_hemisphere");
+  const std::string scene = std::string(PLYFIT_SOURCE_DIR) + "/samples/hemisphere.ini";
+  const std::string flags = " --lock-angle 40 --outputs json --quiet -o '";
+  const CliRun plain = plyfit_run("drape '" + scene + "'" + flags + tmp.file("plain") + "'", tmp);
+  REQUIRE(plain.code == 0);
+  const json p = json::parse(slurp(tmp.file("plain") + "/report.json"));
+  REQUIRE(p["nodes"]["shear_limit"].get<int>() > 0);  // the lock stops the cloth without darts
+  const CliRun cut =
+      plyfit_run("drape '" + scene + "' --darts auto" + flags + tmp.file("cut") + "'", tmp);
+  INFO(cut.err);
+  REQUIRE(cut.code == 0);
+  const json c = json::parse(slurp(tmp.file("cut") + "/report.json"));
+  CHECK(c["darts"]["laid"] == true);
+  CHECK(c["darts"]["drapes"].get<int>() <= 3);
+  CHECK(c["nodes"]["conflict"] == 0);
+  CHECK(c["nodes"]["shear_limit"] == 0);
+  CHECK(c["shear_max_deg"].get<double>() <= 40.0);
+  CHECK(c["status"] == "ok");
+}
