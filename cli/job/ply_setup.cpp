@@ -16,7 +16,11 @@ Status read_darts(const DrapeJob& job, DrapeProblem& pb) {
   pb.darts.clear();
   for (const CurveFileSpec& spec : job.darts) {
     auto curves = read_curves(spec);
-    if (!curves) return Error(curves.error()).in("dart");
+    if (!curves) {  // a file that does not read: named with the option it was given to
+      Error e = curves.error();
+      e.input = e.input.empty() || e.input == spec.path ? "--dart " + spec.path : e.input;
+      return e;
+    }
     for (const BoundaryCurve& c : *curves) pb.darts.push_back(c.points);
   }
   return ok_status();

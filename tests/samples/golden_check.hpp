@@ -17,7 +17,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <initializer_list>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -92,12 +91,11 @@ inline constexpr double kAngleRoundoffDeg = 1e-9;
 inline std::vector<std::string> dart_figures(const json& report, bool exact) {
   std::vector<std::string> out;
   if (!report.contains("darts")) return out;
-  for (std::size_t k = 0; k < report["darts"]["darts"].size(); ++k) {
-    const std::string at = "/darts/darts/" + std::to_string(k) + "/";
-    for (const char* f : exact ? std::initializer_list<const char*>{"links_cut", "nodes_cut_out"}
-                               : std::initializer_list<const char*>{"removed_area", "opening_area"})
-      out.push_back(at + f);
-  }
+  static const std::vector<std::string> counts = {"links_cut", "nodes_cut_out"};
+  static const std::vector<std::string> areas = {"removed_area", "opening_area"};
+  for (std::size_t k = 0; k < report["darts"]["darts"].size(); ++k)
+    for (const std::string& f : exact ? counts : areas)
+      out.push_back("/darts/darts/" + std::to_string(k) + "/" + f);
   return out;
 }
 
