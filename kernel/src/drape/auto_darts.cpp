@@ -142,7 +142,9 @@ bool propose_darts(const DrapeSurface& s, const DrapeResult& r, double on_mold, 
     });
     if (near != pb.darts.end()) {
       const auto i = static_cast<std::size_t>(near - pb.darts.begin());
-      if (i >= walked.size() || walked[i]) continue;
+      // Walked only when its tip (kTipInsideRel spacings in from the node) can lie nearer.
+      const double reach = (tip.point - start3).norm() - kTipInsideRel * d;
+      if (i >= walked.size() || walked[i] || reach > (near->back() - start3).norm() - d) continue;
       std::vector<Vec3> dart = walk_out(s, r, tip, on_mold);
       if (dart.size() < 2 || (dart.back() - start3).norm() > (near->back() - start3).norm() - d)
         continue;
