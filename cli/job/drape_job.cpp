@@ -213,12 +213,22 @@ Status read_start(const Options& o, DrapeJob& job) {
   return ok_status();
 }
 
-// The ply's boundary: its curve file (relative to the scene file) and offset.
+// The ply's boundary: its curve file (relative to the scene file) and offset; the darts' files.
 Status read_boundary(const Options& o, DrapeJob& job) {
   if (auto f = o.text("boundary"); f && !f->empty()) {
     CurveFileSpec spec = parse_curve_spec(*f);
     spec.path = resolve(o, "boundary", spec.path);
     job.boundary = spec;
+  }
+  for (const auto& f : o.all("dart")) {
+    CurveFileSpec spec = parse_curve_spec(f);
+    spec.path = resolve(o, "dart", spec.path);
+    job.darts.push_back(spec);
+  }
+  if (const std::optional<std::string> automatic = o.text("darts"); automatic) {
+    job.darts_auto = automatic->compare("auto") == 0;
+    if (!job.darts_auto && automatic->compare("none") != 0)
+      return Error{ErrorCode::kUnknownValue, "darts", {*automatic, std::string("auto, none")}};
   }
   auto offset = o.number("boundary-offset");
   if (!offset) return offset.error();

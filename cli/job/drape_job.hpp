@@ -69,6 +69,8 @@ struct DrapeJob {
   bool rosette_given = false;             ///< else, with the start keys, their warp is 0 deg
   std::optional<CurveFileSpec> boundary;  ///< --boundary: the ply's boundary curves
   double boundary_offset = 0.0;           ///< --boundary-offset (mm; > 0 grows the region)
+  std::vector<CurveFileSpec> darts;       ///< --dart: curves the ply is cut along
+  bool darts_auto = false;                ///< --darts auto: darts proposed (drape_auto_darts)
   /// --seed-curve FILE[:PICK]: the curve the base path follows (problem.seed_curve kCurve).
   std::optional<CurveFileSpec> seed_curve_file;
   /// `problem` is already the problem on the mold (job_problem() applied: seed, angle).

@@ -58,6 +58,15 @@ const OptionTable& drape_options() {
        "between loops), PICK the loops to use (indices from 0, comma list); the region "
        "holding the seed is draped, inner loops are cut-outs",
        false, "start"},
+      {"dart", "FILE[:PICK]", "",
+       "a dart: a cut in the ply along a curve on the part (CSV of 3D points or a STEP/IGES "
+       "file's curves, each an open curve); links that cross it are not enforced, so the cloth "
+       "on its two sides drapes independently (repeatable)",
+       true, "start"},
+      {"darts", "auto|none", "none",
+       "auto: where the drape ends in conflict or at the shear limit, darts from the face's edge "
+       "into those zones, and the ply draped again with them (at most 3 drapes in all)",
+       false, "start"},
       {"boundary-offset", "MM", "0",
        "grow (> 0) or shrink (< 0) the boundary's region along the surface (trim allowance)", false,
        "start"},

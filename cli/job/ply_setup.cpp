@@ -8,8 +8,32 @@
 
 namespace plyfit::cli {
 
+namespace {
+
+// The darts' curves (every curve of each --dart file, open: a CSV block's closing link is not
+// part of the cut).
+Status read_darts(const DrapeJob& job, DrapeProblem& pb) {
+  pb.darts.clear();
+  for (const CurveFileSpec& spec : job.darts) {
+    auto curves = read_curves(spec);
+    if (!curves) {  // a file that does not read: named with the option it was given to
+      Error e = curves.error();
+      e.input = e.input.empty() || e.input == spec.path ? "--dart " + spec.path : e.input;
+      return e;
+    }
+    for (const BoundaryCurve& c : *curves) pb.darts.push_back(c.points);
+  }
+  return ok_status();
+}
+
+}  // namespace
+
 Result<DrapeProblem> job_problem(const DrapeJob& job, const MoldSurface& surface) {
-  if (job.problem_on_mold) return job.problem;
+  if (job.problem_on_mold) {
+    DrapeProblem pb = job.problem;
+    if (auto st = read_darts(job, pb); !st) return st.error();
+    return pb;
+  }
   const double angle = job.ply_angle_deg * kDegToRad;
   Result<DrapeProblem> pb = [&]() -> Result<DrapeProblem> {
     if (!job.seed) return turned_problem(surface, job.problem, angle);
@@ -36,6 +60,7 @@ Result<DrapeProblem> job_problem(const DrapeJob& job, const MoldSurface& surface
                                    ? c.closed
                                    : c.points.size() > 2 && c.points.front() == c.points.back();
   }
+  if (auto st = read_darts(job, *pb); !st) return st.error();
   return pb;
 }
 

@@ -34,6 +34,7 @@ exporters::RunInfo run_info(const DrapeJob& job) {
   run.ply_name = job.ply_name;
   run.material = job.material;
   if (job.seed_curve_file) run.seed_curve_file = to_string(*job.seed_curve_file);
+  for (const auto& dart : job.darts) run.dart_files.push_back(to_string(dart));
   run.outputs = job.outputs;
   return run;
 }
@@ -62,7 +63,8 @@ Result<DrapeResult> drape_with_progress(const MoldSurface& surface, const DrapeJ
       std::cerr << "\rplyfit: " << n << " nodes solved" << std::flush;
     };
   }
-  auto res = drape(surface, problem, opt);
+  auto res =
+      job.darts_auto ? drape_auto_darts(surface, problem, opt) : drape(surface, problem, opt);
   if (tty) std::cerr << "\r\033[K" << std::flush;
   return res;
 }

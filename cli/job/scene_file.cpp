@@ -97,6 +97,8 @@ void mold_and_ply_values(const DrapeJob& job, SceneValues& v) {
                                          : std::string(to_string(p.seed_curve))};
   if (job.boundary) v["boundary"] = {to_string(*job.boundary)};
   if (job.boundary_offset != 0.0) v["boundary-offset"] = {fmt(job.boundary_offset)};
+  for (const auto& dart : job.darts) v["dart"].push_back(to_string(dart));
+  if (job.darts_auto) v["darts"] = {"auto"};
   if (job.seed) {  // the directions follow from the seed on the mold
     v["seed"] = {fmt(*job.seed)};
     return;

@@ -18,6 +18,8 @@
 //   SHEAR_WARN  closed LWPOLYLINEs around the mapped cells whose shear exceeds
 //               ExportOptions::warn_shear (cell shear: the largest |90 deg - gamma| over the
 //               cell's corners that have a thread angle)
+//   DART        open LWPOLYLINEs: each dart's two cut lines (DartResult::line_left and
+//               line_right, from the dart's first point to its tip); only with darts
 //   LABELS      TEXT inside the outline: ply name, material, ply angle, spacing, outline
 //               area, shear, and the mold's file name (never its folder) with the face
 // The labels and the arrow form a block centred on the pole of inaccessibility of the outline
@@ -178,10 +180,12 @@ std::vector<std::string> label_lines(const ExportContext& ctx) {
 }
 
 // The layers of a pattern split for the roll: flat.dxf's, SEAMS and one per piece.
-std::vector<dxf::Layer> piece_layers(const SplicePlan& plan, bool threads) {
+std::vector<dxf::Layer> piece_layers(const SplicePlan& plan, bool threads, bool darts) {
   std::vector<dxf::Layer> layers;
   for (const auto& l : dxf::kLayers)
-    if (threads || std::string(l.name) != dxf::kThreadsLayer) layers.push_back({l.name, l.colour});
+    if ((threads || std::string(l.name) != dxf::kThreadsLayer) &&
+        (darts || std::string(l.name) != "DART"))
+      layers.push_back({l.name, l.colour});
   layers.push_back({kSeamsLayer, kSeamsColour});
   for (const SplicePiece& p : plan.pieces) layers.push_back({kPiecePrefix + p.name, 7});
   return layers;
@@ -210,7 +214,8 @@ std::string build_dxf(const ExportContext& ctx) {
   const std::vector<OutlineLoop>& loops = ctx.flat ? ctx.flat->cut : no_loops;
   Extents ext = drawing_extents(ctx.result, ctx.problem.ply, loops);
   std::vector<dxf::Layer> layers;
-  if (ctx.splices) layers = piece_layers(*ctx.splices, ctx.options.dxf_threads);
+  if (ctx.splices)
+    layers = piece_layers(*ctx.splices, ctx.options.dxf_threads, !ctx.result.darts.empty());
   // The entities first: their handles set $HANDSEED.
   dxf::Writer e(layers.empty() ? static_cast<unsigned>(dxf::kFirstEntityHandle)
                                : dxf::first_entity_handle(layers));
@@ -223,6 +228,10 @@ std::string build_dxf(const ExportContext& ctx) {
   const std::vector<Vec2> path = base_path_points(ctx.result);
   const double marker = render::kMarkerRel * ext.extent;
   add_markings(e, ctx, path, marker);
+  for (const DartResult& dart : ctx.result.darts) {
+    if (dart.line_left.size() >= 2) e.polyline("DART", dart.line_left, false);
+    if (dart.line_right.size() >= 2) e.polyline("DART", dart.line_right, false);
+  }
   const std::vector<std::string> lines = label_lines(ctx);
   const render::BlockShape shape = dxf::label_shape(lines);
   const render::BlockPlace place =
@@ -232,7 +241,8 @@ std::string build_dxf(const ExportContext& ctx) {
   ext.box.add(place.top_left);
   ext.box.add(place.top_left + Vec2(shape.width_at(place.h), -shape.height_at(place.h)));
   if (ext.box.empty()) ext.box.add(Vec2::Zero());
-  return dxf::document(e, {ext.box.lo, ext.box.hi, place.h, ctx.options.dxf_threads, layers});
+  return dxf::document(e, {ext.box.lo, ext.box.hi, place.h, ctx.options.dxf_threads,
+                           !ctx.result.darts.empty(), layers});
 }
 
 }  // namespace

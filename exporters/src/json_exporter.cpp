@@ -315,6 +315,27 @@ void add_splices(nlohmann::json& j, const SplicePlan& plan) {
                   {"seams", seams}};
 }
 
+// The darts as the drape laid them: where they came from and, per dart, its length and tip on
+// the part, the cloth cut out between its cut lines or the gap they leave on the part.
+nlohmann::json darts_json(const ExportContext& ctx) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const DartResult& d : ctx.result.darts)
+    list.push_back({{"length", d.length},
+                    {"tip", vec(d.tip)},
+                    {"removed_area", d.removed_area},
+                    {"opening_area", d.opening_area},
+                    {"width_max", d.width_max},
+                    {"links_cut", d.links_cut},
+                    {"nodes_cut_out", d.nodes_cut_out},
+                    {"cut_line_points", d.line_left.size()}});
+  return {
+      {"source", ctx.run.dart_files},
+      {"auto", ctx.result.darts_auto},
+      {"drapes", ctx.result.drapes},
+      {"laid", ctx.result.metrics.nodes.conflict == 0 && ctx.result.metrics.nodes.shear_limit == 0},
+      {"darts", list}};
+}
+
 }  // namespace
 
 std::string report_json(const ExportContext& ctx) {
@@ -334,6 +355,7 @@ std::string report_json(const ExportContext& ctx) {
   add_metrics(j, r.metrics, std::min(ctx.problem.ply.d_weft, ctx.problem.ply.d_warp));
   if (ctx.flat) add_flat_outline(j, *ctx.flat);
   if (ctx.splices) add_splices(j, *ctx.splices);
+  if (!r.darts.empty() || r.darts_auto) j["darts"] = darts_json(ctx);
   j["memory_bytes_per_node"] = r.bytes_per_node();
   j["timing_ms"] = {
       {"import", ctx.run.import_ms}, {"drape", ctx.run.drape_ms}, {"total", ctx.run.total_ms}};

@@ -112,6 +112,13 @@ Result<std::vector<StepCurveSet>> net_curve_sets(const ExportContext& ctx) {
     if (!set) return Error{ErrorCode::kCurveSetNotBuilt}.because(set.error());
     sets.push_back(std::move(set).value());
   }
+  if (!ctx.result.darts.empty()) {  // each dart's curve on the mold
+    std::vector<std::vector<Vec3>> curves;
+    for (const DartResult& d : ctx.result.darts) curves.push_back(d.curve);
+    auto set = polyline_set("darts", curves, false);
+    if (!set) return Error{ErrorCode::kCurveSetNotBuilt}.because(set.error());
+    sets.push_back(std::move(set).value());
+  }
   if (ctx.options.ply && ctx.options.ply->boundary) {  // the boundary as given, on the mold
     auto set = polyline_set("boundary_curves", ctx.options.ply->boundary->loops, true);
     if (!set) return Error{ErrorCode::kCurveSetNotBuilt}.because(set.error());

@@ -338,13 +338,14 @@ TEST_CASE("cli: docs/report-json.md lists every field of report.json, and no oth
                  s);
   REQUIRE(shell.code == 0);
   // And a ply with a boundary (report.json's ply.boundary): a square loop on the plate, its
-  // base path along a seed curve of a file (inputs.seed_curve_file).
+  // base path along a seed curve of a file (inputs.seed_curve_file), cut by a dart (darts).
   std::ofstream(s.file("square.csv")) << "30,10,0\n70,10,0\n70,50,0\n30,50,0\n";
   std::ofstream(s.file("line.csv")) << "30,30,0\n70,30,0\n";
+  std::ofstream(s.file("dart.csv")) << "40,10,0\n45,25,0\n";
   const CliRun bounded =
       plyfit_run("drape --mold builtin:plate --seed 50,30,0 --spacing 2 --seed-curve '" +
-                     s.file("line.csv") + "' --boundary '" + s.file("square.csv") +
-                     "' --outputs json -o '" + s.file("bounded") + "'",
+                     s.file("line.csv") + "' --boundary '" + s.file("square.csv") + "' --dart '" +
+                     s.file("dart.csv") + "' --outputs json -o '" + s.file("bounded") + "'",
                  s);
   REQUIRE(bounded.code == 0);
   // And a ply split for its roll (pieces, splices): the sample on the cylinder sector.

@@ -87,6 +87,18 @@ inline const std::vector<std::string> kBoundaryRelative = {
 /// A 0 deg ply's laid angle comes out as round-off: this absolute floor (degrees) is added.
 inline constexpr double kAngleRoundoffDeg = 1e-9;
 
+/// The figures of each dart (darts.md), compared to kGoldenRel (areas) or exactly (counts).
+inline std::vector<std::string> dart_figures(const json& report, bool exact) {
+  std::vector<std::string> out;
+  if (!report.contains("darts")) return out;
+  static const std::vector<std::string> counts = {"links_cut", "nodes_cut_out"};
+  static const std::vector<std::string> areas = {"removed_area", "opening_area"};
+  for (std::size_t k = 0; k < report["darts"]["darts"].size(); ++k)
+    for (const std::string& f : exact ? counts : areas)
+      out.push_back("/darts/darts/" + std::to_string(k) + "/" + f);
+  return out;
+}
+
 inline bool has_boundary(const json& report) {
   return !report.at("ply").at("boundary").is_null();
 }
@@ -112,6 +124,8 @@ inline json golden_of(const json& report) {
     for (const auto& p : kBoundaryRelative) g[p] = report.at(json::json_pointer(p));
   if (report.contains("pieces")) g["pieces"] = report["pieces"].size();
   for (const auto& p : splice_relative(report)) g[p] = report.at(json::json_pointer(p));
+  for (bool exact : {true, false})
+    for (const auto& p : dart_figures(report, exact)) g[p] = report.at(json::json_pointer(p));
   return g;
 }
 
@@ -163,8 +177,12 @@ inline void check_goldens(const std::vector<fs::path>& scenes) {
     }
     REQUIRE(fs::exists(golden_path));
     const json golden = json::parse(slurp(golden_path));
-    for (const auto& p : kExact) {
+    std::vector<std::string> exact = kExact;
+    const auto dart_exact = dart_figures(report, true);
+    exact.insert(exact.end(), dart_exact.begin(), dart_exact.end());
+    for (const auto& p : exact) {
       INFO(p);
+      REQUIRE(golden.contains(p));
       CHECK(report.at(json::json_pointer(p)) == golden.at(p));
     }
     const json& box = report["mold"]["face"]["bbox"];
@@ -185,9 +203,12 @@ inline void check_goldens(const std::vector<fs::path>& scenes) {
     }
     const auto spliced = splice_relative(report);
     relative.insert(relative.end(), spliced.begin(), spliced.end());
+    const auto dart_relative = dart_figures(report, false);
+    relative.insert(relative.end(), dart_relative.begin(), dart_relative.end());
     for (const auto& p : relative) {
       INFO(p);
       const double a = report.at(json::json_pointer(p)).get<double>();
+      REQUIRE(golden.contains(p));
       const double g = golden.at(p).get<double>();
       const double floor = p == "/shear_energy" || p == "/paper_metrics/energy" ? kEnergyRoundoff
                            : p == "/start/moved"        ? kMoveRoundoffRel * size

@@ -158,7 +158,8 @@ void layer_table(Writer& f, const DocumentInfo& info) {
     return;
   }
   auto defined = [&](int k) {
-    return info.threads_layer || std::string(kLayers[k].name) != kThreadsLayer;
+    const std::string name = kLayers[k].name;
+    return (info.threads_layer || name != kThreadsLayer) && (info.dart_layer || name != "DART");
   };
   int layer_count = 0;
   for (int k = 0; k < kLayerCount; ++k) layer_count += defined(k);

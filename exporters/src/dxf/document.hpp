@@ -15,6 +15,7 @@ struct DocumentInfo {
   Vec2 lo = Vec2::Zero(), hi = Vec2::Zero();  ///< the drawing's extents
   double text_height = 0.0;                   ///< $TEXTSIZE, the Standard style's height
   bool threads_layer = false;                 ///< the THREADS layer is defined
+  bool dart_layer = false;                    ///< the DART layer is defined
   /// The drawing's own layers (layer 0 first), their handles from kFirstLayerHandle on, the
   /// entities' after them (Writer(first_entity_handle(layers))); empty: flat.dxf's (kLayers).
   std::vector<Layer> layers;

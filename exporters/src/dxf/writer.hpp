@@ -16,9 +16,9 @@ struct LayerDef {
   const char* name;
   int colour;
 };
-constexpr LayerDef kLayers[] = {{"0", 7},       {"OUTLINE", 7},    {"HOLES", 7},
-                                {"THREADS", 8}, {"BASEPATH", 5},   {"ORIGIN", 3},
-                                {"GRAIN", 4},   {"SHEAR_WARN", 1}, {"LABELS", 7}};
+constexpr LayerDef kLayers[] = {{"0", 7},        {"OUTLINE", 7}, {"HOLES", 7}, {"THREADS", 8},
+                                {"BASEPATH", 5}, {"ORIGIN", 3},  {"GRAIN", 4}, {"SHEAR_WARN", 1},
+                                {"LABELS", 7},   {"DART", 6}};
 constexpr int kLayerCount = static_cast<int>(sizeof(kLayers) / sizeof(kLayers[0]));
 /// A layer of a drawing whose layers are not flat.dxf's.
 struct Layer {

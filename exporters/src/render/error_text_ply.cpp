@@ -51,4 +51,15 @@ PLYFIT_SENTENCE(text_seed_not_on_curve,
                 "the start lies {b0} mm from the seed curve, more than the tolerance {b1} mm: put "
                 "the seed on the curve");
 
+std::string text_dart_curve_points(const Values& x) {
+  return "dart " + x.n(0) + " has " + x.n(1) +
+         " usable points: a dart needs at least 2 finite points";
+}
+
+std::string text_dart_off_mold(const Values& x) {
+  if (x.number(1) < 0) return "dart " + x.n(0) + " could not be projected onto the mold";
+  return "dart " + x.n(0) + " lies " + x.brief(1) + " mm from the mold at (" + x.text(3) +
+         "), more than the tolerance " + x.brief(2) + " mm: a wrong curve, unit or frame?";
+}
+
 }  // namespace plyfit::exporters::render

@@ -80,4 +80,10 @@ PLYFIT_SENTENCE(
     "section leaves the face or curls back on itself): {n2} thread link(s) across the path's line "
     "there join the two sweeps' cloth unsolved (a slit in the flat pattern)");
 
+std::string warning_darts_not_enough(const Values& x) {
+  return "after " + x.n(2) + " drapes with automatic darts the ply still has " + x.n(0) +
+         " conflict and " + x.n(1) +
+         " shear-limit node(s): it is not laid as one piece within the lock";
+}
+
 }  // namespace plyfit::exporters::render

@@ -196,6 +196,20 @@ std::string outlines(const FlatPattern& flat, const Layout& l) {
          "\" fill=\"none\" fill-rule=\"evenodd\" stroke-linejoin=\"round\"/>\n";
 }
 
+// Each dart's two cut lines (open paths), where each side's cloth ends.
+std::string dart_lines(const DrapeResult& r, const Layout& l) {
+  if (r.darts.empty()) return "";
+  std::string path;
+  for (const DartResult& d : r.darts) {
+    for (const auto* cut : {&d.line_left, &d.line_right}) {
+      const std::vector<Vec2> pts = mapped(l.frame, *cut);
+      for (std::size_t k = 1; k < pts.size(); ++k) add_segment(path, pts[k - 1], pts[k]);
+    }
+  }
+  return "<path id=\"darts\" d=\"" + path + "\" stroke=\"#8800aa\" stroke-width=\"" +
+         px(l.scale.edge_stroke(1.8)) + "\" fill=\"none\" stroke-linejoin=\"round\"/>\n";
+}
+
 // The cells whose shear exceeds the warning angle.
 std::string shear_warnings(const ExportContext& ctx, const std::vector<detail::NetCell>& cells,
                            const Layout& l) {
@@ -310,6 +324,7 @@ std::string flat_svg(const ExportContext& ctx) {
   o += cells_and_links(ctx, cells, scale, l);
   if (ctx.flat) o += outlines(*ctx.flat, l);
   o += shear_warnings(ctx, cells, l);
+  o += dart_lines(ctx.result, l);
   o += nodes(ctx.result, l);
   o += start_and_sweeps(ctx.problem.ply, l);
   o += scale_bar(f);

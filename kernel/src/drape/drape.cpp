@@ -2,6 +2,7 @@
 // base plane, sweeps paired with the 2D ones by handedness), then the scan and the metrics.
 #include "drape/drape.hpp"
 
+#include "drape/darts.hpp"
 #include "drape/metrics.hpp"
 #include "drape/scan/scanner.hpp"
 
@@ -336,9 +337,13 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
   res.ply = mply;
   res.nodes.reserve(
       expected_nodes(s, *mply, res.start_point, res.base_normal, pb.sweeps, opt.max_nodes));
+  auto darts = detail::DartSet::create(s, pb.darts, mply->d(), opt.tol);
+  if (!darts) return darts.error();
   detail::Scanner scanner(s, *mply, opt, res);  // sized by the reserve
   if (*curve) scanner.follow(&**curve);
+  scanner.cut_along(&*darts);
   scan_and_measure(s, opt, *t3, scanner, res);
+  detail::lay_darts(*darts, scanner.cut_out(), opt.tol, res);
   warn_scan_stops(scanner, opt, res);
   warn_path_ends(s, res);
   warn_thread_ends(scanner, res);

@@ -12,5 +12,8 @@ namespace plyfit {
 /// Drapes the ply on `surface` (see the public drape()).
 Result<DrapeResult> drape(const DrapeSurface& surface, const DrapeProblem& problem,
                           const DrapeOptions& options = {});
+/// drape_auto_darts() on the kernel's surface interface.
+Result<DrapeResult> drape_auto_darts(const DrapeSurface& surface, const DrapeProblem& problem,
+                                     const DrapeOptions& options, int max_drapes);
 
 }  // namespace plyfit

@@ -64,6 +64,10 @@ const DrapeNode* DrapeResult::neighbour(const NodeId& id, ThreadDir dir) const {
   return n ? neighbour(*n, dir) : nullptr;
 }
 
+bool DrapeResult::cut(std::uint32_t a, std::uint32_t b) const {
+  return std::binary_search(cut_links.begin(), cut_links.end(), link_key(a, b));
+}
+
 double DrapeResult::rest_length(const DrapeNode& n, ThreadDir dir) const {
   const double spacing = is_weft(dir) ? ply->spec().d_weft : ply->spec().d_warp;
   const DrapeNode* m = neighbour(n, dir);
@@ -93,10 +97,10 @@ std::vector<std::vector<std::uint32_t>> DrapeResult::threads(bool weft) const {
   for (std::uint32_t k = 0; k < nodes.size(); ++k) {
     const DrapeNode& n = nodes[k];
     if (!n.mapped() || !on_thread(n)) continue;
-    const DrapeNode* b = neighbour(n, back);
+    const DrapeNode* b = linked(n, back);
     if (b && b->mapped()) continue;  // not the start of a run
     std::vector<std::uint32_t> run{k};
-    for (const DrapeNode* m = neighbour(n, fwd); m && m->mapped(); m = neighbour(*m, fwd))
+    for (const DrapeNode* m = linked(n, fwd); m && m->mapped(); m = linked(*m, fwd))
       run.push_back(static_cast<std::uint32_t>(m - nodes.data()));
     if (run.size() >= 2) out.push_back(std::move(run));
   }

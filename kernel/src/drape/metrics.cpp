@@ -29,8 +29,8 @@ void thread_angles(DrapeResult& res) {
   for (DrapeNode& n : res.nodes) {
     if (!n.mapped() || n.id.is_path_only()) continue;
     auto direction = [&](ThreadDir plus, Vec3& out) {
-      const DrapeNode* p = res.neighbour(n, plus);
-      const DrapeNode* m = res.neighbour(n, opposite(plus));
+      const DrapeNode* p = res.linked(n, plus);
+      const DrapeNode* m = res.linked(n, opposite(plus));
       const bool hp = p && p->mapped(), hm = m && m->mapped();
       if (hp && hm)
         out = p->point - m->point;

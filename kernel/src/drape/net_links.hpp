@@ -19,7 +19,7 @@ void for_each_link(const DrapeResult& r, F&& f) {
     if (!n.mapped() || n.id.is_path_only()) continue;
     for (int d = 0; d < 4; ++d) {
       const auto dir = static_cast<ThreadDir>(d);
-      const DrapeNode* m = r.neighbour(n, dir);
+      const DrapeNode* m = r.linked(n, dir);  // links across a dart are not the cloth's
       if (!m || !m->mapped()) continue;
       // Regular-regular links once (from their -x / -y end); links to path nodes from the
       // regular end, both sides.

@@ -32,12 +32,13 @@ struct RunInfo {
   double tolerance_rel = 0;  ///< Newton tolerance relative to d
   int max_iterations = 0;
   double lock_angle_deg = 90;
-  double warn_angle_deg = 0;    ///< as given (or the material's), echoed in report.json
-  std::string guess = "paper";  ///< initial-guess rule of the two-sphere solver
-  std::uint64_t max_nodes = 0;  ///< node cap
-  std::string ply_name;         ///< for labels
-  std::string material;         ///< for labels
-  std::string seed_curve_file;  ///< --seed-curve FILE[:PICK] (SeedCurve::kCurve)
+  double warn_angle_deg = 0;            ///< as given (or the material's), echoed in report.json
+  std::string guess = "paper";          ///< initial-guess rule of the two-sphere solver
+  std::uint64_t max_nodes = 0;          ///< node cap
+  std::string ply_name;                 ///< for labels
+  std::string material;                 ///< for labels
+  std::string seed_curve_file;          ///< --seed-curve FILE[:PICK] (SeedCurve::kCurve)
+  std::vector<std::string> dart_files;  ///< --dart FILE[:PICK], each as given
   double import_ms = 0, drape_ms = 0, total_ms = 0;
   std::vector<std::string> outputs;   ///< exporter keys being written
   std::vector<std::string> warnings;  ///< import warnings etc.

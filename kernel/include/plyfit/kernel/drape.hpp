@@ -144,6 +144,11 @@ struct DrapeProblem {
   /// Tolerances::seed_curve_rel of the mold's size, on the surface to within the same.
   std::vector<Vec3> seed_polyline;
   bool seed_polyline_closed = false;  ///< its last point joins its first
+  /// Darts: cuts in the ply along curves on the part (3D polylines, mm, each within
+  /// Tolerances::boundary_on_mold_rel of the mold's size from it). Thread links whose segment
+  /// on the part crosses a dart are not enforced: the cloth on its two sides drapes
+  /// independently (DrapeResult::darts).
+  std::vector<std::vector<Vec3>> darts;
 };
 
 /// Initial guess of the two-sphere solver.
@@ -178,6 +183,24 @@ struct DrapeOptions {
   std::function<void(std::uint64_t mapped)> progress;
 };
 
+/// A dart as the drape laid it: its curve on the part and its two cut lines in the ply.
+struct DartResult {
+  std::vector<Vec3> curve;  ///< on the part, from its first point to its tip (the last point)
+  double length = 0.0;      ///< on the part, mm
+  Vec3 tip = Vec3::Zero();  ///< its last point on the part
+  /// The curve carried into the ply through the cells of each side (left and right of the
+  /// curve seen from outside, along it): the dart's two cut lines, where each side's cloth
+  /// ends. Points of the curve with no mapped cell of that side near them are left out.
+  std::vector<Vec2> line_left, line_right;
+  /// The region between the cut lines (closed at their ends): cloth cut out where the two sides
+  /// would overlap on the part (removed_area), or a gap the cloth leaves open on the part
+  /// (opening_area), mm^2 in the ply; the larger of the two is what the dart does.
+  double removed_area = 0.0, opening_area = 0.0;
+  double width_max = 0.0;           ///< largest distance between the cut lines, mm in the ply
+  std::uint64_t links_cut = 0;      ///< links between mapped nodes across it, not enforced
+  std::uint64_t nodes_cut_out = 0;  ///< ply nodes no side's cloth holds (in the cut-out V)
+};
+
 /// Everything the drape computed.
 struct DrapeResult {
   bool partial = false;                  ///< stopped early, or some nodes failed or conflict
@@ -199,6 +222,18 @@ struct DrapeResult {
   SeedCurve seed_curve = SeedCurve::kPlane;  ///< what the base path followed
   double gamma_min_limit = 0.0;  ///< gamma_min of the lock angle (radians; 0 without one)
   double drape_ms = 0.0;         ///< wall time of drape()
+  /// Links not enforced because they cross a dart, as sorted keys (link_key()).
+  std::vector<std::uint64_t> cut_links;
+  std::vector<DartResult> darts;  ///< per DrapeProblem::darts, in order
+  std::uint32_t drapes = 1;       ///< drapes made (drape_auto_darts: up to its max_drapes)
+  bool darts_auto = false;        ///< the darts were proposed by drape_auto_darts
+
+  /// The key of the link between nodes a and b (indices into `nodes`, either order).
+  static std::uint64_t link_key(std::uint32_t a, std::uint32_t b) {
+    return a < b ? (std::uint64_t{a} << 32) | b : (std::uint64_t{b} << 32) | a;
+  }
+  /// True when the link between nodes a and b crosses a dart.
+  bool cut(std::uint32_t a, std::uint32_t b) const;
 
   /// Node by id, or nullptr.
   const DrapeNode* find(const NodeId& id) const;
@@ -208,6 +243,16 @@ struct DrapeResult {
   const DrapeNode* neighbour(const DrapeNode& n, ThreadDir dir) const {
     const std::int32_t k = n.nb[static_cast<int>(dir)];
     return k < 0 ? nullptr : &nodes[static_cast<std::size_t>(k)];
+  }
+  /// The node across the thread link from node n in direction dir, if reached and the link
+  /// crosses no dart: the cloth's links (the net's topology is neighbour()).
+  const DrapeNode* linked(const DrapeNode& n, ThreadDir dir) const {
+    const DrapeNode* m = neighbour(n, dir);
+    if (!m || cut_links.empty()) return m;
+    return cut(index_of(n), index_of(*m)) ? nullptr : m;
+  }
+  std::uint32_t index_of(const DrapeNode& n) const {
+    return static_cast<std::uint32_t>(&n - nodes.data());
   }
   /// Rest length of the thread link from node n in direction dir (the split length if the
   /// base path cuts that link).
@@ -236,6 +281,17 @@ std::vector<MappedCell> mapped_cells(const DrapeResult& r);
 /// the scan is reported per node, never as an error.
 Result<DrapeResult> drape(const MoldSurface& surface, const DrapeProblem& problem,
                           const DrapeOptions& options = {});
+
+/// Drapes with automatic darts: where the drape ends in conflict or at the shear limit
+/// (conflict or shear_limit nodes), one dart per zone of such stops (the mapped nodes next to
+/// them, within two spacings of each other) is proposed: from the zone's node nearest the ply's
+/// start (its tip, where the cloth is still laid) outward along the thread or bisector of the
+/// threads nearest the direction from the start, walked on the surface to the face's edge;
+/// then the ply is draped again with them (a zone near a dart lengthens it), until it is laid
+/// with no such stop or `max_drapes` drapes were made. DrapeResult::drapes says how many;
+/// the warning darts_not_enough, when stops remain. Errors as drape()'s.
+Result<DrapeResult> drape_auto_darts(const MoldSurface& surface, const DrapeProblem& problem,
+                                     const DrapeOptions& options = {}, int max_drapes = 3);
 
 /// A drape leaves the overlap test's grid (up to 64 MiB of pages and its slot table) to the
 /// next drape on the same thread, which reuses the memory instead of having the system map

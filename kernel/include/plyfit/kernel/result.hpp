@@ -74,6 +74,9 @@ namespace plyfit {
   /* kernel: seed curve from a file */                                                      \
   X(SeedCurveOffMold, seed_curve_off_mold)                                                  \
   X(SeedNotOnCurve, seed_not_on_curve)                                                      \
+  /* kernel: darts */                                                                       \
+  X(DartCurvePoints, dart_curve_points)                                                     \
+  X(DartOffMold, dart_off_mold)                                                             \
   /* kernel: geometry (NURBS), surface (faces, shells), molds, search */                    \
   /* kernel: geometry (NURBS surfaces and curves) */                                        \
   X(DegreeRange, degree_range)                                                              \
@@ -313,7 +316,8 @@ struct Error {
   X(ThreadEnds, thread_ends)             \
   X(PathSlit, path_slit)                 \
   /* kernel: splices */                  \
-  X(SpliceStaggerUnmet, splice_stagger_unmet)
+  X(SpliceStaggerUnmet, splice_stagger_unmet) \
+  X(DartsNotEnough, darts_not_enough)
 
 /// What a run reports that is not an error (see PLYFIT_WARNING_CODES).
 enum class WarningCode : std::uint16_t {

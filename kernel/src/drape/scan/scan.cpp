@@ -24,6 +24,7 @@ Scanner::Scanner(const DrapeSurface& s, Ply& ply, const DrapeOptions& opt, Drape
 void Scanner::run(const Vec3& t3) {
   map_path(t3);
   scan();
+  finish_cuts();
 }
 
 // The id across the thread link from `id` in direction d, if that node can exist.
@@ -153,8 +154,10 @@ bool Scanner::overlaps(std::uint32_t k) {
   return grid_.test_insert(n.point, k, [this, &n](std::uint32_t m) {
     const DrapeNode& o = res_.nodes[m];
     const double sep = kOverlapSeparation * ply_.d();
+    // Cloth beside a dart lies close to the other side's across it: no overlap.
     return (o.point - n.point).squaredNorm() < cell_ * cell_ &&
-           (o.ply - n.ply).squaredNorm() >= sep * sep;
+           (o.ply - n.ply).squaredNorm() >= sep * sep &&
+           !(darts_ && darts_->crosses(o.point, n.point));
   });
 }
 
@@ -176,7 +179,10 @@ bool Scanner::cancelled_now() {
 // Adds the unknown regular neighbours of a mapped node to the frontier.
 void Scanner::push_neighbours(std::uint32_t idx) {
   for (int d = 0; d < 4; ++d) {
-    if (node(idx).nb[d] >= 0) continue;  // already reached (pending or resolved)
+    if (node(idx).nb[d] >= 0) {  // already reached (pending or resolved)
+      if (!parked_.empty()) unpark(node(idx).nb[d]);
+      continue;
+    }
     const auto q = neighbour_id(node(idx).id, static_cast<ThreadDir>(d));
     if (!q || q->is_path_only()) continue;  // path nodes are mapped by the base path
     const Vec2 qp = ply_.pos(q->i, q->j);
@@ -256,6 +262,26 @@ void Scanner::step(std::uint32_t qi) {
   Known known[4];
   const int nk = known_neighbours(qn, known);
   SolveResult r;
+  if (darts_ && near_dart(known, nk)) {
+    if (!solve_beside_darts(qi, known, nk, r)) return;  // parked: no side's cloth holds it yet
+  } else {
+    r = solve_known(qi, known, nk);
+  }
+  resolve(qi, r);
+  // The cloth can come round onto itself (a closed face, a face that wraps over itself, a
+  // net sheared nearly flat), or fold its threads back (folds_back()). In a hole the cloth
+  // under the hole stops there (the node stays outside).
+  if (!node(qi).carries()) return;
+  const bool over = opt_.overlap_test && overlaps(qi);
+  if (over || folds_back(qi)) stop_overlap(qi);
+  if (node(qi).carries()) push_neighbours(qi);
+}
+
+// Node qi from its nk known neighbours: two or more (solver 2), one (solver 3, unless it is
+// behind the shear limit), none.
+SolveResult Scanner::solve_known(std::uint32_t qi, const Known known[4], int nk) {
+  const DrapeNode& qn = node(qi);
+  SolveResult r;
   if (nk >= 2) {
     r = solve_from_two(qi, known, nk);
   } else if (nk == 1 && behind_lock(qn)) {
@@ -267,14 +293,7 @@ void Scanner::step(std::uint32_t qi) {
   } else {
     r.reason = "no known neighbour";
   }
-  resolve(qi, r);
-  // The cloth can come round onto itself (a closed face, a face that wraps over itself, a
-  // net sheared nearly flat), or fold its threads back (folds_back()). In a hole the cloth
-  // under the hole stops there (the node stays outside).
-  if (!node(qi).carries()) return;
-  const bool over = opt_.overlap_test && overlaps(qi);
-  if (over || folds_back(qi)) stop_overlap(qi);
-  if (node(qi).carries()) push_neighbours(qi);
+  return r;
 }
 
 // The neighbours of q the cloth goes on from (Scanner::mapped_nb), weft and warp.

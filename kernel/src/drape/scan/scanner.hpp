@@ -5,6 +5,7 @@
 // about faces.
 #pragma once
 
+#include "drape/darts.hpp"
 #include "drape/drape.hpp"
 #include "drape/solvers/solvers.hpp"
 
@@ -16,6 +17,7 @@
 #include <optional>
 #include <queue>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 namespace plyfit::detail {
@@ -74,6 +76,10 @@ class Scanner {
   void run(const Vec3& t3);
   /// SeedCurve::kCurve: the curve the base path follows (kept by the caller during run()).
   void follow(const SeedPolyline* curve) { seed_curve_ = curve; }
+  /// The darts the scan cuts the cloth along (kept by the caller during run()).
+  void cut_along(const DartSet* darts) { darts_ = darts->empty() ? nullptr : darts; }
+  /// Per dart: the ply nodes no side's cloth holds (their links to both sides cross it).
+  const std::vector<std::uint64_t>& cut_out() const { return cut_out_; }
   bool truncated() const { return truncated_; }
   bool cancelled() const { return cancelled_; }
   std::uint64_t path_off_ply() const { return path_off_ply_; }
@@ -112,7 +118,11 @@ class Scanner {
     const std::int32_t k = n.nb[static_cast<int>(d)];
     if (k < 0) return nullptr;
     const DrapeNode& m = res_.nodes[static_cast<std::size_t>(k)];
-    return m.carries() ? &m : nullptr;
+    if (!m.carries()) return nullptr;
+    if (!cuts_.empty() &&
+        cuts_.count(DrapeResult::link_key(res_.index_of(n), static_cast<std::uint32_t>(k))))
+      return nullptr;  // across a dart
+    return &m;
   }
   bool cancelled_now();
   void push_neighbours(std::uint32_t idx);
@@ -124,6 +134,14 @@ class Scanner {
   int known_neighbours(const DrapeNode& q, Known known[4]) const;
   void best_pair(const DrapeNode& q, const Known known[4], int nk, int& best_a, int& best_b) const;
   SolveResult solve_from_two(std::uint32_t qi, const Known known[4], int nk);
+  SolveResult solve_known(std::uint32_t qi, const Known known[4], int nk);
+
+  // dart_cuts.cpp
+  bool near_dart(const Known known[4], int nk) const;
+  bool solve_beside_darts(std::uint32_t qi, const Known known[4], int nk, SolveResult& r);
+  void cut_link(std::uint32_t a, const DrapeNode* b);
+  void unpark(std::int32_t k);
+  void finish_cuts();
   bool folds_back(std::uint32_t k) const;
   ShearStop shear_stop(const SolveResult& r) const;
   bool behind_lock(const DrapeNode& q) const;
@@ -187,7 +205,11 @@ class Scanner {
   ThreadEnds thread_ends_;
   std::uint32_t popped_ = 0;  // frontier entries taken
   const SeedPolyline* seed_curve_ = nullptr;
-  bool curve_along_ = true;  // the curve's later points lie ahead along t3
+  const DartSet* darts_ = nullptr;
+  std::unordered_set<std::uint64_t> cuts_;    // links across a dart (DrapeResult::link_key)
+  std::unordered_set<std::uint32_t> parked_;  // nodes whose cloth so far lies across a dart
+  std::vector<std::uint64_t> cut_out_;        // per dart: nodes left parked at the end
+  bool curve_along_ = true;                   // the curve's later points lie ahead along t3
 };
 
 }  // namespace plyfit::detail

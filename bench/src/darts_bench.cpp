@@ -1,0 +1,86 @@
+// plyfit-bench darts [--runs R]: a drape with automatic darts (drape_auto_darts) against the
+// same drape without (issue 31: at most 3 drapes of the ply), medians of R >= 5 runs
+// interleaved; the drapes it made and whether the ply was laid.
+
+#include "bench.hpp"
+#include "tables.hpp"
+
+#include <plyfit/kernel/builtin_molds.hpp>
+#include <plyfit/kernel/drape.hpp>
+
+#include <iostream>
+
+namespace plyfit::bench {
+
+namespace {
+
+struct DartCase {
+  std::string name;
+  Result<MoldSurface> mold = Error{ErrorCode::kInternal};
+  DrapeProblem problem;
+  DrapeOptions options;
+};
+
+// The hemisphere from its pole, both sweeps, locked at `lock` degrees.
+DartCase hemisphere_case(double R, double d, double lock) {
+  DartCase c;
+  c.name = "hemisphere R = " + fmt("%g", R) + ", d = " + fmt("%g", d) + ", lock " +
+           fmt("%g", lock) + " deg";
+  auto fd = builtin_mold("hemisphere", {{"R", R}});
+  if (fd) c.mold = MoldSurface::from_face(*fd);
+  DrapeProblem& pb = c.problem;
+  pb.ply.d_weft = pb.ply.d_warp = d;
+  pb.ply.base_dir = Vec2(0, 1);
+  pb.ply.sweeps = {Vec2(-1, 0), Vec2(1, 0)};
+  pb.start = Vec3(0, 0, R);
+  pb.base_normal = Vec3(1, 0, 0);
+  pb.sweeps = {Vec3(1, 0, 0), Vec3(-1, 0, 0)};
+  c.options.lock_angle = lock * kDegToRad;
+  return c;
+}
+
+Table darts_table(int runs, bool* ok) {
+  Table t;
+  t.caption = "A drape with --darts auto against the same drape without: wall time, medians of " +
+              std::to_string(std::max(runs, kMinRuns)) +
+              " runs each, interleaved; ratio = with / without (target <= 3: at most 3 drapes).";
+  t.header = {"case", "drapes", "laid", "darts", "without ms", "with ms", "ratio"};
+  t.right = {false, true, false, true, true, true, true};
+  for (DartCase c : {hemisphere_case(10, 0.1, 40), hemisphere_case(10, 0.05, 40)}) {
+    if (!c.mold) {
+      *ok = false;
+      t.add({c.name, "-", "-", "-", "-", "-", "no mold"});
+      continue;
+    }
+    std::vector<double> t0, t1;
+    Result<DrapeResult> with = Error{ErrorCode::kInternal};
+    for (int k = 0; k < std::max(runs, kMinRuns); ++k) {
+      t0.push_back(time_once([&] { (void)drape(*c.mold, c.problem, c.options); }));
+      t1.push_back(time_once([&] { with = drape_auto_darts(*c.mold, c.problem, c.options); }));
+    }
+    if (!with) {
+      *ok = false;
+      t.add({c.name, "-", "-", "-", "-", "-", "failed"});
+      continue;
+    }
+    const bool laid = with->metrics.nodes.conflict == 0 && with->metrics.nodes.shear_limit == 0;
+    t.add({c.name, fmt("%u", with->drapes), laid ? "yes" : "no", fmt("%zu", with->darts.size()),
+           fmt("%.1f", median(t0) * 1e3), fmt("%.1f", median(t1) * 1e3),
+           fmt("%.2f", median(t1) / median(t0))});
+  }
+  return t;
+}
+
+int run_darts(const std::vector<std::string>& args) {
+  const int runs = std::stoi(option_value(args, "--runs", std::to_string(kMinRuns)));
+  bool ok = true;
+  std::cout << darts_table(runs, &ok).markdown();
+  return ok ? 0 : 1;
+}
+
+const BenchmarkRegistrar kDarts{
+    {"darts", "a drape with automatic darts against one without [--runs R]", run_darts}};
+
+}  // namespace
+
+}  // namespace plyfit::bench

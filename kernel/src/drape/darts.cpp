@@ -1,0 +1,228 @@
+// Darts: the curves on the surface, the crossing test the scan asks, and the cut lines.
+#include "drape/darts.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+namespace plyfit::detail {
+
+namespace {
+
+MessageValue number(std::size_t k) {
+  return static_cast<std::int64_t>(k);
+}
+
+std::string point_text(const Vec3& p) {
+  return std::to_string(p.x()) + ", " + std::to_string(p.y()) + ", " + std::to_string(p.z());
+}
+
+// The curve's points projected onto the surface, with points added between them so that none
+// is more than `step` from the next (each added point projected too).
+Result<DartCurve> follow_curve(const DrapeSurface& s, const std::vector<Vec3>& given, std::size_t k,
+                               double step, double on_mold) {
+  DartCurve c;
+  auto add = [&](const Vec3& p, bool check) -> Status {
+    const Projection pr = s.project(p);
+    if (!pr.ok || (check && pr.distance > on_mold))
+      return Error{ErrorCode::kDartOffMold,
+                   "dart",
+                   {number(k + 1), pr.ok ? pr.distance : -1.0, on_mold, point_text(p)}};
+    const SurfaceNormal n = s.normal(pr.at);
+    if (!c.points.empty() && (pr.point - c.points.back()).norm() == 0.0) return ok_status();
+    if (!c.points.empty()) c.length += (pr.point - c.points.back()).norm();
+    c.points.push_back(pr.point);
+    c.normals.push_back(n.n);
+    return ok_status();
+  };
+  for (std::size_t i = 0; i < given.size(); ++i) {
+    if (i > 0) {
+      const Vec3 a = given[i - 1], b = given[i];
+      const int pieces = static_cast<int>(std::ceil((b - a).norm() / step));
+      for (int m = 1; m < pieces; ++m)
+        if (auto st = add(a + (b - a) * (double(m) / pieces), false); !st) return st.error();
+    }
+    if (auto st = add(given[i], true); !st) return st.error();
+  }
+  if (c.points.size() < 2)
+    return Error{ErrorCode::kDartCurvePoints, "dart", {number(k + 1), number(c.points.size())}};
+  c.lo = c.hi = c.points.front();
+  for (const Vec3& p : c.points) c.lo = c.lo.cwiseMin(p), c.hi = c.hi.cwiseMax(p);
+  return c;
+}
+
+// Distance from p to the box [lo, hi].
+double box_distance(const Vec3& lo, const Vec3& hi, const Vec3& p) {
+  return (p - p.cwiseMax(lo).cwiseMin(hi)).norm();
+}
+
+}  // namespace
+
+Result<DartSet> DartSet::create(const DrapeSurface& s, const std::vector<std::vector<Vec3>>& darts,
+                                double d, const Tolerances& tol) {
+  DartSet set;
+  set.d_ = d;
+  const double on_mold = tol.boundary_on_mold_rel * s.size();
+  for (std::size_t k = 0; k < darts.size(); ++k) {
+    const auto& given = darts[k];
+    const bool finite =
+        std::all_of(given.begin(), given.end(), [](const Vec3& p) { return p.allFinite(); });
+    if (given.size() < 2 || !finite)
+      return Error{ErrorCode::kDartCurvePoints, "dart", {number(k + 1), number(given.size())}};
+    auto c = follow_curve(s, given, k, kDartStepRel * d, on_mold);
+    if (!c) return c.error();
+    set.curves_.push_back(std::move(c).value());
+  }
+  return set;
+}
+
+bool DartSet::near(const Vec3& p) const {
+  return nearest(p) >= 0;
+}
+
+int DartSet::nearest(const Vec3& p) const {
+  int best = -1;
+  double best_d = kDartNearRel * d_;
+  for (std::size_t k = 0; k < curves_.size(); ++k) {
+    const double dist = box_distance(curves_[k].lo, curves_[k].hi, p);
+    if (dist <= best_d) best = static_cast<int>(k), best_d = dist;
+  }
+  return best;
+}
+
+bool DartSet::crosses(const Vec3& p, const Vec3& q) const {
+  for (const DartCurve& c : curves_)
+    if (crosses(c, p, q)) return true;
+  return false;
+}
+
+// The link p-q crosses curve c: in the tangent plane of a dart segment (the mean of its ends'
+// normals) p and q lie on two sides of the segment's line, the crossing falls within the
+// segment (half-open, so that a crossing at a shared point counts once), and the link passes
+// within kDartOffsetRel * d of it along the normal.
+bool DartSet::crosses(const DartCurve& c, const Vec3& p, const Vec3& q) const {
+  const double reach = kDartOffsetRel * d_;
+  const Vec3 lo = p.cwiseMin(q).array() - reach, hi = p.cwiseMax(q).array() + reach;
+  if ((lo.array() > c.hi.array()).any() || (hi.array() < c.lo.array()).any()) return false;
+  for (std::size_t k = 0; k + 1 < c.points.size(); ++k) {
+    const Vec3& c0 = c.points[k];
+    const Vec3& c1 = c.points[k + 1];
+    if ((lo.array() > c0.cwiseMax(c1).array()).any() ||
+        (hi.array() < c0.cwiseMin(c1).array()).any())
+      continue;
+    const Vec3 n = (c.normals[k] + c.normals[k + 1]).normalized();
+    Vec3 e1 = c1 - c0;
+    e1 -= e1.dot(n) * n;
+    const double len = e1.norm();
+    if (!(len > 0.0) || !n.allFinite()) continue;
+    e1 /= len;
+    const Vec3 e2 = n.cross(e1);
+    const double op = (p - c0).dot(e2), oq = (q - c0).dot(e2);
+    if ((op >= 0.0) == (oq >= 0.0)) continue;
+    const double f = op / (op - oq);  // where the link meets the segment's line
+    const double t = ((p - c0).dot(e1) + f * (q - p).dot(e1)) / len;
+    const bool last = k + 2 == c.points.size();
+    if (t < 0.0 || t > 1.0 || (t == 1.0 && !last)) continue;
+    const double h = (p - c0).dot(n) + f * (q - p).dot(n);
+    if (std::abs(h) <= reach) return true;
+  }
+  return false;
+}
+
+namespace {
+
+// The ply point of p carried through the cell corner a and its linked weft and warp
+// neighbours (the cell's affine map, least squares in the tangent plane); false where a has
+// no such neighbours or its links are sheared flat.
+bool carry(const DrapeResult& res, const DrapeNode& a, const Vec3& p, double min_sin2, Vec2& out) {
+  const DrapeNode* b = res.linked(a, ThreadDir::kPlusX);
+  if (!b || !b->mapped()) b = res.linked(a, ThreadDir::kMinusX);
+  const DrapeNode* c = res.linked(a, ThreadDir::kPlusY);
+  if (!c || !c->mapped()) c = res.linked(a, ThreadDir::kMinusY);
+  if (!b || !c || !b->mapped() || !c->mapped()) return false;
+  const Vec3 e1 = b->point - a.point, e2 = c->point - a.point, r = p - a.point;
+  const double g11 = e1.dot(e1), g12 = e1.dot(e2), g22 = e2.dot(e2);
+  const double det = g11 * g22 - g12 * g12;
+  if (!(det > min_sin2 * g11 * g22)) return false;
+  const double s = (g22 * e1.dot(r) - g12 * e2.dot(r)) / det;
+  const double t = (g11 * e2.dot(r) - g12 * e1.dot(r)) / det;
+  out = a.ply + s * (b->ply - a.ply) + t * (c->ply - a.ply);
+  return true;
+}
+
+// Quadrilateral area (shoelace, unsigned).
+double quad_area(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  return 0.5 * std::abs(cross2(a, b) + cross2(b, c) + cross2(c, d) + cross2(d, a));
+}
+
+// The dart's cut lines: each curve point carried through the nearest mapped node on each side
+// of the curve (within reach) and its cells; points with no node on one side are left out.
+// The area between the lines, per pair of points, is cut out where the right side's line lies
+// away from the left side's cloth, and a gap on the part where it lies in it.
+void cut_lines(const DartCurve& c, const NodeGrid& grid, const DrapeResult& res, double reach,
+               double min_sin2, DartResult& out) {
+  std::vector<double> away;  // per pair: right line's offset away from the left cloth
+  for (std::size_t i = 0; i < c.points.size(); ++i) {
+    const Vec3& p = c.points[i];
+    const Vec3 t = c.points[std::min(i + 1, c.points.size() - 1)] - c.points[i > 0 ? i - 1 : 0];
+    const Vec3 left = c.normals[i].cross(t);
+    const DrapeNode* best[2] = {nullptr, nullptr};
+    double best_d[2] = {reach, reach};
+    grid.around(p, [&](std::uint32_t k) {
+      const DrapeNode& n = res.nodes[k];
+      const double dist = (n.point - p).norm();
+      const int side = (n.point - p).dot(left) >= 0.0 ? 0 : 1;
+      if (dist < best_d[side]) best_d[side] = dist, best[side] = &n;
+    });
+    Vec2 l, r;
+    if (!best[0] || !best[1] || !carry(res, *best[0], p, min_sin2, l) ||
+        !carry(res, *best[1], p, min_sin2, r))
+      continue;
+    const Vec2 cloth = best[0]->ply - l;
+    const double cn = cloth.norm();
+    away.push_back(cn > 0.0 ? -(r - l).dot(cloth) / cn : 0.0);
+    out.line_left.push_back(l);
+    out.line_right.push_back(r);
+    out.width_max = std::max(out.width_max, (r - l).norm());
+  }
+  const auto& L = out.line_left;
+  const auto& R = out.line_right;
+  for (std::size_t i = 0; i + 1 < L.size(); ++i) {
+    const double a = quad_area(L[i], L[i + 1], R[i + 1], R[i]);
+    (away[i] + away[i + 1] >= 0.0 ? out.removed_area : out.opening_area) += a;
+  }
+}
+
+}  // namespace
+
+void lay_darts(const DartSet& darts, const std::vector<std::uint64_t>& cut_out,
+               const Tolerances& tol, DrapeResult& res) {
+  if (darts.empty()) return;
+  const double d = res.ply->d();
+  const double reach = kDartNearRel * d;
+  NodeGrid grid;
+  grid.cell = reach;
+  for (std::uint32_t k = 0; k < res.nodes.size(); ++k)
+    if (res.nodes[k].mapped() && darts.near(res.nodes[k].point)) grid.add(res.nodes[k].point, k);
+  const double min_sin2 = std::pow(std::sin(tol.fold_angle), 2);
+  for (std::size_t k = 0; k < darts.curves().size(); ++k) {
+    const DartCurve& c = darts.curves()[k];
+    DartResult out;
+    out.curve = c.points;
+    out.length = c.length;
+    out.tip = c.points.back();
+    out.nodes_cut_out = k < cut_out.size() ? cut_out[k] : 0;
+    cut_lines(c, grid, res, reach, min_sin2, out);
+    res.darts.push_back(std::move(out));
+  }
+  for (std::uint64_t key : res.cut_links) {
+    const DrapeNode& a = res.nodes[key >> 32];
+    const DrapeNode& b = res.nodes[key & 0xffffffffu];
+    if (!a.mapped() || !b.mapped()) continue;
+    const Vec3 mid = 0.5 * (a.point + b.point);
+    const int k = darts.nearest(mid);
+    if (k >= 0) ++res.darts[static_cast<std::size_t>(k)].links_cut;
+  }
+}
+
+}  // namespace plyfit::detail

@@ -1,0 +1,93 @@
+// Private to the kernel: darts, cuts in the ply along curves on the part. The scan asks
+// whether a thread link crosses a dart (such links are not enforced: the cloth on the two
+// sides drapes independently); after the scan each dart's curve is carried into the ply
+// through each side's cells, giving its two cut lines.
+#pragma once
+
+#include "surface/drape_surface.hpp"
+
+#include <plyfit/kernel/drape.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace plyfit::detail {
+
+// A dart's curve is followed on the surface at most kDartStepRel * d between points (its
+// chords then sag below the surface by about (d/2)^2 / 8R: far below the link length).
+inline constexpr double kDartStepRel = 0.5;
+// A link crosses a dart where their projections onto the tangent plane cross and the link
+// passes within kDartOffsetRel * d of the dart along the normal there: a link and a dart on
+// the part meet to their chords' sag; farther apart they are on two sheets of the part.
+inline constexpr double kDartOffsetRel = 0.5;
+// Nodes within kDartNearRel * d of a dart's bounding box are tested (a node's neighbours lie
+// within one link of it, two of each other).
+inline constexpr double kDartNearRel = 3.0;
+
+/// A dart's curve on the surface, with the normals the crossing test projects along.
+struct DartCurve {
+  std::vector<Vec3> points;
+  std::vector<Vec3> normals;
+  Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();  // bounding box
+  double length = 0.0;
+};
+
+/// The darts of a drape, projected onto its surface.
+class DartSet {
+ public:
+  /// The curves projected onto `s` and followed at kDartStepRel * d. Errors (blaming "dart"):
+  /// a curve of fewer than 2 points or a non-finite point (kDartCurvePoints: the dart's number
+  /// and its point count), a point farther from the surface than
+  /// Tolerances::boundary_on_mold_rel of its size (kDartOffMold: the dart's number, the
+  /// distance, the tolerance and the point).
+  static Result<DartSet> create(const DrapeSurface& s, const std::vector<std::vector<Vec3>>& darts,
+                                double d, const Tolerances& tol);
+  bool empty() const { return curves_.empty(); }
+  const std::vector<DartCurve>& curves() const { return curves_; }
+  /// True when p lies within kDartNearRel * d of some dart's bounding box.
+  bool near(const Vec3& p) const;
+  /// The dart whose bounding box p lies nearest to (-1: none within reach).
+  int nearest(const Vec3& p) const;
+  /// True when the segment p-q (a link on the part) crosses some dart.
+  bool crosses(const Vec3& p, const Vec3& q) const;
+
+ private:
+  bool crosses(const DartCurve& c, const Vec3& p, const Vec3& q) const;
+  std::vector<DartCurve> curves_;
+  double d_ = 1.0;
+};
+
+/// Nodes by 3D position in cubes of side `cell` (a hash of their integer coordinates).
+struct NodeGrid {
+  double cell = 1.0;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> bins;
+  static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
+    return (static_cast<std::uint64_t>(x & 0x1fffff) << 42) |
+           (static_cast<std::uint64_t>(y & 0x1fffff) << 21) |
+           static_cast<std::uint64_t>(z & 0x1fffff);
+  }
+  std::int64_t at(double v) const { return static_cast<std::int64_t>(std::floor(v / cell)); }
+  void add(const Vec3& p, std::uint32_t k) {
+    bins[key(at(p.x()), at(p.y()), at(p.z()))].push_back(k);
+  }
+  /// Calls f(k) for the nodes in the 27 cubes around p.
+  template <class F>
+  void around(const Vec3& p, F&& f) const {
+    const std::int64_t x = at(p.x()), y = at(p.y()), z = at(p.z());
+    for (std::int64_t a = -1; a <= 1; ++a)
+      for (std::int64_t b = -1; b <= 1; ++b)
+        for (std::int64_t c = -1; c <= 1; ++c)
+          if (auto it = bins.find(key(x + a, y + b, z + c)); it != bins.end())
+            for (std::uint32_t k : it->second) f(k);
+  }
+};
+
+/// Each dart as the drape laid it (DrapeResult::darts): its cut lines through the cells of each
+/// side, the area between them, the links it cut; `cut_out`: per dart, the ply nodes no side
+/// holds.
+void lay_darts(const DartSet& darts, const std::vector<std::uint64_t>& cut_out,
+               const Tolerances& tol, DrapeResult& res);
+
+}  // namespace plyfit::detail

@@ -1,0 +1,162 @@
+#include <plyfit/exporters/messages.hpp>
+#include <plyfit/kernel/builtin_molds.hpp>
+#include <plyfit/kernel/drape.hpp>
+
+#include <catch2/catch.hpp>
+
+#include "support/builtin_surfaces.hpp"
+#include "support/problems.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+using namespace plyfit;
+
+namespace {
+
+// On a plane both sides of a dart drape as the uncut ply: its cut lines coincide to the
+// solver's accuracy (links to 1e-10 d), relative to d.
+constexpr double kFlatRel = 1e-9;
+
+// The drape of a result that must not be an error.
+DrapeResult ok(Result<DrapeResult> r) {
+  INFO((r.ok() ? std::string() : exporters::describe(r.error())));
+  REQUIRE(r.ok());
+  return std::move(r).value();
+}
+
+// Largest shear (|90 deg - thread angle|) of the mapped nodes within `reach` of a curve.
+double shear_near(const DrapeResult& r, const std::vector<Vec3>& curve, double reach) {
+  double m = 0.0;
+  for (const auto& n : r.nodes) {
+    if (!n.has(DrapeNode::kHasAngle) || !n.mapped()) continue;
+    double dist = INFINITY;
+    for (const Vec3& p : curve) dist = std::min(dist, (p - n.point).norm());
+    if (dist <= reach) m = std::max(m, std::abs(kPi / 2 - n.thread_angle));
+  }
+  return m;
+}
+
+using support::builtin_surface;
+using support::problem;
+
+}  // namespace
+
+TEST_CASE("darts: a straight dart on a plane cuts the links it crosses and opens nothing") {
+  const MoldSurface f = builtin_surface("plane");  // [0, 100]^2, z = 0
+  const double d = 2.0;
+  // Nodes at 3D (2i + 49.7, 2j + 49.3): the start (0.3, 0.7) of the ply lands on (50, 50).
+  DrapeProblem pb = problem(d, Vec2(0.3, 0.7), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)},
+                            Vec3(50, 50, 0), Vec3(0, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)});
+  const DrapeResult plain = ok(drape(f, pb));
+  const Vec3 a(20.3, 0, 0), b(60.3, 35.1, 0);  // from the edge y = 0 into the ply
+  pb.darts = {{a, b}};
+  const DrapeResult r = ok(drape(f, pb));
+  REQUIRE(r.darts.size() == 1);
+  const DartResult& dart = r.darts[0];
+  // It crosses the warp threads x = 23.7, ..., 59.7 (19; x = 21.7 below y = 1.3, where that
+  // thread's link leaves the plane) and the weft threads y = 1.3, 3.3, ..., 33.3 (17): one
+  // link of each between nodes on the plane.
+  CHECK(dart.links_cut == 36);
+  CHECK(dart.nodes_cut_out == 0);
+  CHECK(dart.length == Approx((b - a).norm()).epsilon(1e-12));
+  CHECK((dart.tip - b).norm() < kFlatRel * d);
+  // Both sides drape as the uncut ply: every node, the same area.
+  CHECK(r.metrics.nodes.mapped == plain.metrics.nodes.mapped);
+  CHECK(r.metrics.nodes.conflict == 0);
+  CHECK(r.metrics.flat_area == Approx(plain.metrics.flat_area).epsilon(1e-12));
+  CHECK(r.metrics.edge_length_max_rel < kFlatRel);
+  // The two cut lines are the curve moved by the ply's offset, and coincide.
+  REQUIRE(dart.line_left.size() >= static_cast<std::size_t>((b - a).norm() / d));
+  REQUIRE(dart.line_left.size() == dart.line_right.size());
+  const Vec2 shift(50 - 0.3, 50 - 0.7);
+  for (std::size_t i = 0; i < dart.line_left.size(); ++i) {
+    CHECK((dart.line_left[i] - dart.line_right[i]).norm() < kFlatRel * d);
+    const Vec2 p = dart.line_left[i] + shift;  // on the segment a-b
+    const Vec2 e = (b - a).head<2>().normalized();
+    CHECK(std::abs(cross2(e, p - a.head<2>())) < kFlatRel * d);
+  }
+  CHECK(dart.width_max < kFlatRel * d);
+  CHECK(dart.removed_area < kFlatRel * d * d);
+  CHECK(dart.opening_area < kFlatRel * d * d);
+}
+
+TEST_CASE("darts: a dart on a hemisphere from the rim lowers the shear beside it and cuts a V") {
+  const double R = 10.0, d = 0.5;
+  const MoldSurface f = builtin_surface("hemisphere", {{"R", R}});
+  // Base path on the plane x = 0 through the pole, sweeps both ways: the most sheared cloth
+  // lies on the meridians half-way between the threads through the pole (azimuth 45 deg).
+  DrapeProblem pb = problem(d, Vec2(0, 0), Vec2(0, 1), {Vec2(-1, 0), Vec2(1, 0)}, Vec3(0, 0, R),
+                            Vec3(1, 0, 0), {Vec3(1, 0, 0), Vec3(-1, 0, 0)});
+  const DrapeResult plain = ok(drape(f, pb));
+  // The dart: that meridian from the rim up to 40 degrees from the pole.
+  std::vector<Vec3> curve;
+  const double az = 45.0 * kDegToRad;
+  for (double polar = 90.0; polar >= 40.0; polar -= 1.0) {
+    const double t = polar * kDegToRad;
+    curve.push_back(R * Vec3(std::sin(t) * std::cos(az), std::sin(t) * std::sin(az), std::cos(t)));
+  }
+  pb.darts = {curve};
+  const DrapeResult r = ok(drape(f, pb));
+  REQUIRE(r.darts.size() == 1);
+  const DartResult& dart = r.darts[0];
+  CHECK(dart.length == Approx(R * 50.0 * kDegToRad).epsilon(1e-3));
+  const double before = shear_near(plain, curve, 2 * d), after = shear_near(r, curve, 2 * d);
+  INFO("shear beside the dart: " << before * kRadToDeg << " deg without it, " << after * kRadToDeg
+                                 << " deg with it; V " << dart.removed_area << " mm2 cut out, "
+                                 << dart.opening_area << " mm2 open, width " << dart.width_max
+                                 << ", cut out nodes " << dart.nodes_cut_out << ", links cut "
+                                 << dart.links_cut << ", points " << dart.line_left.size());
+  CHECK(after < before);
+  // A sphere holds less surface round a point than the plane: the two sides' cloth would
+  // overlap at the dart, and the V between the cut lines is cut out.
+  CHECK(dart.removed_area > 0.0);
+  CHECK(dart.removed_area > 10.0 * dart.opening_area);
+  CHECK(dart.nodes_cut_out > 0);  // ply nodes in the V: no side's cloth holds them
+  CHECK(r.metrics.nodes.conflict == 0);
+}
+
+TEST_CASE("darts: bad dart curves are errors with codes") {
+  const MoldSurface f = builtin_surface("plane");
+  DrapeProblem pb = problem(2.0, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)}, Vec3(50, 50, 0),
+                            Vec3(0, 1, 0), {Vec3(0, 1, 0)});
+  pb.darts = {{Vec3(10, 10, 0)}};
+  auto one = drape(f, pb);
+  REQUIRE_FALSE(one.ok());
+  CHECK(one.error().code == ErrorCode::kDartCurvePoints);
+  pb.darts = {{Vec3(10, 10, 0), Vec3(20, 20, 5)}};  // 5 mm above a 141 mm mold
+  auto off = drape(f, pb);
+  REQUIRE_FALSE(off.ok());
+  CHECK(off.error().code == ErrorCode::kDartOffMold);
+  pb.darts = {{Vec3(10, 10, 0), Vec3(NAN, 20, 0)}};
+  auto nan = drape(f, pb);
+  REQUIRE_FALSE(nan.ok());
+  CHECK(nan.error().code == ErrorCode::kDartCurvePoints);
+}
+
+TEST_CASE("darts: automatic darts on a hemisphere locked at 40 degrees") {
+  const double R = 10.0, d = 0.5;
+  const MoldSurface f = builtin_surface("hemisphere", {{"R", R}});
+  const DrapeProblem pb = problem(d, Vec2(0, 0), Vec2(0, 1), {Vec2(-1, 0), Vec2(1, 0)},
+                                  Vec3(0, 0, R), Vec3(1, 0, 0), {Vec3(1, 0, 0), Vec3(-1, 0, 0)});
+  DrapeOptions opt;
+  opt.lock_angle = 40.0 * kDegToRad;
+  const DrapeResult plain = ok(drape(f, pb, opt));
+  // The cloth shears most on the meridians between the threads through the pole: it locks
+  // there before the rim.
+  REQUIRE(plain.metrics.nodes.shear_limit > 0);
+  const DrapeResult r = ok(drape_auto_darts(f, pb, opt, 3));
+  INFO("without darts: " << plain.metrics.nodes.shear_limit << " shear-limit, "
+                         << plain.metrics.nodes.conflict << " conflict, "
+                         << plain.metrics.nodes.mapped << " mapped; with " << r.darts.size()
+                         << " automatic darts after " << r.drapes
+                         << " drapes: " << r.metrics.nodes.shear_limit << " shear-limit, "
+                         << r.metrics.nodes.conflict << " conflict, " << r.metrics.nodes.mapped
+                         << " mapped, shear max " << r.metrics.shear_max * kRadToDeg);
+  CHECK(r.darts_auto);
+  CHECK(r.drapes <= 3);
+  CHECK(!r.darts.empty());
+  CHECK(r.metrics.nodes.conflict == 0);
+  CHECK(r.metrics.nodes.shear_limit == 0);
+  CHECK(r.metrics.shear_max <= opt.lock_angle);
+}
