@@ -126,6 +126,7 @@ Result<JobOutcome> run_job_on(const DrapeJob& job, const LoadedSurface& loaded,
   FlatPatternOptions fo;
   fo.min_width = job.min_width;
   const FlatPattern flat = flat_pattern(surface, *res, fo);
+  warn_outline_short(flat, surface.area(), *res);
   run.total_ms = run.import_ms + ms_since(t0);
   exporters::ExportOptions eo = export_options(job);
   auto ply = ply_report(job, surface, *res);
