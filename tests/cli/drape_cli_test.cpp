@@ -140,3 +140,21 @@ TEST_CASE(
   CHECK(r.err.find("plyfit: warning: " + warning) != std::string::npos);
   CHECK(r.out.find(", " + std::to_string(conflict) + " in conflict;") != std::string::npos);
 }
+
+TEST_CASE("cli: a drape ok but short of its face by more than the coverage rule warns") {
+  // One sweep from the middle line of the plate 100 x 60 at d = 10 covers its upper half: the
+  // mapped cells' band test lets it pass (kernel coverage_test), the outline's coverage (50 %)
+  // does not. The job warns outline_short, in report.json and on stderr; the status stays ok.
+  Scratch s("drape_outline_short");
+  const std::string args =
+      "--mold builtin:plate --spacing 10 --start2d 0,0 --base2d 1,0 --sweep2d 0,1 "
+      "--start3d 50,30,0 --base-normal 0,1,0 --sweep3d 0,1,0";
+  const CliRun r = plyfit_run("drape " + args + " --outputs json -o '" + s.file("o") + "'", s);
+  INFO(r.out << r.err);
+  REQUIRE(r.code == 0);
+  const auto j = nlohmann::json::parse(slurp(s.file("o") + "/report.json"));
+  CHECK(j.at("status") == "ok");
+  const std::string warning = "the flat pattern's outline covers 50.0% of the surface";
+  CHECK(j.at("warnings").dump().find(warning) != std::string::npos);
+  CHECK(r.err.find("plyfit: warning: " + warning) != std::string::npos);
+}
