@@ -153,6 +153,7 @@ Result<JobOutcome> run_job_on(const DrapeJob& job, const LoadedSurface& loaded,
   FlatPatternOptions fo;
   fo.min_width = job.min_width;
   const FlatPattern flat = flat_pattern(surface, *res, fo);
+  warn_outline_short(flat, surface.area(), *res);
   auto splices = splice_job(job, *res, flat);
   if (!splices) return splices.error();
   run.total_ms = run.import_ms + ms_since(t0);

@@ -2,6 +2,7 @@
 #include "render/message_text.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <iterator>
 
 namespace plyfit::exporters::render {
@@ -29,19 +30,42 @@ PLYFIT_SENTENCE(warning_sweep_maps_no_node,
                 "sweep direction {n0} maps no node: the cloth leaves the face at the base path on "
                 "its side (the start on the face's edge?)");
 
-// values: the coverage, then the nodes stopped inside the surface by the shear limit, overlap,
-// failure, conflict and the base path's end.
-std::string warning_uncovered_area(const Values& x) {
+namespace {
+
+// The stops inside the surface that bound the cloth (values[first..first + 4]: at the shear
+// limit, overlapping, failed, in conflict, past the base path's end), or what leaves the rest
+// uncovered when there are none (otherwise).
+std::string uncovered_because(const Values& x, std::size_t first, const char* otherwise) {
   static const char* const kStops[] = {"at the shear limit", "overlapping", "failed", "in conflict",
                                        "past the base path's end"};
   std::string stops;
   for (std::size_t k = 0; k < std::size(kStops); ++k)
-    if (x.count(k + 1) > 0) stops += (stops.empty() ? "" : ", ") + x.n(k + 1) + " " + kStops[k];
+    if (x.count(first + k) > 0)
+      stops += (stops.empty() ? "" : ", ") + x.n(first + k) + " " + kStops[k];
+  return stops.empty() ? std::string(otherwise) : "the cloth stops inside it (" + stops + ")";
+}
+
+}  // namespace
+
+// values: the coverage, then the nodes stopped inside the surface by the shear limit, overlap,
+// failure, conflict and the base path's end.
+std::string warning_uncovered_area(const Values& x) {
   return "the mapped cells cover " + percent(x, 0) +
          "% of the surface, less than the cells along its boundary explain: " +
-         (stops.empty() ? std::string("the sweeps do not reach the rest (another start, base path "
-                                      "or sweep may)")
-                        : "the cloth stops inside it (" + stops + ")");
+         uncovered_because(
+             x, 1, "the sweeps do not reach the rest (another start, base path or sweep may)");
+}
+
+// values: the outline's coverage, the share it may fall short, then the stops as above.
+std::string warning_outline_short(const Values& x) {
+  char text[96];
+  std::snprintf(text, sizeof text, "%.1f%% of the surface (%.1f%% uncovered, more than the %.1f%%",
+                100 * x.number(0), 100 * (1 - x.number(0)), 100 * x.number(1));
+  return std::string("the flat pattern's outline covers ") + text + " the coverage rule allows): " +
+         uncovered_because(x, 2,
+                           "the sweeps do not reach the rest (another start, base path or sweep "
+                           "may), or the outline stops at the mapped cells where no cell corner "
+                           "could be placed past the face's edge");
 }
 
 PLYFIT_SENTENCE(warning_path_ends,

@@ -71,6 +71,13 @@ void Scanner::map_path(const Vec3& t3) {
   res_.base_path = behind;
   res_.base_path.insert(res_.base_path.end(), ahead.begin(), ahead.end());
   for (std::uint32_t k = 0; k < res_.base_path.size(); ++k) path_pos_[res_.base_path[k]] = k;
+  // The line's nodes the path reached, its stops included (they exist: never pushed again).
+  for (const DrapeNode& n : res_.nodes) {
+    if (!n.has(DrapeNode::kOnPath)) continue;
+    const double t = (n.ply - ply_.spec().start).dot(ply_.base_dir());
+    path_t_[0] = std::min(path_t_[0], t);
+    path_t_[1] = std::max(path_t_[1], t);
+  }
   for (std::uint32_t k : res_.base_path) push_neighbours(k);
 }
 

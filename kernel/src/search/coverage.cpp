@@ -89,4 +89,17 @@ double outline_surface_area(const DrapeResult& res, const FlatPattern& flat) {
   return area;
 }
 
+void warn_outline_short(const FlatPattern& flat, double surface_area, DrapeResult& res) {
+  if (res.partial || res.ply->spec().rect || !(surface_area > 0.0)) return;
+  for (const Warning& w : res.warnings)
+    if (w.code == WarningCode::kUncoveredArea) return;
+  const double coverage = outline_surface_area(res, flat) / surface_area;
+  if (!(coverage < 1.0 - kCoverageSlack)) return;
+  const NodeCounts& c = res.metrics.nodes;
+  auto count = [](std::uint64_t n) { return MessageValue(static_cast<std::int64_t>(n)); };
+  res.warnings.push_back({WarningCode::kOutlineShort,
+                          {coverage, kCoverageSlack, count(c.shear_limit), count(c.overlap),
+                           count(c.failed), count(c.conflict), count(c.path_end)}});
+}
+
 }  // namespace plyfit

@@ -33,6 +33,13 @@ double outline_surface_area(const DrapeResult& res, const FlatPattern& flat);
 /// mapped cells, report.json's coverage, 88.5% to 96.8%).
 constexpr double kCoverageSlack = 0.005;
 
+/// WarningCode::kOutlineShort on res when the flat pattern's exact outline covers less of the
+/// surface (area surface_area) than the coverage rule allows (1 - kCoverageSlack) and the drape
+/// gave no reason for it (not partial, no kUncoveredArea; no ply rectangle): values the
+/// outline's coverage, kCoverageSlack, then the nodes stopped inside the surface at the shear
+/// limit, overlapping, failed, in conflict and past the base path's end.
+void warn_outline_short(const FlatPattern& flat, double surface_area, DrapeResult& res);
+
 /// A start for a drape of one face: the point of the face nearest the (u, v) centre of its
 /// boundary (trim loops, or the domain) that lies inside the trims, the outward normal there,
 /// and the base path along the surface's u direction (v where u collapses or where the face

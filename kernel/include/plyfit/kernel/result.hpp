@@ -307,6 +307,7 @@ struct Error {
   X(NoCellMapped, no_cell_mapped)        \
   X(SweepMapsNoNode, sweep_maps_no_node) \
   X(UncoveredArea, uncovered_area)       \
+  X(OutlineShort, outline_short)         \
   X(PathEnds, path_ends)                 \
   X(Cancelled, cancelled)                \
   X(NodeCap, node_cap)                   \

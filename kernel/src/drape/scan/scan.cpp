@@ -189,9 +189,10 @@ void Scanner::push_neighbours(std::uint32_t idx) {
     const int side = ply_.side(qp);
     // On the path: mapped (or not) by the base path, which goes on across holes of the face
     // (map_path). (Solving the line from the sweep that reaches it first lets one sweep's
-    // cloth cross the line and meet the other's sheared on a curved face.)
-    if (side == 0) continue;
-    if (ply_.sweep_for_side(side) < 0) continue;  // that half-plane is not swept
+    // cloth cross the line and meet the other's sheared on a curved face.) Beyond the
+    // path's ends the line is plain cloth between the two swept half-planes: a face whose
+    // outline comes back across the line past a notch is reached there (beyond_path()).
+    if (side == 0 ? !beyond_path(qp) : ply_.sweep_for_side(side) < 0) continue;
     if (res_.nodes.size() >= opt_.max_nodes) {
       truncated_ = true;
       continue;
@@ -204,6 +205,16 @@ void Scanner::push_neighbours(std::uint32_t idx) {
     }
     heap_.push({ply_.sweep_distance(qp), (qp - ply_.spec().start).norm(), q->i, q->j, qi});
   }
+}
+
+// True when ply point p on the base path's line lies beyond both ends of the mapped path
+// (more than a merge distance past its last node, the one where it stopped), with both
+// half-planes swept: the cloth may cross the line there.
+bool Scanner::beyond_path(const Vec2& p) const {
+  if (ply_.sweep_for_side(1) < 0 || ply_.sweep_for_side(-1) < 0) return false;
+  const double t = (p - ply_.spec().start).dot(ply_.base_dir());
+  const double merge = opt_.tol.ply_merge_rel * ply_.d();
+  return t > path_t_[1] + merge || t < path_t_[0] - merge;
 }
 
 // True if a thread through node k (just mapped) turns back on itself there: the link to

@@ -108,6 +108,7 @@ class Scanner {
   // scan.cpp
   std::optional<NodeId> neighbour_id(const NodeId& id, ThreadDir d) const;
   bool far_from_path(const Vec2& p) const;
+  bool beyond_path(const Vec2& p) const;
   std::uint32_t node_for(const NodeId& id, const Vec2& pos);
   void resolve(std::uint32_t idx, const SolveResult& r);
   bool overlaps(std::uint32_t k);
@@ -191,6 +192,7 @@ class Scanner {
   std::uint32_t order_ = 0;
   std::uint64_t path_off_ply_ = 0;
   Vec2 path_stop_[2] = {Vec2::Zero(), Vec2::Zero()};  // where the path stopped, +tau and -tau
+  double path_t_[2] = {0.0, 0.0};  // the path's nodes' extent along the base line (-, +)
   bool truncated_ = false, cancelled_ = false;
   bool one_face_ = true;  // every location is in one chart: guesses need no chart checks
   double cell_ = 1.0;     // overlap radius
