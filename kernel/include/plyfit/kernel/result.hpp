@@ -299,24 +299,24 @@ struct Error {
 };
 
 /// The warning codes, as PLYFIT_ERROR_CODES: X(Name, name).
-#define PLYFIT_WARNING_CODES(X)          \
-  /* general */                          \
-  X(Note, note)                          \
-  /* kernel: drape */                    \
-  X(StartFar, start_far)                 \
-  X(NoCellMapped, no_cell_mapped)        \
-  X(SweepMapsNoNode, sweep_maps_no_node) \
-  X(UncoveredArea, uncovered_area)       \
-  X(OutlineShort, outline_short)         \
-  X(PathEnds, path_ends)                 \
-  X(Cancelled, cancelled)                \
-  X(NodeCap, node_cap)                   \
-  X(ClothOnItself, cloth_on_itself)      \
-  X(FailedNodes, failed_nodes)           \
-  X(ConflictNodes, conflict_nodes)       \
-  X(ThreadEnds, thread_ends)             \
-  X(PathSlit, path_slit)                 \
-  /* kernel: splices */                  \
+#define PLYFIT_WARNING_CODES(X)               \
+  /* general */                               \
+  X(Note, note)                               \
+  /* kernel: drape */                         \
+  X(StartFar, start_far)                      \
+  X(NoCellMapped, no_cell_mapped)             \
+  X(SweepMapsNoNode, sweep_maps_no_node)      \
+  X(UncoveredArea, uncovered_area)            \
+  X(OutlineShort, outline_short)              \
+  X(PathEnds, path_ends)                      \
+  X(Cancelled, cancelled)                     \
+  X(NodeCap, node_cap)                        \
+  X(ClothOnItself, cloth_on_itself)           \
+  X(FailedNodes, failed_nodes)                \
+  X(ConflictNodes, conflict_nodes)            \
+  X(ThreadEnds, thread_ends)                  \
+  X(PathSlit, path_slit)                      \
+  /* kernel: splices */                       \
   X(SpliceStaggerUnmet, splice_stagger_unmet) \
   X(DartsNotEnough, darts_not_enough)
 
