@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -97,6 +98,23 @@ inline double median_time(const std::function<void()>& f, int runs = kMinRuns) {
   return median(t);
 }
 
+/// Medians of paired runs: each of max(runs, kMinRuns) rounds calls `round`, which times every
+/// one of N arms once, in turn (so that the machine's load falls on all of them alike), and
+/// gives their seconds, or nothing when a run failed (then there are no medians).
+template <std::size_t N>
+std::optional<std::array<double, N>> paired_medians(
+    int runs, const std::function<std::optional<std::array<double, N>>()>& round) {
+  std::array<std::vector<double>, N> t;
+  for (int k = 0; k < std::max(runs, kMinRuns); ++k) {
+    const auto seconds = round();
+    if (!seconds) return std::nullopt;
+    for (std::size_t a = 0; a < N; ++a) t[a].push_back((*seconds)[a]);
+  }
+  std::array<double, N> m{};
+  for (std::size_t a = 0; a < N; ++a) m[a] = median(t[a]);
+  return m;
+}
+
 /// True if `flag` is among args.
 inline bool has_flag(const std::vector<std::string>& args, const std::string& flag) {
   return std::find(args.begin(), args.end(), flag) != args.end();
@@ -131,12 +149,25 @@ struct Table {
 
   /// Adds a row (as many cells as the header).
   void add(std::vector<std::string> row) { rows.push_back(std::move(row)); }
+  /// Adds the row of a case that gave no figures: its name, "-" in the columns between, and
+  /// `why` in the last.
+  void add_failed(const std::string& name, const std::string& why) {
+    std::vector<std::string> row(std::max<std::size_t>(header.size(), 2), "-");
+    row.front() = name;
+    row.back() = why;
+    add(std::move(row));
+  }
   /// The caption, an empty line, and the Markdown table.
   std::string markdown() const;
   /// Comma-separated values with a header line (cells quoted when they hold a comma or a
   /// quote).
   std::string csv() const;
 };
+
+/// A subcommand that prints a table of paired runs, `make(runs, &ok)`, in Markdown: `--runs R`
+/// (at least kMinRuns; the summary says so); exit code 1 when a case failed (ok false).
+Benchmark runs_table_benchmark(std::string name, std::string summary,
+                               std::function<Table(int runs, bool* ok)> make);
 
 /// Writes `text` to `path` (creating parent folders); false on failure.
 bool write_text_file(const std::string& path, const std::string& text);

@@ -83,46 +83,35 @@ Table boundary_table(int runs, bool* ok) {
   for (BoundaryCase& c : boundary_cases()) {
     if (!c.mold) {
       *ok = false;
-      t.add({c.name, "-", "-", "-", "-", "-", "no mold"});
+      t.add_failed(c.name, "no mold");
       continue;
     }
     std::uint64_t n0 = 0, n1 = 0;
-    std::vector<double> t0, t1, tb;
-    for (int k = 0; k < std::max(runs, kMinRuns); ++k) {
-      t0.push_back(time_once([&] { n0 = drape_ply(*c.mold, c.seed, c.d); }));
+    // Without, bound_mold() alone, and with (bound_mold() + the drape of the bounded mold).
+    const auto m = paired_medians<3>(runs, [&]() -> std::optional<std::array<double, 3>> {
+      const double whole = time_once([&] { n0 = drape_ply(*c.mold, c.seed, c.d); });
       Result<BoundedMold> b = Error{ErrorCode::kInternal};
       const double bound = time_once([&] { b = bound_mold(*c.mold, c.boundary, c.seed); });
-      if (!b) {
-        *ok = false;
-        break;
-      }
-      tb.push_back(bound);
-      t1.push_back(bound + time_once([&] { n1 = drape_ply(b->surface, c.seed, c.d); }));
-    }
-    if (t1.empty() || n0 == 0 || n1 == 0) {
+      if (!b) return std::nullopt;
+      return std::array{whole, bound,
+                        bound + time_once([&] { n1 = drape_ply(b->surface, c.seed, c.d); })};
+    });
+    if (!m || n0 == 0 || n1 == 0) {
       *ok = false;
-      t.add({c.name, "-", "-", "-", "-", "-", "failed"});
+      t.add_failed(c.name, "failed");
       continue;
     }
-    const double a = median(t0) / static_cast<double>(n0) * 1e9;
-    const double w = median(t1) / static_cast<double>(n1) * 1e9;
-    t.add({c.name, fmt("%llu", static_cast<unsigned long long>(n0)),
-           fmt("%llu", static_cast<unsigned long long>(n1)), fmt("%.1f", median(tb) * 1e3),
-           fmt("%.0f", a), fmt("%.0f", w), fmt("%.2f", w / a)});
+    const auto [whole, bound, with] = *m;
+    const double a = whole / static_cast<double>(n0) * 1e9;
+    const double w = with / static_cast<double>(n1) * 1e9;
+    t.add({c.name, std::to_string(n0), std::to_string(n1), fmt("%.1f", bound * 1e3), fmt("%.0f", a),
+           fmt("%.0f", w), fmt("%.2f", w / a)});
   }
   return t;
 }
 
-int run_boundary(const std::vector<std::string>& args) {
-  const int runs = std::stoi(option_value(args, "--runs", std::to_string(kMinRuns)));
-  bool ok = true;
-  std::cout << boundary_table(runs, &ok).markdown();
-  return ok ? 0 : 1;
-}
-
-const BenchmarkRegistrar kBoundary{
-    {"boundary", "a drape with a ply boundary against one without, per node [--runs R]",
-     run_boundary}};
+const BenchmarkRegistrar kBoundary{runs_table_benchmark(
+    "boundary", "a drape with a ply boundary against one without, per node", boundary_table)};
 
 }  // namespace
 

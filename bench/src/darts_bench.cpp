@@ -49,37 +49,29 @@ Table darts_table(int runs, bool* ok) {
   for (DartCase c : {hemisphere_case(10, 0.1, 40), hemisphere_case(10, 0.05, 40)}) {
     if (!c.mold) {
       *ok = false;
-      t.add({c.name, "-", "-", "-", "-", "-", "no mold"});
+      t.add_failed(c.name, "no mold");
       continue;
     }
-    std::vector<double> t0, t1;
     Result<DrapeResult> with = Error{ErrorCode::kInternal};
-    for (int k = 0; k < std::max(runs, kMinRuns); ++k) {
-      t0.push_back(time_once([&] { (void)drape(*c.mold, c.problem, c.options); }));
-      t1.push_back(time_once([&] { with = drape_auto_darts(*c.mold, c.problem, c.options); }));
-    }
-    if (!with) {
+    const auto m = paired_medians<2>(runs, [&] {
+      return std::array{time_once([&] { (void)drape(*c.mold, c.problem, c.options); }),
+                        time_once([&] { with = drape_auto_darts(*c.mold, c.problem, c.options); })};
+    });
+    if (!m || !with) {
       *ok = false;
-      t.add({c.name, "-", "-", "-", "-", "-", "failed"});
+      t.add_failed(c.name, "failed");
       continue;
     }
+    const auto [t0, t1] = *m;
     const bool laid = with->metrics.nodes.conflict == 0 && with->metrics.nodes.shear_limit == 0;
     t.add({c.name, fmt("%u", with->drapes), laid ? "yes" : "no", fmt("%zu", with->darts.size()),
-           fmt("%.1f", median(t0) * 1e3), fmt("%.1f", median(t1) * 1e3),
-           fmt("%.2f", median(t1) / median(t0))});
+           fmt("%.1f", t0 * 1e3), fmt("%.1f", t1 * 1e3), fmt("%.2f", t1 / t0)});
   }
   return t;
 }
 
-int run_darts(const std::vector<std::string>& args) {
-  const int runs = std::stoi(option_value(args, "--runs", std::to_string(kMinRuns)));
-  bool ok = true;
-  std::cout << darts_table(runs, &ok).markdown();
-  return ok ? 0 : 1;
-}
-
 const BenchmarkRegistrar kDarts{
-    {"darts", "a drape with automatic darts against one without [--runs R]", run_darts}};
+    runs_table_benchmark("darts", "a drape with automatic darts against one without", darts_table)};
 
 }  // namespace
 

@@ -191,9 +191,7 @@ Table kindrape_table(int runs, int side, bool* ok) {
 
 // The value of option `name` in args, or `fallback`.
 int int_option(const std::vector<std::string>& args, const std::string& name, int fallback) {
-  for (std::size_t k = 0; k + 1 < args.size(); ++k)
-    if (args[k] == name) return std::atoi(args[k + 1].c_str());
-  return fallback;
+  return std::atoi(option_value(args, name, std::to_string(fallback)).c_str());
 }
 
 int run_kindrape_bench(const std::vector<std::string>& args) {

@@ -141,8 +141,8 @@ Table shell_drape_table(int runs, double* worst_ratio, bool* ok) {
     const double a = median(t1) / n1 * 1e9, b = median(tn) / nn * 1e9;
     const NetDifference diff = net_difference(*r1, *rn);
     worst = std::max(worst, b / a);
-    t.add({c.name, fmt("%llu", static_cast<unsigned long long>(rn->metrics.nodes.mapped)),
-           fmt("%.0f", a), fmt("%.0f", b), fmt("%.2f", b / a), fmt("%zu", diff.status),
+    t.add({c.name, std::to_string(rn->metrics.nodes.mapped), fmt("%.0f", a), fmt("%.0f", b),
+           fmt("%.2f", b / a), fmt("%zu", diff.status),
            fmt("%.1e", diff.distance / c.problem.ply.d_weft)});
   }
   if (worst_ratio) *worst_ratio = worst;

@@ -108,44 +108,35 @@ Table splice_table(int runs, bool* ok) {
   for (const SpliceCase& c : splice_cases()) {
     if (!c.mold) {
       *ok = false;
-      t.add({c.name, "-", "-", "-", "-", "-", "no mold"});
+      t.add_failed(c.name, "no mold");
       continue;
     }
     // The pattern's own width, measured once, sets the roll.
     const Timed first = run_once(c, 0.0);
     if (first.mapped == 0) {
       *ok = false;
-      t.add({c.name, "-", "-", "-", "-", "-", "failed"});
+      t.add_failed(c.name, "failed");
       continue;
     }
     const double roll = first.width / 2.5;
-    std::vector<double> without, with, splice;
     Timed last;
-    for (int k = 0; k < std::max(runs, kMinRuns); ++k) {
-      without.push_back(run_once(c, 0.0).drape_flat);
+    // Without, with (drape + flat + splices), and the splices alone.
+    const auto m = paired_medians<3>(runs, [&] {
+      const double without = run_once(c, 0.0).drape_flat;
       last = run_once(c, roll);
-      with.push_back(last.drape_flat + last.splice);
-      splice.push_back(last.splice);
-    }
+      return std::array{without, last.drape_flat + last.splice, last.splice};
+    });
+    const auto [base, with, splice] = *m;
     if (last.pieces != 3) *ok = false;
-    const double base = median(without);
-    t.add({c.name, fmt("%llu", static_cast<unsigned long long>(last.mapped)),
-           fmt("%zu", last.pieces), fmt("%.1f", base * 1e3), fmt("%.1f", median(with) * 1e3),
-           fmt("%.1f", median(splice) * 1e3), fmt("%.3f", median(splice) / base)});
+    t.add({c.name, std::to_string(last.mapped), fmt("%zu", last.pieces), fmt("%.1f", base * 1e3),
+           fmt("%.1f", with * 1e3), fmt("%.1f", splice * 1e3), fmt("%.3f", splice / base)});
   }
   return t;
 }
 
-int run_splices(const std::vector<std::string>& args) {
-  const int runs = std::stoi(option_value(args, "--runs", std::to_string(kMinRuns)));
-  bool ok = true;
-  std::cout << splice_table(runs, &ok).markdown();
-  return ok ? 0 : 1;
-}
-
-const BenchmarkRegistrar kSplices{
-    {"splices", "a drape split for the roll against one without, drape + flat + splices [--runs R]",
-     run_splices}};
+const BenchmarkRegistrar kSplices{runs_table_benchmark(
+    "splices", "a drape split for the roll against one without, drape + flat + splices",
+    splice_table)};
 
 }  // namespace
 

@@ -1,10 +1,11 @@
 // The table type shared by every benchmark: Markdown for the terminal and BENCHMARKS.md, CSV
-// for bench/results.
+// for bench/results; the subcommand that prints a table of paired runs.
 
 #include "bench.hpp"
 
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 
 namespace plyfit::bench {
 
@@ -51,6 +52,17 @@ std::string Table::csv() const {
   line(header);
   for (const auto& r : rows) line(r);
   return out;
+}
+
+Benchmark runs_table_benchmark(std::string name, std::string summary,
+                               std::function<Table(int runs, bool* ok)> make) {
+  return {std::move(name), std::move(summary) + " [--runs R]",
+          [make](const std::vector<std::string>& args) {
+            const int runs = std::stoi(option_value(args, "--runs", std::to_string(kMinRuns)));
+            bool ok = true;
+            std::cout << make(runs, &ok).markdown();
+            return ok ? 0 : 1;
+          }};
 }
 
 bool write_text_file(const std::string& path, const std::string& text) {
