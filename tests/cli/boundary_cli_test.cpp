@@ -5,7 +5,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "cli/cli_util.hpp"
+#include "cli/drape_report.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -42,15 +42,10 @@ std::string write(const Scratch& tmp, const std::string& name, const std::string
 TEST_CASE("cli: the issue's command drapes a 45 deg ply whose outline is the circle") {
   Scratch tmp("boundary_cli");
   const std::string csv = write(tmp, "circle.csv", circle_csv(50, 30, 0, 20));
-  const std::string out = tmp.file("out");
-  const CliRun r = plyfit_run(
-      "drape --mold builtin:plate --seed 50,30,0 --rosette 1,0,0 "
-      "--ply-angle 45 --boundary '" +
-          csv + "' --spacing 1 --quiet -o '" + out + "'",
+  const json j = drape_report(
+      "--mold builtin:plate --seed 50,30,0 --rosette 1,0,0 --ply-angle 45 --boundary '" + csv +
+          "' --spacing 1 --quiet",
       tmp);
-  INFO(r.err);
-  REQUIRE(r.code == 0);
-  const json j = json::parse(slurp(out + "/report.json"));
   CHECK(j["status"] == "ok");
   CHECK(j["ply"]["laid_angle_deg"].get<double>() == Approx(45.0).margin(1e-9));
   const double exact = 400 * kPiT;
@@ -65,7 +60,7 @@ TEST_CASE("cli: the issue's command drapes a 45 deg ply whose outline is the cir
       worst = std::max(worst, std::abs(std::hypot(p[0].get<double>(), p[1].get<double>()) - 20));
   CHECK(worst < 0.01);
   // net.step carries the boundary's loops on the mold.
-  CHECK(slurp(out + "/net.step").find("boundary_curves") != std::string::npos);
+  CHECK(slurp(tmp.file("out") + "/net.step").find("boundary_curves") != std::string::npos);
 }
 
 TEST_CASE("cli: a scene's boundary is relative to it, and --dump-scene keeps it and its offset") {
@@ -81,11 +76,7 @@ TEST_CASE("cli: a scene's boundary is relative to it, and --dump-scene keeps it 
   CHECK(d.out.find("boundary = ") != std::string::npos);
   CHECK(d.out.find("loops.csv:0,1") != std::string::npos);
   CHECK(d.out.find("boundary-offset = 1") != std::string::npos);
-  const std::string out = tmp.file("out");
-  const CliRun r = plyfit_run("drape '" + scene + "' --outputs json --quiet -o '" + out + "'", tmp);
-  INFO(r.err);
-  REQUIRE(r.code == 0);
-  const json j = json::parse(slurp(out + "/report.json"));
+  const json j = drape_report("'" + scene + "' --outputs json --quiet", tmp);
   // Grown by 1: the ring between radii 21 and 4 (the inner loop is a cut-out, shrunk by 1).
   const double ring = kPiT * (21.0 * 21.0 - 4.0 * 4.0);
   CHECK(j["ply"]["boundary"]["area"].get<double>() == Approx(ring).epsilon(2e-3));
@@ -131,15 +122,11 @@ TEST_CASE("cli: a boundary across a file's shell drapes as across the built-in s
        {std::string("builtin:flange-fillet-wall"), samples + "molds/flange-fillet-wall.step",
         samples + "molds/flange-fillet-wall.igs"}) {
     CAPTURE(mold);
-    const std::string out = tmp.file("out");
-    const CliRun r = plyfit_run(
-        "drape --mold '" + mold +
-            "' --faces all --spacing 1 --seed -5,30,0 --rosette 0,1,0 --boundary '" + samples +
-            "plies/flange-fillet-wall-circle.csv' --quiet --outputs json -o '" + out + "'",
-        tmp);
-    INFO(r.err);
-    REQUIRE(r.code == 0);
-    const json j = json::parse(slurp(out + "/report.json"));
+    const json j =
+        drape_report("--mold '" + mold +
+                         "' --faces all --spacing 1 --seed -5,30,0 --rosette 0,1,0 --boundary '" +
+                         samples + "plies/flange-fillet-wall-circle.csv' --quiet --outputs json",
+                     tmp);
     CHECK(j["status"] == "ok");
     CHECK(j["ply"]["boundary"]["area"].get<double>() == Approx(exact).epsilon(1e-3));
     CHECK(j["flat_outline_exact"]["area"].get<double>() == Approx(exact).epsilon(1e-3));
@@ -175,14 +162,10 @@ TEST_CASE("cli: loops winding round a tube bound a band, or the side that holds 
   for (const Case& c : {Case{band, "0,10,10", 10 * per_mm}, Case{one, "0,10,10", 15 * per_mm},
                         Case{one, "0,10,2", 5 * per_mm}}) {
     CAPTURE(c.csv, c.seed);
-    const std::string out = tmp.file("out");
-    const CliRun r = plyfit_run("drape --mold '" + tube + "' --seed " + c.seed +
+    const json j = drape_report("--mold '" + tube + "' --seed " + c.seed +
                                     " --rosette 0,0,1 --spacing 0.5 --boundary '" + c.csv +
-                                    "' --quiet --outputs json -o '" + out + "'",
+                                    "' --quiet --outputs json",
                                 tmp);
-    INFO(r.err);
-    REQUIRE(r.code == 0);
-    const json j = json::parse(slurp(out + "/report.json"));
     CHECK(j["ply"]["boundary"]["area"].get<double>() == Approx(c.area).epsilon(1e-5));
   }
   const CliRun off =

@@ -5,7 +5,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "cli/cli_util.hpp"
+#include "cli/drape_report.hpp"
 #include "corpus.hpp"
 
 #include <string>
@@ -23,16 +23,11 @@ TEST_CASE("cli: a boundary picked by name takes every curve of that name") {
   INFO(info.err);
   REQUIRE(info.code == 0);
   const double face_area = json::parse(info.out)["area_mm2"].get<double>();
-  const std::string out = tmp.file("out");
-  const CliRun r =
-      plyfit_run("drape --mold '" + file +
-                     "' --face 0 --seed -699.1,580.04,461.34 --rosette 0,1,0 "
-                     "--boundary '" +
-                     file + ":FAC418(1690)' --spacing 2 --quiet --outputs json -o '" + out + "'",
-                 tmp);
-  INFO(r.err);
-  REQUIRE(r.code == 0);
-  const json j = json::parse(slurp(out + "/report.json"));
+  const json j = drape_report("--mold '" + file +
+                                  "' --face 0 --seed -699.1,580.04,461.34 --rosette 0,1,0 "
+                                  "--boundary '" +
+                                  file + ":FAC418(1690)' --spacing 2 --quiet --outputs json",
+                              tmp);
   REQUIRE(j["ply"]["boundary"]["loops"].size() == 1);
   CHECK(j["ply"]["boundary"]["area"].get<double>() == Approx(face_area).epsilon(1e-4));
 }

@@ -5,7 +5,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "cli/cli_util.hpp"
+#include "cli/drape_report.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -29,12 +29,9 @@ const std::string kStrip =
     "--base-normal -0.99580287622940966,-0.064639367141352835,0.064794937370141345 "
     "--sweep3d -0.43134763568172607,-0.55503042602519637,0.71125272820430974";
 
+// report.json (and flat.dxf) of a drape with `flags` into the scratch folder's `out`.
 json report(const std::string& flags, const std::string& out, const Scratch& tmp) {
-  const CliRun r =
-      plyfit_run("drape " + flags + " --outputs json,dxf --quiet -o '" + out + "'", tmp);
-  INFO(r.err);
-  REQUIRE(r.code == 0);
-  return json::parse(slurp(out + "/report.json"));
+  return drape_report(flags + " --outputs json,dxf --quiet", tmp, out);
 }
 
 // The number of LWPOLYLINEs on layer OUTLINE or HOLES of a DXF, and their vertices.
@@ -74,7 +71,7 @@ int vertices(const json& outline) {
 TEST_CASE("cli: --min-width cuts the strip off the outline, 0 keeps the exact one") {
   Scratch tmp("min_width");
   const double d = 0.10973817914653033;
-  const json def = report(kStrip, tmp.file("def"), tmp);
+  const json def = report(kStrip, "def", tmp);
   const json& cut = def["flat_outline"];
   const json& exact = def["flat_outline_exact"];
   CHECK(cut["min_width"].get<double>() == 0.5 * d);
@@ -89,7 +86,7 @@ TEST_CASE("cli: --min-width cuts the strip off the outline, 0 keeps the exact on
   CHECK(polys == static_cast<int>(cut["loops"].size()));
   CHECK(verts == vertices(cut));
 
-  const json off = report(kStrip + " --min-width 0", tmp.file("off"), tmp);
+  const json off = report(kStrip + " --min-width 0", "off", tmp);
   CHECK(off["flat_outline"]["loops"] == off["flat_outline_exact"]["loops"]);
   CHECK(off["flat_outline"]["area"] == off["flat_outline_exact"]["area"]);
   CHECK(off["flat_outline"]["slivers"].get<int>() == 0);
@@ -106,7 +103,7 @@ TEST_CASE("cli: --min-width cuts the strip off the outline, 0 keeps the exact on
     CHECK(dump.out.find("min-width = 0.02") != std::string::npos);
     std::ofstream(scene) << dump.out;
   }
-  const json sc = report("'" + scene + "'", tmp.file("scene"), tmp);
+  const json sc = report("'" + scene + "'", "scene", tmp);
   CHECK(sc["flat_outline"]["min_width"].get<double>() == 0.02);
 }
 

@@ -5,7 +5,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "cli/cli_util.hpp"
+#include "cli/drape_report.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -19,12 +19,7 @@ namespace {
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
 json drape_report(const std::string& flags, const Scratch& tmp) {
-  const std::string out = tmp.file("out");
-  const CliRun r =
-      plyfit_run("drape " + flags + " --outputs json,dxf --quiet -o '" + out + "'", tmp);
-  INFO(r.err);
-  REQUIRE(r.code == 0);
-  return json::parse(slurp(out + "/report.json"));
+  return plyfit::test::drape_report(flags + " --outputs json,dxf --quiet", tmp);
 }
 }  // namespace
 
