@@ -109,11 +109,7 @@ Status create_folder(const fs::path& dir) {
   return ok_status();
 }
 
-int run_batch(const std::vector<std::string>& args) {
-  const OptionTable& table = batch_options();
-  const Arguments a = read_arguments(args, table, {"scene", "scene files", true}, kBatchHelp);
-  if (a.exit) return *a.exit;
-  const Options o(a.raw, table);
+int run_batch(const Options& o) {
   auto jobs = jobs_value(o);
   if (!jobs) return error_exit(kExitUsage, jobs.error(), o.namer());
   auto shard = o.given("shard") ? parse_shard(*o.text("shard")) : Result<Shard>(Shard{});
@@ -133,9 +129,9 @@ int run_batch(const std::vector<std::string>& args) {
   return all_ok && written ? kExitOk : kExitFailure;
 }
 
-const CommandRegistrar kRegisterBatch{
-    Command{"batch", "run many scenes in parallel, each into its own folder, with a summary", 30,
-            run_batch}};
+const CommandRegistrar kRegisterBatch{options_command(
+    "batch", "run many scenes in parallel, each into its own folder, with a summary", 30,
+    {batch_options, {"scene", "scene files", true}, kBatchHelp}, run_batch)};
 
 }  // namespace
 }  // namespace plyfit::cli

@@ -64,6 +64,17 @@ Arguments read_arguments(const std::vector<std::string>& args, const OptionTable
   return a;
 }
 
+Command options_command(std::string name, std::string summary, int order, ArgumentSpec spec,
+                        std::function<int(const Options&)> run) {
+  return {std::move(name), std::move(summary), order,
+          [spec, run](const std::vector<std::string>& args) {
+            const OptionTable& table = spec.table();
+            const Arguments a = read_arguments(args, table, spec.operands, spec.help);
+            if (a.exit) return *a.exit;
+            return run(Options(a.raw, table));
+          }};
+}
+
 CatchInterrupts::CatchInterrupts(void (*handler)(int)) {
   struct sigaction sa {};
   sa.sa_handler = handler;

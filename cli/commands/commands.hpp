@@ -1,7 +1,8 @@
 #pragma once
 // Subcommands of the plyfit executable. Each lives in its own file and registers itself
 // with a static CommandRegistrar; main() dispatches on the first argument. Each reads its
-// arguments with read_arguments() (its option table, its operands, its help) and reports
+// arguments with read_arguments() (its option table, its operands, its help: options_command
+// does it for all but drape) and reports
 // errors with print_error() (one line, the error's code at its end).
 
 #include "commands/command_line.hpp"
@@ -78,6 +79,18 @@ struct Arguments {
 };
 Arguments read_arguments(const std::vector<std::string>& args, const OptionTable& table,
                          const Operands& operands, const CommandHelp& help);
+
+/// How a subcommand reads its arguments through read_arguments(): its option table, its
+/// operands, its help.
+struct ArgumentSpec {
+  const OptionTable& (*table)();
+  Operands operands;
+  const CommandHelp& help;
+};
+/// A subcommand whose `run` gets the options read as `spec` says; after --help or a bad
+/// command line it exits with read_arguments()' code instead.
+Command options_command(std::string name, std::string summary, int order, ArgumentSpec spec,
+                        std::function<int(const Options&)> run);
 
 /// While it lives, SIGINT and SIGTERM go to `handler`; the previous handlers come back after.
 class CatchInterrupts {

@@ -122,11 +122,7 @@ Row row_of(const std::string& name, const Result<JobOutcome>& out, const DrapeJo
   return r;
 }
 
-int run_compare(const std::vector<std::string>& args) {
-  const OptionTable& table = compare_options();
-  const Arguments a = read_arguments(args, table, {"scene", "scene files", true}, kCompareHelp);
-  if (a.exit) return *a.exit;
-  const Options o(a.raw, table);
+int run_compare(const Options& o) {
   if (o.given("csv") && o.given("markdown"))
     return error_exit(kExitUsage, Error{ErrorCode::kOptionsExclusive, "", {"--csv", "--markdown"}});
   const auto& paths = o.all("scene");
@@ -153,8 +149,9 @@ int run_compare(const std::vector<std::string>& args) {
   return failed.empty() ? kExitOk : kExitFailure;
 }
 
-const CommandRegistrar kRegisterCompare{Command{
-    "compare", "compare drapes of one mold face (the paper's Tables 2 and 4)", 40, run_compare}};
+const CommandRegistrar kRegisterCompare{
+    options_command("compare", "compare drapes of one mold face (the paper's Tables 2 and 4)", 40,
+                    {compare_options, {"scene", "scene files", true}, kCompareHelp}, run_compare)};
 
 }  // namespace
 }  // namespace plyfit::cli

@@ -86,11 +86,7 @@ int list_curves(const std::string& path, const importers::ImportOptions& options
   return kExitOk;
 }
 
-int run_info(const std::vector<std::string>& args) {
-  const OptionTable& table = info_options();
-  const Arguments a = read_arguments(args, table, {"file", "mold file"}, kInfoHelp);
-  if (a.exit) return *a.exit;
-  const Options o(a.raw, table);
+int run_info(const Options& o) {
   const std::string path = o.all("file").front();
   auto face = o.given("face") ? o.integer("face", 0, kMaxFace) : Result<long>(-1);
   if (!face) return error_exit(kExitUsage, face.error(), o.namer());
@@ -118,7 +114,8 @@ int run_info(const std::vector<std::string>& args) {
 }
 
 const CommandRegistrar kRegisterInfo{
-    Command{"info", "list a mold file's faces (kind, degrees, trims, area, bbox)", 10, run_info}};
+    options_command("info", "list a mold file's faces (kind, degrees, trims, area, bbox)", 10,
+                    {info_options, {"file", "mold file"}, kInfoHelp}, run_info)};
 
 }  // namespace
 

@@ -126,11 +126,7 @@ bool write_documents(const exporters::Plybook& book, const fs::path& dir) {
   return ok;
 }
 
-int run_laminate(const std::vector<std::string>& args) {
-  const OptionTable& table = laminate_options();
-  const Arguments a = read_arguments(args, table, {"laminate", "laminate file"}, kLaminateHelp);
-  if (a.exit) return *a.exit;
-  const Options o(a.raw, table);
+int run_laminate(const Options& o) {
   auto jobs = jobs_value(o);
   if (!jobs) return error_exit(kExitUsage, jobs.error(), o.namer());
   if (!o.given("output")) return error_exit(kExitUsage, o.missing("output"), o.namer());
@@ -174,9 +170,9 @@ int run_laminate(const std::vector<std::string>& args) {
   return all_ok && written ? kExitOk : kExitFailure;
 }
 
-const CommandRegistrar kRegisterLaminate{
-    Command{"laminate", "drape a laminate's plies and write its ply book and cut drawing", 35,
-            run_laminate}};
+const CommandRegistrar kRegisterLaminate{options_command(
+    "laminate", "drape a laminate's plies and write its ply book and cut drawing", 35,
+    {laminate_options, {"laminate", "laminate file"}, kLaminateHelp}, run_laminate)};
 
 }  // namespace
 }  // namespace plyfit::cli

@@ -233,11 +233,7 @@ int write_outputs(const fs::path& dir, const std::string& path, const Scene& sce
   return kExitOk;
 }
 
-int run_optimize(const std::vector<std::string>& args) {
-  const OptionTable& table = optimize_options();
-  const Arguments a = read_arguments(args, table, {"scene", "scene file"}, kOptimizeHelp);
-  if (a.exit) return *a.exit;
-  const Options o(a.raw, table);
+int run_optimize(const Options& o) {
   auto opt = read_search(o);
   if (!opt) return error_exit(kExitUsage, opt.error(), o.namer());
 
@@ -259,9 +255,9 @@ int run_optimize(const std::vector<std::string>& args) {
   return write_outputs(*o.text("output"), path, *scene, r, *opt, seconds);
 }
 
-const CommandRegistrar kRegisterOptimize{Command{
+const CommandRegistrar kRegisterOptimize{options_command(
     "optimize", "search a scene's seed point and ply angle for the lowest energy, shear or area",
-    45, run_optimize}};
+    45, {optimize_options, {"scene", "scene file"}, kOptimizeHelp}, run_optimize)};
 
 }  // namespace
 }  // namespace plyfit::cli

@@ -79,11 +79,7 @@ int write_sample(const std::string& spec_text, const std::string& path,
   return written ? kExitOk : error_exit(kExitFailure, written.error());
 }
 
-int run_sample(const std::vector<std::string>& args) {
-  const OptionTable& table = sample_options();
-  const Arguments a = read_arguments(args, table, {"mold", "built-in mold"}, kSampleHelp);
-  if (a.exit) return *a.exit;
-  const Options o(a.raw, table);
+int run_sample(const Options& o) {
   if (!o.given("output")) return error_exit(kExitUsage, o.missing("output"), o.namer());
   exporters::MoldWriteOptions wo;
   wo.format = o.text("format").value_or("");
@@ -91,8 +87,9 @@ int run_sample(const std::vector<std::string>& args) {
   return write_sample(*o.text("mold"), *o.text("output"), wo);
 }
 
-const CommandRegistrar kRegisterSample{Command{
-    "sample", "write a built-in mold as a STEP or IGES file (the sample molds)", 50, run_sample}};
+const CommandRegistrar kRegisterSample{
+    options_command("sample", "write a built-in mold as a STEP or IGES file (the sample molds)", 50,
+                    {sample_options, {"mold", "built-in mold"}, kSampleHelp}, run_sample)};
 
 }  // namespace
 }  // namespace plyfit::cli
