@@ -2,11 +2,13 @@
 // and the rational sphere octant of `plyfit-bench throughput` at about 1000^2 nodes, default
 // options, built against any commit's kernel (public API only). Prints, per face: ns per
 // mapped node (median of RUNS drapes), Newton iterations per solve, and peak heap bytes per
-// mapped node (bench/src/memory.cpp's counter, first run).
+// mapped node (bench/src/memory.cpp's counter, first run). The tests' problem builder is of
+// the working tree, as this file is; it uses the public DrapeProblem only.
 
 #include <plyfit/kernel/builtin_molds.hpp>
 #include <plyfit/kernel/drape.hpp>
 
+#include "../../tests/support/problems.hpp"
 #include "../src/memory.hpp"
 
 #include <algorithm>
@@ -17,23 +19,11 @@
 #include <vector>
 
 using namespace plyfit;
+using support::problem;
 
 namespace {
 
 constexpr int kSide = 1000;  // about kSide^2 nodes
-
-DrapeProblem problem(double d, Vec2 s2, Vec2 b2, std::vector<Vec2> w2, Vec3 s3, Vec3 bn,
-                     std::vector<Vec3> w3) {
-  DrapeProblem pb;
-  pb.ply.d_weft = pb.ply.d_warp = d;
-  pb.ply.start = s2;
-  pb.ply.base_dir = b2;
-  pb.ply.sweeps = std::move(w2);
-  pb.start = s3;
-  pb.base_normal = bn;
-  pb.sweeps = std::move(w3);
-  return pb;
-}
 
 void measure(const char* name, const Face& f, const DrapeProblem& pb, int runs) {
   std::vector<double> ns;
