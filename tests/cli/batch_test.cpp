@@ -135,6 +135,19 @@ std::set<std::string> expected_tree(const json& summary, const std::set<std::str
   return t;
 }
 
+/// The scenes of the tests that stop a batch midway, written to the scratch folder: a quick
+/// scene, the slow one, and a second quick one named `last` (scenes are named by their files).
+struct StopScenes {
+  std::string quick, slow, last;
+};
+StopScenes stop_scenes(const Scratch& tmp, const std::string& last) {
+  const StopScenes s{tmp.file("quick.ini"), tmp.file("slow.ini"), tmp.file(last + ".ini")};
+  spit(s.quick, quick_scene("builtin:sphere-octant"));
+  spit(s.slow, kSlowScene);
+  spit(s.last, quick_scene("builtin:sphere-octant"));
+  return s;
+}
+
 json scene_entry(const json& summary, const std::string& name) {
   for (const auto& s : summary["scenes"])
     if (s["name"] == name) return s;
@@ -278,13 +291,9 @@ TEST_CASE("cli: batch --shard K/N runs the scenes whose index mod N is K") {
 
 TEST_CASE("cli: a crashing scene does not stop the others") {
   Scratch tmp("batch_crash");
-  spit(tmp.file("quick.ini"), quick_scene("builtin:sphere-octant"));
-  spit(tmp.file("slow.ini"), kSlowScene);
-  spit(tmp.file("after.ini"), quick_scene("builtin:sphere-octant"));
+  const StopScenes sc = stop_scenes(tmp, "after");
   const std::string out = tmp.file("out");
-  Background b({"batch", tmp.file("slow.ini"), tmp.file("quick.ini"), tmp.file("after.ini"), "-j",
-                "2", "-o", out},
-               tmp);
+  Background b({"batch", sc.slow, sc.quick, sc.last, "-j", "2", "-o", out}, tmp);
   // Once both quick scenes are done, the slow one is still running: crash it.
   REQUIRE(wait_until([&] { return fs::exists(out + "/quick") && fs::exists(out + "/after"); }));
   const auto kids = children_of(b.pid);
@@ -306,14 +315,10 @@ TEST_CASE("cli: a crashing scene does not stop the others") {
 
 TEST_CASE("cli: Ctrl-C stops a batch cleanly") {
   Scratch tmp("batch_sigint");
-  spit(tmp.file("quick.ini"), quick_scene("builtin:sphere-octant"));
-  spit(tmp.file("slow.ini"), kSlowScene);
-  spit(tmp.file("later.ini"), quick_scene("builtin:sphere-octant"));
+  const StopScenes sc = stop_scenes(tmp, "later");
   const std::string out = tmp.file("out");
   // -j 2: quick and slow start; when quick is done, the second slow one starts; later waits.
-  Background b({"batch", tmp.file("quick.ini"), tmp.file("slow.ini"), tmp.file("slow.ini"),
-                tmp.file("later.ini"), "-j", "2", "-o", out},
-               tmp);
+  Background b({"batch", sc.quick, sc.slow, sc.slow, sc.last, "-j", "2", "-o", out}, tmp);
   REQUIRE(wait_until([&] { return fs::exists(out + "/quick") && children_of(b.pid).size() == 2; }));
   const auto kids = children_of(b.pid);
   ::kill(b.pid, SIGINT);

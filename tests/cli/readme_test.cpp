@@ -14,7 +14,7 @@
 
 #include <catch2/catch.hpp>
 
-#include "cli/cli_util.hpp"
+#include "cli/drape_report.hpp"
 #include "cli/markdown.hpp"
 
 #include <algorithm>
@@ -329,34 +329,22 @@ TEST_CASE("cli: docs/report-json.md lists every field of report.json, and no oth
   Scratch s("readme_report");
   // One face and a shell (whose inputs name its faces).
   std::set<std::string> fields;
-  const CliRun drape =
-      plyfit_run("drape " + kOctantFlags + " --outputs json -o '" + s.file("face") + "'", s);
-  REQUIRE(drape.code == 0);
-  const CliRun shell =
-      plyfit_run("drape '" + std::string(PLYFIT_SOURCE_DIR) +
-                     "/samples/sphere-8.ini' --outputs json -o '" + s.file("shell") + "'",
-                 s);
-  REQUIRE(shell.code == 0);
+  const auto add_fields = [&](const std::string& flags, const std::string& dir) {
+    field_paths(drape_report(flags + " --outputs json", s, dir), "", fields);
+  };
+  const std::string samples = std::string(PLYFIT_SOURCE_DIR) + "/samples/";
+  add_fields(kOctantFlags, "face");
+  add_fields("'" + samples + "sphere-8.ini'", "shell");
   // And a ply with a boundary (report.json's ply.boundary): a square loop on the plate, its
   // base path along a seed curve of a file (inputs.seed_curve_file), cut by a dart (darts).
   std::ofstream(s.file("square.csv")) << "30,10,0\n70,10,0\n70,50,0\n30,50,0\n";
   std::ofstream(s.file("line.csv")) << "30,30,0\n70,30,0\n";
   std::ofstream(s.file("dart.csv")) << "40,10,0\n45,25,0\n";
-  const CliRun bounded =
-      plyfit_run("drape --mold builtin:plate --seed 50,30,0 --spacing 2 --seed-curve '" +
-                     s.file("line.csv") + "' --boundary '" + s.file("square.csv") + "' --dart '" +
-                     s.file("dart.csv") + "' --outputs json -o '" + s.file("bounded") + "'",
-                 s);
-  REQUIRE(bounded.code == 0);
+  add_fields("--mold builtin:plate --seed 50,30,0 --spacing 2 --seed-curve '" + s.file("line.csv") +
+                 "' --boundary '" + s.file("square.csv") + "' --dart '" + s.file("dart.csv") + "'",
+             "bounded");
   // And a ply split for its roll (pieces, splices): the sample on the cylinder sector.
-  const CliRun spliced =
-      plyfit_run("drape '" + std::string(PLYFIT_SOURCE_DIR) +
-                     "/samples/cylinder-spliced.ini' --outputs json -o '" + s.file("spliced") + "'",
-                 s);
-  REQUIRE(spliced.code == 0);
-  for (const char* dir : {"face", "shell", "bounded", "spliced"})
-    field_paths(nlohmann::json::parse(slurp(s.file(std::string(dir) + "/report.json"))), "",
-                fields);
+  add_fields("'" + samples + "cylinder-spliced.ini'", "spliced");
   REQUIRE(fields.size() >= 100);
   const std::string doc = source_file("docs/report-json.md");
   std::set<std::string> documented;
