@@ -284,46 +284,39 @@ TEST_CASE("bound mold: an offset rectangle keeps square corners, either way roun
 TEST_CASE("bound mold: bad boundaries are errors naming the curve") {
   const MoldSurface plate = builtin_surface("plate");
   const Vec3 seed(50, 30, 0);
-  SECTION("no curve") {
-    auto r = bound_mold(plate, PlyBoundary{}, seed);
+  // The error of bounding the plate by `curves` from `at` (it must be one).
+  const auto bound_error = [&](std::vector<BoundaryCurve> curves, const Vec3& at) {
+    PlyBoundary b;
+    b.curves = std::move(curves);
+    auto r = bound_mold(plate, b, at);
     REQUIRE_FALSE(r);
-    CHECK(r.error().code == ErrorCode::kBoundaryEmpty);
+    return r.error();
+  };
+  SECTION("no curve") {
+    CHECK(bound_error({}, seed).code == ErrorCode::kBoundaryEmpty);
   }
   SECTION("too few points") {
-    PlyBoundary b;
     BoundaryCurve c;
     c.closed = true;
     c.points = {Vec3(0, 0, 0), Vec3(1, 0, 0)};
-    b.curves = {c};
-    auto r = bound_mold(plate, b, seed);
-    REQUIRE_FALSE(r);
-    CHECK(r.error().code == ErrorCode::kBoundaryCurvePoints);
+    CHECK(bound_error({c}, seed).code == ErrorCode::kBoundaryCurvePoints);
   }
   SECTION("a gap larger than the tolerance") {
     const BoundaryCurve full = circle(Vec3(50, 30, 0), 20.0);
     BoundaryCurve half;
     half.name = "half";
     half.points.assign(full.points.begin(), full.points.begin() + 361);
-    PlyBoundary b;
-    b.curves = {half};
-    auto r = bound_mold(plate, b, seed);
-    REQUIRE_FALSE(r);
-    CHECK(r.error().code == ErrorCode::kBoundaryGap);
-    CHECK(std::get<double>(r.error().values.at(2)) == Approx(40.0));
+    const Error e = bound_error({half}, seed);
+    CHECK(e.code == ErrorCode::kBoundaryGap);
+    CHECK(std::get<double>(e.values.at(2)) == Approx(40.0));
   }
   SECTION("a curve off the mold") {
-    PlyBoundary b;
-    b.curves = {circle(Vec3(50, 30, 2), 20.0)};
-    auto r = bound_mold(plate, b, seed);
-    REQUIRE_FALSE(r);
-    CHECK(r.error().code == ErrorCode::kBoundaryOffMold);
-    CHECK(std::get<double>(r.error().values.at(1)) == Approx(2.0));
+    const Error e = bound_error({circle(Vec3(50, 30, 2), 20.0)}, seed);
+    CHECK(e.code == ErrorCode::kBoundaryOffMold);
+    CHECK(std::get<double>(e.values.at(1)) == Approx(2.0));
   }
   SECTION("a seed outside") {
-    PlyBoundary b;
-    b.curves = {circle(Vec3(50, 30, 0), 20.0)};
-    auto r = bound_mold(plate, b, Vec3(5, 5, 0));
-    REQUIRE_FALSE(r);
-    CHECK(r.error().code == ErrorCode::kBoundarySeedOutside);
+    CHECK(bound_error({circle(Vec3(50, 30, 0), 20.0)}, Vec3(5, 5, 0)).code ==
+          ErrorCode::kBoundarySeedOutside);
   }
 }
