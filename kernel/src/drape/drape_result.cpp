@@ -2,6 +2,7 @@
 // queries (neighbours, rest lengths, links, threads).
 #include "drape/drape.hpp"
 
+#include "drape/metrics.hpp"
 #include "drape/net_links.hpp"
 #include "drape/scan/node_index.hpp"
 
@@ -15,40 +16,21 @@ const char* to_string(SeedCurve c) {
   return c == SeedCurve::kGeodesic ? "geodesic" : "plane";
 }
 
+namespace {
+
+constexpr detail::Named<GuessRule> kGuessRules[] = {{GuessRule::kPaper, "paper"},
+                                                    {GuessRule::kParallelogram, "parallelogram"},
+                                                    {GuessRule::kExtrapolated, "extrapolated"}};
+static_assert(detail::lists_enum(kGuessRules, GuessRule::kExtrapolated));
+
+}  // namespace
+
 const char* to_string(GuessRule g) {
-  switch (g) {
-    case GuessRule::kPaper:
-      return "paper";
-    case GuessRule::kParallelogram:
-      return "parallelogram";
-    case GuessRule::kExtrapolated:
-      return "extrapolated";
-  }
-  return "paper";
+  return detail::name_in(kGuessRules, g, "paper");
 }
 
 const char* to_string(NodeStatus s) {
-  switch (s) {
-    case NodeStatus::kMapped:
-      return "mapped";
-    case NodeStatus::kOutside:
-      return "outside";
-    case NodeStatus::kOffPly:
-      return "off_ply";
-    case NodeStatus::kShearLimit:
-      return "shear_limit";
-    case NodeStatus::kFailed:
-      return "failed";
-    case NodeStatus::kOverlap:
-      return "overlap";
-    case NodeStatus::kConflict:
-      return "conflict";
-    case NodeStatus::kPathEnd:
-      return "path_end";
-    case NodeStatus::kPending:
-      return "pending";
-  }
-  return "failed";
+  return detail::name_in(detail::kNodeStatuses, s, "failed");
 }
 
 // ---------------------------------------------------------------------------------------

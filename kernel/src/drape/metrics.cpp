@@ -155,34 +155,8 @@ void count_nodes(DrapeResult& res) {
   DrapeMetrics& m = res.metrics;
   bool first = true;
   for (const DrapeNode& n : res.nodes) {
-    switch (n.status) {
-      case NodeStatus::kMapped:
-        (n.id.is_path_only() ? m.nodes.auxiliary : m.nodes.mapped)++;
-        break;
-      case NodeStatus::kOutside:
-        ++m.nodes.outside;
-        break;
-      case NodeStatus::kOffPly:
-        ++m.nodes.off_ply;
-        break;
-      case NodeStatus::kShearLimit:
-        ++m.nodes.shear_limit;
-        break;
-      case NodeStatus::kFailed:
-        ++m.nodes.failed;
-        break;
-      case NodeStatus::kOverlap:
-        ++m.nodes.overlap;
-        break;
-      case NodeStatus::kConflict:
-        ++m.nodes.conflict;
-        break;
-      case NodeStatus::kPathEnd:
-        ++m.nodes.path_end;
-        break;
-      case NodeStatus::kPending:
-        break;
-    }
+    if (const auto* row = row_of(kNodeStatuses, n.status); row && row->count)
+      ++(n.mapped() && n.id.is_path_only() ? m.nodes.auxiliary : m.nodes.*(row->count));
     if (n.has(DrapeNode::kHasAngle)) {
       const double g = n.thread_angle;
       m.gamma_min = first ? g : std::min(m.gamma_min, g);

@@ -1,4 +1,5 @@
 #include "drape/drape.hpp"
+#include "named_values.hpp"
 #include "pattern/flat_pattern.hpp"
 #include "surface/face.hpp"
 
@@ -456,34 +457,33 @@ void refine(const Space& sp, Search& search, OptimizeResult& r, Objective obj, i
 
 }  // namespace
 
+namespace {
+
+/// Each objective, its name, and the figure it reads.
+struct ObjectiveRow {
+  Objective value;
+  const char* name;
+  double Figures::*figure;
+};
+constexpr ObjectiveRow kObjectives[] = {
+    {Objective::kEnergy, "energy", &Figures::energy},
+    {Objective::kMaxShear, "max-shear", &Figures::max_shear_deg},
+    {Objective::kArea, "area", &Figures::flat_area}};
+static_assert(detail::lists_enum(kObjectives, Objective::kArea));
+
+}  // namespace
+
 const char* to_string(Objective o) {
-  switch (o) {
-    case Objective::kEnergy:
-      return "energy";
-    case Objective::kMaxShear:
-      return "max-shear";
-    case Objective::kArea:
-      return "area";
-  }
-  return "?";
+  return detail::name_in(kObjectives, o, "?");
 }
 
 std::optional<Objective> parse_objective(const std::string& name) {
-  for (Objective o : {Objective::kEnergy, Objective::kMaxShear, Objective::kArea})
-    if (name == to_string(o)) return o;
-  return std::nullopt;
+  return detail::value_named(kObjectives, name);
 }
 
 double Figures::value(Objective o) const {
-  switch (o) {
-    case Objective::kEnergy:
-      return energy;
-    case Objective::kMaxShear:
-      return max_shear_deg;
-    case Objective::kArea:
-      return flat_area;
-  }
-  return energy;
+  const ObjectiveRow* row = detail::row_of(kObjectives, o);
+  return this->*(row ? row->figure : &Figures::energy);
 }
 
 Result<DrapeProblem> candidate_problem(const SearchScene& scene, const MoldSurface& surface,

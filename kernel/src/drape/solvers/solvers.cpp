@@ -2,20 +2,30 @@
 // solvers: plane_sphere.cpp (1 and 3), two_spheres.cpp (2), on newton.hpp and tangent.hpp.
 #include "drape/solvers/solvers.hpp"
 
+#include "named_values.hpp"
+
 namespace plyfit {
 
+namespace {
+
+constexpr detail::Named<SolveStatus> kSolveStatuses[] = {{SolveStatus::kConverged, "converged"},
+                                                         {SolveStatus::kLeftFace, "left_face"},
+                                                         {SolveStatus::kShearLimit, "shear_limit"},
+                                                         {SolveStatus::kFailed, "failed"}};
+static_assert(detail::lists_enum(kSolveStatuses, SolveStatus::kFailed));
+
+constexpr detail::Named<ShearStop> kShearStops[] = {{ShearStop::kNone, "none"},
+                                                    {ShearStop::kLock, "lock"},
+                                                    {ShearStop::kFoldAngle, "fold_angle"},
+                                                    {ShearStop::kFlatCell, "flat_cell"},
+                                                    {ShearStop::kCellFolds, "cell_folds"},
+                                                    {ShearStop::kBehindStop, "behind_stop"}};
+static_assert(detail::lists_enum(kShearStops, ShearStop::kBehindStop));
+
+}  // namespace
+
 const char* to_string(SolveStatus s) {
-  switch (s) {
-    case SolveStatus::kConverged:
-      return "converged";
-    case SolveStatus::kLeftFace:
-      return "left_face";
-    case SolveStatus::kShearLimit:
-      return "shear_limit";
-    case SolveStatus::kFailed:
-      return "failed";
-  }
-  return "failed";
+  return detail::name_in(kSolveStatuses, s, "failed");
 }
 
 // The rounding level of a residual is set by the coordinates involved, the face's size (a
@@ -29,21 +39,7 @@ double residual_floor(const DrapeSurface& s, const Tolerances& tol, const Vec3& 
 }
 
 const char* to_string(ShearStop s) {
-  switch (s) {
-    case ShearStop::kNone:
-      return "none";
-    case ShearStop::kLock:
-      return "lock";
-    case ShearStop::kFoldAngle:
-      return "fold_angle";
-    case ShearStop::kFlatCell:
-      return "flat_cell";
-    case ShearStop::kCellFolds:
-      return "cell_folds";
-    case ShearStop::kBehindStop:
-      return "behind_stop";
-  }
-  return "none";
+  return detail::name_in(kShearStops, s, "none");
 }
 
 }  // namespace plyfit
