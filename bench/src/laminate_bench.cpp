@@ -5,6 +5,8 @@
 // flat pattern, outputs, one after another in one process); the bound is
 // wall(-j J) <= 1.3 x (that sum / J) + one import.
 
+#include <plyfit/exporters/atomic_file.hpp>
+
 #include "bench.hpp"
 #include "drape_cases.hpp"
 
@@ -40,10 +42,8 @@ std::string laminate_text(const std::string& mold, int plies, double spacing) {
 
 // The import time (ms) the plies' reports give (one import: every ply reports it).
 double import_ms(const fs::path& out) {
-  std::ifstream in(out / "P01" / "report.json");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return nlohmann::json::parse(ss.str()).at("timing_ms").at("import").get<double>();
+  const auto report = exporters::read_file((out / "P01" / "report.json").string());
+  return nlohmann::json::parse(report.value_or("")).at("timing_ms").at("import").get<double>();
 }
 
 int run_laminate_bench(const std::vector<std::string>& args) {

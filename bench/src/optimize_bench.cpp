@@ -2,6 +2,8 @@
 // to its optimum (the whole run, the process included) on one core and on the machine's
 // cores, the drapes it took, and its best energy against the scenes' own.
 
+#include <plyfit/exporters/atomic_file.hpp>
+
 #include "bench.hpp"
 #include "tables.hpp"
 
@@ -26,10 +28,7 @@ namespace fs = std::filesystem;
 constexpr double kKinDrapeMaxSeconds[2] = {700.0, 1000.0};
 
 nlohmann::json read_json(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return nlohmann::json::parse(ss.str(), nullptr, false);
+  return nlohmann::json::parse(exporters::read_file(path).value_or(""), nullptr, false);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 // DIR/bench/results/, and the time-against-error plot DIR/bench/results/time_vs_error.svg. DIR
 // defaults to the source tree.
 
+#include <plyfit/exporters/atomic_file.hpp>
 #include <plyfit/kernel/tolerances.hpp>
 
 #include "bench.hpp"
@@ -41,13 +42,6 @@ constexpr double kTargetImportRatio = 2.0;
 // Issue 14: plyfit optimize finds a better optimum than the paper's cases in under this.
 constexpr double kTargetOptimizeSeconds = 10.0;
 
-std::string read_file(const std::string& path) {
-  std::ifstream is(path, std::ios::binary);
-  std::stringstream ss;
-  ss << is.rdbuf();
-  return ss.str();
-}
-
 std::string cpuinfo_field(const std::string& key) {
   std::ifstream is("/proc/cpuinfo");
   std::string line;
@@ -69,7 +63,7 @@ int cpuinfo_processors() {
 }
 
 std::string loadavg() {
-  std::string s = read_file("/proc/loadavg");
+  std::string s = exporters::read_file("/proc/loadavg").value_or("");
   std::istringstream is(s);
   std::string a, b, c;
   is >> a >> b >> c;
@@ -106,7 +100,7 @@ int run_report(const std::vector<std::string>& args) {
   const int runs = std::stoi(option_value(args, "--runs", std::to_string(kMinRuns)));
   const ThroughputOptions tho = throughput_options(args);
   const std::string src = PLYFIT_SOURCE_DIR;
-  const std::string tmpl = read_file(src + "/bench/BENCHMARKS.template.md");
+  const std::string tmpl = exporters::read_file(src + "/bench/BENCHMARKS.template.md").value_or("");
   if (tmpl.empty()) {
     std::fprintf(stderr, "plyfit-bench: cannot read %s/bench/BENCHMARKS.template.md\n",
                  src.c_str());

@@ -4,6 +4,7 @@
 #include "job/outcome.hpp"
 #include "report/text_format.hpp"
 
+#include <plyfit/exporters/atomic_file.hpp>
 #include <plyfit/exporters/exporters.hpp>
 
 #include <fcntl.h>
@@ -46,11 +47,9 @@ double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
 
+// A child's file, empty when there is none.
 std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  return exporters::read_file(path).value_or("");
 }
 
 /// Last non-empty line of a child's stderr (progress lines, with '\r', skipped).

@@ -2,6 +2,7 @@
 
 #include "job/ini.hpp"
 
+#include <plyfit/exporters/atomic_file.hpp>
 #include <plyfit/kernel/flat_pattern.hpp>
 
 #include <filesystem>
@@ -136,15 +137,13 @@ void material_and_output_values(const DrapeJob& job, SceneValues& v) {
 }  // namespace
 
 Result<std::vector<IniLine>> read_scene_lines(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
+  const auto text = exporters::read_file(path);
+  if (!text) {
     Error e{ErrorCode::kSceneCannotOpen};
     e.where = path;
     return e;
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return read_ini(text.str(), path);
+  return read_ini(*text, path);
 }
 
 Result<RawOptions> raw_from_scene(const std::string& path) {

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
 #include <system_error>
 
 namespace plyfit::exporters {
@@ -60,6 +61,15 @@ Status write_file_atomic(const std::string& path, const std::string& content) {
   if (!f.ok()) return Error{ErrorCode::kFileNotCreated, path};
   f.stream() << content;
   return f.commit();
+}
+
+std::optional<std::string> read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) return std::nullopt;
+  return std::move(text).str();
 }
 
 }  // namespace plyfit::exporters

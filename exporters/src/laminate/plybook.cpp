@@ -3,6 +3,7 @@
 // ply's folder) inline with their ids prefixed by the ply's place so that one page holds them
 // all, no script; its only links are to the plies' own files, relative.
 
+#include <plyfit/exporters/atomic_file.hpp>
 #include <plyfit/exporters/laminate.hpp>
 #include <plyfit/exporters/messages.hpp>
 
@@ -39,11 +40,7 @@ std::string warning_codes(const PlySheet& p) {
 
 // An SVG file's element, its ids (and the references to them) prefixed; empty when missing.
 std::string inline_svg(const fs::path& file, const std::string& prefix) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return {};
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  const std::string svg = ss.str();
+  const std::string svg = read_file(file.string()).value_or("");
   const auto start = svg.find("<svg");
   if (start == std::string::npos) return {};
   // Each marker's next place, found again only once passed (one pass over the text).

@@ -1,10 +1,11 @@
 #pragma once
 /// \file Output files are written whole or not at all: a temporary file in the same folder,
-/// renamed over the target once everything is written and flushed.
+/// renamed over the target once everything is written and flushed. Files are read whole.
 
 #include <plyfit/kernel/result.hpp>
 
 #include <fstream>
+#include <optional>
 #include <string>
 
 namespace plyfit::exporters {
@@ -38,5 +39,9 @@ class AtomicFile {
 
 /// Writes `content` to `path` atomically.
 Status write_file_atomic(const std::string& path, const std::string& content);
+
+/// The whole content of the file `path` (bytes as they are), or nothing when it cannot be
+/// opened or read.
+std::optional<std::string> read_file(const std::string& path);
 
 }  // namespace plyfit::exporters
