@@ -331,39 +331,32 @@ Table small_jobs_table(int runs, const std::string& baseline) {
 
 namespace {
 
-int run_import_table(const std::vector<std::string>& args) {
-  const int runs = std::stoi(option_value(args, "--runs", std::to_string(kMinRuns)));
-  const ImportReport rep =
-      import_report(runs, option_value(args, "--stress-dir", default_stress_dir()),
-                    option_value(args, "--baseline", ""));
-  std::printf("%s", rep.table.markdown().c_str());
-  return rep.ok ? 0 : 1;
-}
-
-int run_areas(const std::vector<std::string>& args) {
-  std::printf(
-      "%s",
-      area_table(option_value(args, "--stress-dir", default_stress_dir())).markdown().c_str());
-  return 0;
-}
-
-int run_small_jobs(const std::vector<std::string>& args) {
-  const int runs = std::stoi(option_value(args, "--runs", std::to_string(kSmallJobRuns)));
-  std::printf("%s",
-              small_jobs_table(runs, option_value(args, "--baseline", "")).markdown().c_str());
-  return 0;
-}
-
-const BenchmarkRegistrar kRegisterImportTable{
-    {"import-table",
-     "import speed per file against OpenCASCADE's read [--runs R] [--stress-dir DIR] "
-     "[--baseline BIN]",
-     run_import_table}};
+const BenchmarkRegistrar kRegisterImportTable{table_benchmark(
+    "import-table",
+    "import speed per file against OpenCASCADE's read [--runs R] [--stress-dir DIR] "
+    "[--baseline BIN]",
+    [](const std::vector<std::string>& args, bool* ok) {
+      ImportReport rep =
+          import_report(std::stoi(option_value(args, "--runs", std::to_string(kMinRuns))),
+                        option_value(args, "--stress-dir", default_stress_dir()),
+                        option_value(args, "--baseline", ""));
+      *ok = rep.ok;
+      return rep.table;
+    })};
 const BenchmarkRegistrar kRegisterAreas{
-    {"areas", "face areas: plyfit's integration against OpenCASCADE's [--stress-dir DIR]",
-     run_areas}};
+    table_benchmark("areas",
+                    "face areas: plyfit's integration against OpenCASCADE's "
+                    "[--stress-dir DIR]",
+                    [](const std::vector<std::string>& args, bool*) {
+                      return area_table(option_value(args, "--stress-dir", default_stress_dir()));
+                    })};
 const BenchmarkRegistrar kRegisterSmallJobs{
-    {"small-jobs", "process time of small jobs [--runs R] [--baseline BIN]", run_small_jobs}};
+    table_benchmark("small-jobs", "process time of small jobs [--runs R] [--baseline BIN]",
+                    [](const std::vector<std::string>& args, bool*) {
+                      return small_jobs_table(
+                          std::stoi(option_value(args, "--runs", std::to_string(kSmallJobRuns))),
+                          option_value(args, "--baseline", ""));
+                    })};
 
 }  // namespace
 

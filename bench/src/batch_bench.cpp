@@ -25,12 +25,6 @@ namespace fs = std::filesystem;
 constexpr int kScenes = 8;
 constexpr double kSceneSpacing = 0.6;
 
-// Runs a shell command quietly; its exit status.
-int run_quiet(const std::string& cmd) {
-  const int rc = std::system((cmd + " >/dev/null 2>&1").c_str());
-  return (rc != -1 && WIFEXITED(rc)) ? WEXITSTATUS(rc) : -1;
-}
-
 std::string scene_text(int k) {
   // Base paths at different angles, so that the scenes are different drapes.
   const double a = 0.15 * k;
@@ -47,7 +41,7 @@ std::string scene_text(int k) {
 
 Table batch_table(bool* available, double* speedup) {
   Table t;
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned cores = machine_cores();
   t.caption =
       fmt("`plyfit batch` on %d generated scenes (built-in wave, spacing %.1f mm, base paths at "
           "different angles; every output written), one child process per scene. Time: median of "
@@ -59,12 +53,9 @@ Table batch_table(bool* available, double* speedup) {
   t.right = {false, true, true, true, true};
   if (speedup) *speedup = 0.0;
   const std::string bin = plyfit_binary();
-  if (run_quiet(bin + " batch --help") != 0) {
-    if (available) *available = false;
-    t.caption += fmt(" Not measured: `%s batch` is not available in this build.", bin.c_str());
-    return t;
-  }
-  if (available) *available = true;
+  const bool there = command_available(t, bin, "batch");
+  if (available) *available = there;
+  if (!there) return t;
   const fs::path dir = fs::temp_directory_path() / fmt("plyfit-bench-batch-%d", ::getpid());
   fs::create_directories(dir);
   std::string scenes;
@@ -76,23 +67,18 @@ Table batch_table(bool* available, double* speedup) {
   double t1 = 0.0;
   for (unsigned j = 1; j <= cores; ++j) {
     const fs::path out = dir / fmt("out-j%u", j);
-    bool ok = true;
-    std::vector<double> cpu;  // CPU seconds of the batch's processes per run
-    const double sec = median_time([&] {
-      fs::remove_all(out);
-      const double c0 = children_cpu_seconds();
-      ok = ok && run_quiet(fmt("'%s' batch%s -j %u -o '%s'", bin.c_str(), scenes.c_str(), j,
-                               out.string().c_str())) == 0;
-      cpu.push_back(children_cpu_seconds() - c0);
-    });
-    if (!ok) {
+    const CommandTimes run = time_command(
+        fmt("'%s' batch%s -j %u -o '%s'", bin.c_str(), scenes.c_str(), j, out.string().c_str()),
+        [&] { fs::remove_all(out); });
+    if (!run.ok) {
       t.add({fmt("-j%u", j), "failed", "-", "-", "-"});
       continue;
     }
+    const double sec = run.wall;
     if (j == 1) t1 = sec;
     if (speedup && t1 > 0) *speedup = t1 / sec;
     t.add({fmt("-j%u", j), fmt("%.2f", sec), fmt("%.2f", kScenes / sec),
-           t1 > 0 ? fmt("%.2fx", t1 / sec) : std::string("-"), fmt("%.2f", median(cpu) / sec)});
+           t1 > 0 ? fmt("%.2fx", t1 / sec) : std::string("-"), fmt("%.2f", run.cpu / sec)});
     std::fprintf(stderr, "batch: -j%u: %.2f s\n", j, sec);
   }
   fs::remove_all(dir);
@@ -101,12 +87,9 @@ Table batch_table(bool* available, double* speedup) {
 
 namespace {
 
-int run_batch(const std::vector<std::string>&) {
-  return print_table([](bool* available) { return batch_table(available); });
-}
-
-const BenchmarkRegistrar kBatch{
-    {"batch", "plyfit batch -j1 against -j2 .. -jN on generated scenes", run_batch}};
+const BenchmarkRegistrar kBatch{table_benchmark(
+    "batch", "plyfit batch -j1 against -j2 .. -jN on generated scenes",
+    [](const std::vector<std::string>&, bool* available) { return batch_table(available); })};
 
 }  // namespace
 

@@ -14,6 +14,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace plyfit::bench {
@@ -46,6 +47,14 @@ inline double children_cpu_seconds() {
   return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
          1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
 }
+
+/// The machine's cores as the standard library reports them (at least 1).
+inline unsigned machine_cores() {
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+/// Runs a shell command, its output discarded: its exit status, -1 if it did not exit.
+int run_quiet(const std::string& cmd);
 
 /// One child process, its output discarded: wall seconds, exit code (-1 if it did not exit)
 /// and its peak resident set as wait4 reports it, bytes (process.cpp).
@@ -164,8 +173,27 @@ struct Table {
   std::string csv() const;
 };
 
-/// A subcommand that prints a table of paired runs, `make(runs, &ok)`, in Markdown: `--runs R`
-/// (at least kMinRuns; the summary says so); exit code 1 when a case failed (ok false).
+/// Whether `bin COMMAND` is in the build (its --help runs); when it is not, the caption of
+/// `t` says the table was not measured.
+bool command_available(Table& t, const std::string& bin, const std::string& command);
+
+/// Medians of kMinRuns runs of the shell command `cmd` (run quietly), each after `before`
+/// (e.g. clearing its output folder): wall seconds and the CPU seconds of the processes it
+/// ran; ok false when a run failed.
+struct CommandTimes {
+  double wall = 0.0, cpu = 0.0;
+  bool ok = true;
+};
+CommandTimes time_command(const std::string& cmd, const std::function<void()>& before);
+
+/// A subcommand that prints one table in Markdown, `make(args, &ok)` (ok starts true): exit
+/// code 1 when ok comes back false (a case failed, or the tool the table measures is not
+/// there).
+Benchmark table_benchmark(
+    std::string name, std::string summary,
+    std::function<Table(const std::vector<std::string>& args, bool* ok)> make);
+/// The same for a table of paired runs, `make(runs, &ok)`: `--runs R` (at least kMinRuns; the
+/// summary says so).
 Benchmark runs_table_benchmark(std::string name, std::string summary,
                                std::function<Table(int runs, bool* ok)> make);
 

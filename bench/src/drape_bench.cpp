@@ -781,25 +781,10 @@ int run_throughput(const std::vector<std::string>& args) {
   return r.ok ? 0 : 1;
 }
 
-int run_tolerance(const std::vector<std::string>& args) {
-  const ToleranceReport r =
-      tolerance_report(std::stoi(option_value(args, "--runs", std::to_string(kMinRuns))));
-  std::printf("%s", r.table.markdown().c_str());
-  return r.ok ? 0 : 1;
-}
-
 int run_convergence(const std::vector<std::string>&) {
   const ConvergenceReport r = convergence_report();
   std::printf("%s\n%s", r.table.markdown().c_str(), r.orders.markdown().c_str());
   return r.ok ? 0 : 1;
-}
-
-int run_hard(const std::vector<std::string>& args) {
-  bool ok = true;
-  const Table t =
-      hard_case_table(std::stoi(option_value(args, "--runs", std::to_string(kMinRuns))), &ok);
-  std::printf("%s", t.markdown().c_str());
-  return ok ? 0 : 1;
 }
 
 int run_overlap(const std::vector<std::string>& args) {
@@ -832,14 +817,18 @@ const BenchmarkRegistrar kThroughput{
      "drape time, nodes/s and peak memory per node for 100^2 .. 2000^2 nodes on three faces "
      "[--sizes 100,300 --runs R]",
      run_throughput}};
-const BenchmarkRegistrar kTolerance{
-    {"tolerance",
-     "drape time against constraint errors for Newton tolerances 1e-3 .. 1e-14 [--runs R]",
-     run_tolerance}};
+const BenchmarkRegistrar kTolerance{runs_table_benchmark(
+    "tolerance", "drape time against constraint errors for Newton tolerances 1e-3 .. 1e-14",
+    [](int runs, bool* ok) {
+      ToleranceReport r = tolerance_report(runs);
+      *ok = r.ok;
+      return r.table;
+    })};
 const BenchmarkRegistrar kConvergence{
     {"convergence", "discretisation error against spacing on cases with exact answers",
      run_convergence}};
-const BenchmarkRegistrar kHard{{"hard", "hard cases, one full drape each [--runs R]", run_hard}};
+const BenchmarkRegistrar kHard{
+    runs_table_benchmark("hard", "hard cases, one full drape each", hard_case_table)};
 
 }  // namespace
 

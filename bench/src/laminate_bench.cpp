@@ -49,7 +49,7 @@ double import_ms(const fs::path& out) {
 int run_laminate_bench(const std::vector<std::string>& args) {
   const int plies = std::stoi(option_value(args, "--plies", std::to_string(kDefaultPlies)));
   const double spacing = std::stod(option_value(args, "--spacing", fmt("%g", kDefaultSpacing)));
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned cores = machine_cores();
   const unsigned jobs =
       static_cast<unsigned>(std::stoi(option_value(args, "-j", std::to_string(cores))));
   const std::string mold = shared_dir() + "/cad/trj7_c2-td-203.stp";

@@ -35,7 +35,7 @@ nlohmann::json read_json(const std::string& path) {
 
 Table optimize_bench_table(bool* available, OptimizeFigures* figures) {
   Table t;
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned cores = machine_cores();
   t.caption =
       fmt("`plyfit optimize SCENE -j N -o DIR` (defaults: vary start and angle, objective energy, "
           "200 drapes) on the paper's sphere-octant cases (spacing R/20). Time: the whole run, "
@@ -58,34 +58,26 @@ Table optimize_bench_table(bool* available, OptimizeFigures* figures) {
   t.right = {false, true, true, true, true, true, true, true, true};
   if (figures) *figures = OptimizeFigures{};
   const std::string bin = plyfit_binary();
-  if (std::system(("'" + bin + "' optimize --help >/dev/null 2>&1").c_str()) != 0) {
-    if (available) *available = false;
-    t.caption += fmt(" Not measured: `%s optimize` is not available in this build.", bin.c_str());
-    return t;
-  }
-  if (available) *available = true;
+  const bool there = command_available(t, bin, "optimize");
+  if (available) *available = there;
+  if (!there) return t;
   const fs::path dir = fs::temp_directory_path() / fmt("plyfit-bench-optimize-%d", ::getpid());
   double worst = 0.0;
   for (const char* c : {"a", "b", "c"}) {
     const std::string scene =
         std::string(PLYFIT_SOURCE_DIR) + "/samples/sphere-octant-" + c + ".ini";
-    double sec[2] = {0, 0};
-    std::vector<double> cpu;  // CPU seconds of the all-cores runs
+    CommandTimes run[2];  // -j1 and all cores
     nlohmann::json result;
-    bool ok = true;
     for (int k = 0; k < 2; ++k) {
       const unsigned jobs = k == 0 ? 1u : cores;
       const fs::path out = dir / fmt("%s-j%u", c, jobs);
-      sec[k] = median_time([&] {
-        fs::remove_all(out);
-        const double c0 = children_cpu_seconds();
-        ok = ok && std::system(fmt("'%s' optimize '%s' -j %u -o '%s' --quiet >/dev/null 2>&1",
-                                   bin.c_str(), scene.c_str(), jobs, out.string().c_str())
-                                   .c_str()) == 0;
-        if (k == 1) cpu.push_back(children_cpu_seconds() - c0);
-      });
+      run[k] = time_command(fmt("'%s' optimize '%s' -j %u -o '%s' --quiet", bin.c_str(),
+                                scene.c_str(), jobs, out.string().c_str()),
+                            [&] { fs::remove_all(out); });
       result = read_json((out / "optimize.json").string());
     }
+    const bool ok = run[0].ok && run[1].ok;
+    const double sec[2] = {run[0].wall, run[1].wall};
     const std::string name = fmt("sphere-octant-%s", c);
     if (!ok || result.is_discarded() || !result["best"]["energy"].is_object()) {
       t.add({name, "failed", "-", "-", "-", "-", "-", "-", "-"});
@@ -96,7 +88,7 @@ Table optimize_bench_table(bool* available, OptimizeFigures* figures) {
     const double best_e = result["best"]["energy"]["energy"].get<double>();
     const int drapes = result["drapes"].get<int>();
     t.add({name, fmt("%.3f", scene_e), fmt("%.3f", best_e), fmt("%d", drapes), fmt("%.2f", sec[0]),
-           fmt("%.2f", sec[1]), fmt("%.2fx", sec[0] / sec[1]), fmt("%.2f", median(cpu) / sec[1]),
+           fmt("%.2f", sec[1]), fmt("%.2fx", sec[0] / sec[1]), fmt("%.2f", run[1].cpu / sec[1]),
            fmt("%.2f", 1e3 * sec[0] / drapes)});
     std::fprintf(stderr, "optimize: %s: %.2f s (-j1), %.2f s (-j%u)\n", name.c_str(), sec[0],
                  sec[1], cores);
@@ -113,17 +105,14 @@ Table optimize_bench_table(bool* available, OptimizeFigures* figures) {
 
 namespace {
 
-int run_optimize(const std::vector<std::string>&) {
-  bool available = false;
-  OptimizeFigures f;
-  const Table t = optimize_bench_table(&available, &f);
-  std::printf("%s", t.markdown().c_str());
-  return available && f.ok ? 0 : 1;
-}
-
-const BenchmarkRegistrar kOptimize{
-    {"optimize", "plyfit optimize on the paper's sphere-octant cases: time to the optimum",
-     run_optimize}};
+const BenchmarkRegistrar kOptimize{table_benchmark(
+    "optimize", "plyfit optimize on the paper's sphere-octant cases: time to the optimum",
+    [](const std::vector<std::string>&, bool* ok) {
+      OptimizeFigures f;
+      Table t = optimize_bench_table(ok, &f);
+      *ok = *ok && f.ok;
+      return t;
+    })};
 
 }  // namespace
 

@@ -1,4 +1,4 @@
-// One child process for the benchmarks that time plyfit as a user runs it.
+// Child processes for the benchmarks that time plyfit as a user runs it.
 #include "bench.hpp"
 
 #include <fcntl.h>
@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 
 #include <chrono>
+#include <cstdlib>
 
 extern char** environ;
 
@@ -37,6 +38,31 @@ ProcessRun run_process(const std::vector<std::string>& args, const std::vector<s
   }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   posix_spawn_file_actions_destroy(&actions);
+  return r;
+}
+
+int run_quiet(const std::string& cmd) {
+  const int rc = std::system((cmd + " >/dev/null 2>&1").c_str());
+  return (rc != -1 && WIFEXITED(rc)) ? WEXITSTATUS(rc) : -1;
+}
+
+bool command_available(Table& t, const std::string& bin, const std::string& command) {
+  if (run_quiet("'" + bin + "' " + command + " --help") == 0) return true;
+  t.caption +=
+      fmt(" Not measured: `%s %s` is not available in this build.", bin.c_str(), command.c_str());
+  return false;
+}
+
+CommandTimes time_command(const std::string& cmd, const std::function<void()>& before) {
+  CommandTimes r;
+  std::vector<double> cpu;
+  r.wall = median_time([&] {
+    before();
+    const double c0 = children_cpu_seconds();
+    r.ok = run_quiet(cmd) == 0 && r.ok;
+    cpu.push_back(children_cpu_seconds() - c0);
+  });
+  r.cpu = median(cpu);
   return r;
 }
 

@@ -137,15 +137,12 @@ Table profile_table(bool* available) {
 
 namespace {
 
-int run_profile(const std::vector<std::string>&) {
-  return print_table(profile_table);
-}
-
 const BenchmarkRegistrar kProfileDrape{
     {"profile-drape", "drapes to be profiled (the bicubic face at 1000^2 nodes, 3 times)",
      run_profile_drape}};
 const BenchmarkRegistrar kProfile{
-    {"profile", "where the drape's time goes (perf record, by part)", run_profile}};
+    table_benchmark("profile", "where the drape's time goes (perf record, by part)",
+                    [](const std::vector<std::string>&, bool* ok) { return profile_table(ok); })};
 
 }  // namespace
 

@@ -187,7 +187,7 @@ int run_report(const std::vector<std::string>& args) {
         fmt("| peak memory <= 200 bytes per mapped node (all faces and sizes) | largest: %.0f "
             "B/node | %s |\n",
             worst_mem, mem_ok ? "yes" : "**no**");
-    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    const unsigned cores = machine_cores();
     const bool grows = batch_available && batch_speedup >= kTargetBatchGrowth;
     targets += fmt(
         "| batch throughput grows with -j up to the cores (%u here) | %s | %s |\n", cores,

@@ -151,16 +151,11 @@ Table shell_drape_table(int runs, double* worst_ratio, bool* ok) {
 
 namespace {
 
-int run_shell_drape(const std::vector<std::string>& args) {
-  const int runs = std::stoi(option_value(args, "--runs", std::to_string(kMinRuns)));
-  bool ok = true;
-  double worst = 0.0;
-  std::cout << shell_drape_table(runs, &worst, &ok).markdown();
-  return ok ? 0 : 1;
-}
-
-const BenchmarkRegistrar kShellDrape{
-    {"shell-drape", "a drape over N faces against one face, per node [--runs R]", run_shell_drape}};
+const BenchmarkRegistrar kShellDrape{runs_table_benchmark(
+    "shell-drape", "a drape over N faces against one face, per node", [](int runs, bool* ok) {
+      double worst = 0.0;
+      return shell_drape_table(runs, &worst, ok);
+    })};
 
 }  // namespace
 

@@ -1,5 +1,5 @@
 // The table type shared by every benchmark: Markdown for the terminal and BENCHMARKS.md, CSV
-// for bench/results; the subcommand that prints a table of paired runs.
+// for bench/results; the subcommands that print one table.
 
 #include "bench.hpp"
 
@@ -54,15 +54,23 @@ std::string Table::csv() const {
   return out;
 }
 
-Benchmark runs_table_benchmark(std::string name, std::string summary,
-                               std::function<Table(int runs, bool* ok)> make) {
-  return {std::move(name), std::move(summary) + " [--runs R]",
-          [make](const std::vector<std::string>& args) {
-            const int runs = std::stoi(option_value(args, "--runs", std::to_string(kMinRuns)));
+Benchmark table_benchmark(
+    std::string name, std::string summary,
+    std::function<Table(const std::vector<std::string>& args, bool* ok)> make) {
+  return {std::move(name), std::move(summary), [make](const std::vector<std::string>& args) {
             bool ok = true;
-            std::cout << make(runs, &ok).markdown();
+            std::cout << make(args, &ok).markdown();
             return ok ? 0 : 1;
           }};
+}
+
+Benchmark runs_table_benchmark(std::string name, std::string summary,
+                               std::function<Table(int runs, bool* ok)> make) {
+  return table_benchmark(
+      std::move(name), std::move(summary) + " [--runs R]",
+      [make](const std::vector<std::string>& args, bool* ok) {
+        return make(std::stoi(option_value(args, "--runs", std::to_string(kMinRuns))), ok);
+      });
 }
 
 bool write_text_file(const std::string& path, const std::string& text) {

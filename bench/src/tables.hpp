@@ -30,16 +30,6 @@ struct ThroughputReport {
   double bicubic_link_rel = 0.0;
   bool ok = true;
 };
-/// Prints the table `make(&available)` builds (Markdown); 0 when the tool it measures was
-/// available.
-template <typename Make>
-int print_table(Make&& make) {
-  bool available = false;
-  const Table t = make(&available);
-  std::printf("%s", t.markdown().c_str());
-  return available ? 0 : 1;
-}
-
 /// The throughput options of a command line: --sizes N,N,... and --runs N.
 ThroughputOptions throughput_options(const std::vector<std::string>& args);
 ThroughputReport throughput_report(const ThroughputOptions& o);
