@@ -18,8 +18,9 @@ using nlohmann::json;
 namespace {
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
 
-json drape_report(const std::string& flags, const Scratch& tmp) {
-  return plyfit::test::drape_report(flags + " --outputs json,dxf --quiet", tmp);
+// report.json (and flat.dxf) of a quiet drape with `flags`.
+json quiet_report(const std::string& flags, const Scratch& tmp) {
+  return drape_report(flags + " --outputs json,dxf --quiet", tmp);
 }
 }  // namespace
 
@@ -28,7 +29,7 @@ TEST_CASE(
   for (double deg : {0.0, 45.0, 90.0, -45.0}) {
     CAPTURE(deg);
     Scratch tmp("ply_definition");
-    const json j = drape_report("--mold builtin:plate --seed 50,30,0 --rosette 1,0,0 --ply-angle " +
+    const json j = quiet_report("--mold builtin:plate --seed 50,30,0 --rosette 1,0,0 --ply-angle " +
                                     std::to_string(deg) + " --spacing 1",
                                 tmp);
     CHECK(j["status"] == "ok");
@@ -60,7 +61,7 @@ TEST_CASE(
 
 TEST_CASE("cli: the start flags with --ply-angle lay their drape turned by it") {
   Scratch tmp("ply_definition");
-  const json j = drape_report(
+  const json j = quiet_report(
       "--mold builtin:plate --spacing 1 --start2d 0,0 --base2d 1,0 --sweep2d 0,1 --sweep2d 0,-1 "
       "--start3d 50,30,0 --base-normal 0,1,0 --sweep3d 0,1,0 --sweep3d 0,-1,0 --ply-angle 30 "
       "--rosette 1,0,0",
@@ -73,7 +74,7 @@ TEST_CASE("cli: the start flags with --ply-angle lay their drape turned by it") 
 
 TEST_CASE("cli: a geodesic seed curve is echoed and checked in report.json") {
   Scratch tmp("ply_definition");
-  const json j = drape_report(
+  const json j = quiet_report(
       "--mold builtin:cylinder:R=10,H=40,angle=180 --seed 0,10,20 --rosette 0,0,1 "
       "--ply-angle 30 --spacing 0.5 --seed-curve geodesic",
       tmp);
@@ -152,7 +153,7 @@ TEST_CASE("cli: --faces-at drapes the face under the point") {
     const std::string at = std::to_string(p[0].get<double>()) + "," +
                            std::to_string(p[1].get<double>()) + "," +
                            std::to_string(p[2].get<double>());
-    const json j = drape_report(
+    const json j = quiet_report(
         "--mold '" + file + "' --faces-at " + at + " --seed " + at + " --rosette 1,1,1 --spacing 2",
         tmp);
     CHECK(j["inputs"]["face"] == face);
