@@ -184,8 +184,10 @@ Result<occt::ReadOutput> read_iges(const std::string& path, occt::Deadline& dead
   out.unit = unit_name(g.UnitFlag(), occt::text(g.UnitName()));
 
   occt::transfer_roots(reader, deadline, iges_name, out);
-  for (const DroppedTrims& d : dropped_trims(reader, out.shape))
-    out.warnings.push_back(dropped_trims_text(d));
+  // (A transfer stopped by the deadline is an error of the caller's: nothing to look at.)
+  if (!deadline.expired() && !out.shape.IsNull())
+    for (const DroppedTrims& d : dropped_trims(reader, out.shape))
+      out.warnings.push_back(dropped_trims_text(d));
   return out;
 }
 

@@ -791,8 +791,9 @@ TEST_CASE("drape: where fronts disagree no point fits: conflict nodes, counted b
   // point is off the remaining links by more than 1e-9 d.
   int fronts = 0;
   for (const auto& [k, why] : r.failures) {
-    // The nodes stopped at the fold limit are listed too, by their guard's code.
-    if (r.nodes[k].status == NodeStatus::kShearLimit) continue;
+    // The shear-limit and overlap nodes are listed too, by their codes.
+    if (r.nodes[k].status == NodeStatus::kShearLimit || r.nodes[k].status == NodeStatus::kOverlap)
+      continue;
     CHECK(r.nodes[k].status == NodeStatus::kConflict);
     if (std::string(why) != "the fronts disagree: a third link is off") continue;
     ++fronts;
@@ -826,16 +827,16 @@ TEST_CASE("drape: where fronts disagree no point fits: conflict nodes, counted b
 }
 
 TEST_CASE("drape: a node between two mapped nodes of one thread too far apart is a conflict") {
-  // A fuzz drape (seed 12) on the saddle: fronts of cloth meet from both sides of nodes whose
-  // only mapped neighbours lie on one thread, more than the two links apart. No point joins
-  // them; the reason says so (it said "no intersection (the spheres do not meet)"), and the
-  // node is a conflict, not a failure.
-  const Face f = builtin("saddle");
-  const Vec3 w3(-0.524273, 0.711874, -0.467304);
-  const DrapeResult r = run(f, problem(0.517907, Vec2(0, 0), Vec2(0.680328, 0.732908),
-                                       {Vec2(0.732908, -0.680328), Vec2(-0.732908, 0.680328)},
-                                       Vec3(-3.919251, 6.948146, -0.068130),
-                                       Vec3(-0.779846, -0.044677, -0.624375), {w3, -w3}));
+  // A torus closed both ways (R 30, r 10), d = 1.5, the two sweeps meeting round the inner
+  // equator: fronts of cloth meet from both sides of a node whose only mapped neighbours lie on
+  // one thread, more than the two links apart. No point joins them; the reason says so (it
+  // said "no intersection (the spheres do not meet)"), and the node is a conflict, not a
+  // failure.
+  const Face f =
+      builtin("torus", {{"R", 30}, {"r", 10}, {"t0", -180}, {"t1", 180}, {"angle", 360}});
+  const DrapeResult r =
+      run(f, problem(1.5, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)}, Vec3(0, 40, 0),
+                     Vec3(0, 0, 1), {Vec3(0, 0, 1), Vec3(0, 0, -1)}));
   const auto& why = r.metrics.nodes.conflict_reasons;
   const auto stretch = why.find("the fronts disagree: the thread between them would stretch");
   REQUIRE(stretch != why.end());
@@ -921,16 +922,18 @@ TEST_CASE("drape: a base plane nearly tangent to the face ends the path: partial
                                     {across, Vec3(-across)});
     const DrapeResult r = run(f, pb);
     CHECK(r.metrics.nodes.failed == 0);
-    CHECK(r.metrics.nodes.conflict == 0);
     CHECK(r.partial);
     int warned = 0;
     for (const Warning& w : support::with_code(r.warnings, WarningCode::kPathEnds))
       warned += support::value(w, 0) == 0.0 && support::value(w, 1) == 0.0;
     if (theta_deg < 2) {
+      CHECK(r.metrics.nodes.conflict == 0);
       CHECK(r.base_path.size() == 1);
       CHECK(r.metrics.nodes.path_end == 2);
       CHECK(warned == 1);
     } else {
+      // (The cloth swept into the small circle meets itself round its middle: conflicts
+      // there, where the links cannot meet.)
       CHECK(r.metrics.nodes.path_end == 0);
       CHECK(warned == 0);
       CHECK(r.base_path.size() >= 20);

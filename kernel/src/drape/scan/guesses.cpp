@@ -46,7 +46,11 @@ SolveResult Scanner::solve_two(const DrapeNode& q, const DrapeNode& a, ThreadDir
     r.reason = "the fronts disagree: the links cannot meet";
     r.fronts_disagree = true;
   }
-  if (corner && (r.status == SolveStatus::kConverged || r.status == SolveStatus::kShearLimit) &&
+  // (A solve that found only the branch folding the cell against the ply's orientation is the
+  // same fold when that solution lies on the corner's side.)
+  const bool folded = r.status == SolveStatus::kFailed && r.folded_branch;
+  if (corner &&
+      (r.status == SolveStatus::kConverged || r.status == SolveStatus::kShearLimit || folded) &&
       r.point.allFinite() && cell_folds(r, a, b, *corner)) {
     r.status = SolveStatus::kShearLimit;
     r.shear_stop = ShearStop::kCellFolds;

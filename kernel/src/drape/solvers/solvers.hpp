@@ -72,6 +72,9 @@ struct SolveResult {
   /// spheres' circle of intersection passing the face at a distance (kShearLimit where the
   /// links are a weft and a warp link, else kFailed).
   bool no_point = false;
+  /// For the two-sphere solver (kFailed): Newton converged only on the branch that folds the
+  /// triangle (a, b, p) against the ply's orientation; `point` is that solution.
+  bool folded_branch = false;
   /// For the base-path solver (kFailed): the base plane's section of the surface turns back
   /// towards the known point, or ends where the plane touches the surface, before it reaches
   /// the step's distance: no point ahead exists, and the path ends there (the plane nearly
