@@ -198,17 +198,18 @@ nlohmann::json mold_json(const ExportContext& ctx) {
           {"warnings", warning_texts(ctx.run.warnings)}};
 }
 
-// Node counts by status, with the reasons of the failed, conflicting and shear-limit ones.
+// Node counts by status, with the reasons of the failed, conflicting, shear-limit and
+// overlapping ones.
 nlohmann::json nodes_json(const DrapeMetrics& m) {
   nlohmann::json nodes = {{"mapped", m.nodes.mapped},           {"auxiliary", m.nodes.auxiliary},
                           {"outside", m.nodes.outside},         {"off_ply", m.nodes.off_ply},
                           {"shear_limit", m.nodes.shear_limit}, {"overlap", m.nodes.overlap},
                           {"failed", m.nodes.failed},           {"conflict", m.nodes.conflict},
                           {"path_end", m.nodes.path_end},       {"with_angle", m.angles}};
-  for (const auto& [key, reasons] :
-       {std::pair{"failed_reasons", &m.nodes.failed_reasons},
-        std::pair{"conflict_reasons", &m.nodes.conflict_reasons},
-        std::pair{"shear_limit_reasons", &m.nodes.shear_limit_reasons}}) {
+  for (const auto& [key, reasons] : {std::pair{"failed_reasons", &m.nodes.failed_reasons},
+                                     std::pair{"conflict_reasons", &m.nodes.conflict_reasons},
+                                     std::pair{"shear_limit_reasons", &m.nodes.shear_limit_reasons},
+                                     std::pair{"overlap_reasons", &m.nodes.overlap_reasons}}) {
     nodes[key] = nlohmann::json::object();
     for (const auto& [why, count] : *reasons) nodes[key][why] = count;
   }

@@ -8,8 +8,25 @@
 #include <IGESData_GlobalSection.hxx>
 #include <IGESData_IGESEntity.hxx>
 #include <IGESData_IGESModel.hxx>
+#include <IGESGeom_CompositeCurve.hxx>
+#include <IGESGeom_CurveOnSurface.hxx>
 #include <IGESGeom_TrimmedSurface.hxx>
 #include <IGESSolid_Face.hxx>
+#include <IGESToBRep_BasicCurve.hxx>
+#include <IGESToBRep_CurveAndSurface.hxx>
+#include <Interface_Check.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TransferBRep.hxx>
+#include <Transfer_TransientProcess.hxx>
+#include <XSControl_TransferReader.hxx>
+#include <XSControl_WorkSession.hxx>
+
+#include <Geom_Curve.hxx>
+
+#include <algorithm>
+#include <cstdio>
 
 namespace plyfit::importers {
 
@@ -74,6 +91,81 @@ std::string unit_name(int flag, const std::string& given) {
   return given.empty() ? n : n + " (" + given + ")";
 }
 
+// The widest gap (mm) between consecutive model-space curves of a trim loop made of a
+// composite curve (102) of curves the reader can convert; 0 when none is found.
+double loop_gap(const Handle(IGESGeom_CurveOnSurface) & loop,
+                const Handle(IGESData_IGESModel) & model) {
+  const auto composite = Handle(IGESGeom_CompositeCurve)::DownCast(loop->Curve3D());
+  if (composite.IsNull() || composite->NbCurves() < 2) return 0.0;
+  IGESToBRep_CurveAndSurface cas;
+  cas.SetModel(model);
+  IGESToBRep_BasicCurve convert(cas);
+  std::vector<std::pair<gp_Pnt, gp_Pnt>> ends;
+  for (int k = 1; k <= composite->NbCurves(); ++k) {
+    const Handle(Geom_Curve) c = convert.TransferBasicCurve(composite->Curve(k));
+    if (c.IsNull()) return 0.0;
+    ends.emplace_back(c->Value(c->FirstParameter()), c->Value(c->LastParameter()));
+  }
+  double gap = 0.0;
+  for (std::size_t k = 0; k < ends.size(); ++k)
+    gap = std::max(gap, ends[k].second.Distance(ends[(k + 1) % ends.size()].first));
+  return gap;
+}
+
+// A trimmed surface (144) some of whose trim loops the reader skipped: the loop's check failed,
+// its curves on the surface could not be made a loop (e.g. model-space curves that do not
+// close). The face then comes out bounded by its whole surface.
+struct DroppedTrims {
+  int face = -1;        // index of the face it made in the listing (-1: none)
+  int entity = 0;       // the 144's directory entry (DE) number
+  int dropped = 0;      // loops skipped
+  int loops = 0;        // loops it has (outer and inner)
+  double gap_mm = 0.0;  // widest gap between the skipped loops' model-space curves (0: unknown)
+};
+
+std::vector<DroppedTrims> dropped_trims(const IGESControl_Reader& reader,
+                                        const TopoDS_Shape& shape) {
+  std::vector<DroppedTrims> out;
+  const Handle(IGESData_IGESModel) model = reader.IGESModel();
+  const Handle(Transfer_TransientProcess) process =
+      reader.WS()->TransferReader()->TransientProcess();
+  if (model.IsNull() || process.IsNull()) return out;
+  TopTools_IndexedMapOfShape faces;
+  TopExp::MapShapes(shape, TopAbs_FACE, faces);
+  for (int i = 1; i <= model->NbEntities(); ++i) {
+    const auto t = Handle(IGESGeom_TrimmedSurface)::DownCast(model->Value(i));
+    if (t.IsNull()) continue;
+    std::vector<Handle(IGESGeom_CurveOnSurface)> loops;
+    if (t->HasOuterContour()) loops.push_back(t->OuterContour());
+    for (int k = 1; k <= t->NbInnerContours(); ++k) loops.push_back(t->InnerContour(k));
+    DroppedTrims d;
+    d.entity = 2 * i - 1;
+    d.loops = static_cast<int>(loops.size());
+    for (const auto& loop : loops) {
+      if (loop.IsNull() || !process->Check(loop)->HasFailed()) continue;
+      ++d.dropped;
+      d.gap_mm = std::max(d.gap_mm, loop_gap(loop, model));
+    }
+    if (d.dropped == 0) continue;
+    for (TopExp_Explorer e(TransferBRep::ShapeResult(process, t), TopAbs_FACE);
+         e.More() && d.face < 0; e.Next())
+      d.face = faces.FindIndex(e.Current()) - 1;
+    out.push_back(d);
+  }
+  return out;
+}
+
+// The listing's warning for d: the face is listed and draped untrimmed, which the user must know.
+std::string dropped_trims_text(const DroppedTrims& d) {
+  char gap[96] = "";
+  if (d.gap_mm > 0.0)
+    std::snprintf(gap, sizeof gap, " (its model-space curves leave a gap of %.6g mm)", d.gap_mm);
+  return "trims: " + (d.face >= 0 ? "face " + std::to_string(d.face) : std::string("no face")) +
+         " (trimmed surface DE " + std::to_string(d.entity) + "): " + std::to_string(d.dropped) +
+         " of its " + std::to_string(d.loops) + " trim loop(s) could not be read and were dropped" +
+         gap + "; the face is listed and draped as its whole surface, untrimmed";
+}
+
 }  // namespace
 
 Result<occt::ReadOutput> read_iges(const std::string& path, occt::Deadline& deadline) {
@@ -92,6 +184,10 @@ Result<occt::ReadOutput> read_iges(const std::string& path, occt::Deadline& dead
   out.unit = unit_name(g.UnitFlag(), occt::text(g.UnitName()));
 
   occt::transfer_roots(reader, deadline, iges_name, out);
+  // (A transfer stopped by the deadline is an error of the caller's: nothing to look at.)
+  if (!deadline.expired() && !out.shape.IsNull())
+    for (const DroppedTrims& d : dropped_trims(reader, out.shape))
+      out.warnings.push_back(dropped_trims_text(d));
   return out;
 }
 

@@ -93,7 +93,9 @@ void field_paths(const nlohmann::json& j, const std::string& at, std::set<std::s
   for (auto it = j.begin(); it != j.end(); ++it) {
     const std::string path = at.empty() ? it.key() : at + "." + it.key();
     out.insert(path);
-    if (path == "nodes.failed_reasons" || path == "nodes.conflict_reasons") continue;
+    if (path == "nodes.failed_reasons" || path == "nodes.conflict_reasons" ||
+        path == "nodes.shear_limit_reasons" || path == "nodes.overlap_reasons")
+      continue;
     if (it->is_object()) field_paths(*it, path, out);
     if (it->is_array() && !it->empty() && it->front().is_object())
       field_paths(it->front(), path + "[]", out);

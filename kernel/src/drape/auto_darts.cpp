@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string_view>
 
 namespace plyfit {
 
@@ -21,18 +22,29 @@ constexpr double kTipInsideRel = 4.0;
 // The walk out of a zone steps this many spacings along the surface.
 constexpr double kWalkStepRel = 0.5;
 
-bool stopped(const DrapeNode& n) {
-  return n.status == NodeStatus::kConflict || n.status == NodeStatus::kShearLimit;
+// The nodes where the cloth stops for want of a dart: in conflict, at the shear limit, or
+// folded onto itself (an overlap by a fold guard: DrapeResult::failures' code).
+std::vector<bool> stopped_nodes(const DrapeResult& r) {
+  std::vector<bool> out(r.nodes.size(), false);
+  for (const auto& [k, why] : r.failures) {
+    const NodeStatus s = r.nodes[k].status;
+    const std::string_view code = why ? why : "";
+    out[k] = s == NodeStatus::kConflict || s == NodeStatus::kShearLimit ||
+             (s == NodeStatus::kOverlap &&
+              (code == "fold_angle" || code == "flat_cell" || code == "cell_folds"));
+  }
+  return out;
 }
 
-// The mapped regular nodes next to a conflict or shear-limit node (those have no point).
+// The mapped regular nodes next to a stopped node (stopped_nodes(): those have no point).
 std::vector<std::uint32_t> front_nodes(const DrapeResult& r) {
+  const std::vector<bool> stopped = stopped_nodes(r);
   std::vector<std::uint32_t> out;
   for (std::uint32_t k = 0; k < r.nodes.size(); ++k) {
     const DrapeNode& n = r.nodes[k];
     if (!n.mapped() || n.id.is_path_only()) continue;
     for (int d = 0; d < 4; ++d)
-      if (n.nb[d] >= 0 && stopped(r.nodes[static_cast<std::size_t>(n.nb[d])])) {
+      if (n.nb[d] >= 0 && stopped[static_cast<std::size_t>(n.nb[d])]) {
         out.push_back(k);
         break;
       }

@@ -58,7 +58,7 @@ void Scanner::map_path(const Vec3& t3) {
         break;
       }
       if (overlaps(idx)) {  // a closed plane section: the path came round
-        stop_overlap(idx);
+        stop_overlap(idx, kOnLaidCloth);
         break;
       }
       chain.push_back(idx);

@@ -147,6 +147,8 @@ void count_stop_reasons(DrapeResult& res) {
       ++m.nodes.conflict_reasons[text];
     else if (res.nodes[k].status == NodeStatus::kShearLimit)
       ++m.nodes.shear_limit_reasons[text];
+    else if (res.nodes[k].status == NodeStatus::kOverlap)
+      ++m.nodes.overlap_reasons[text];
   }
 }
 

@@ -791,8 +791,9 @@ TEST_CASE("drape: where fronts disagree no point fits: conflict nodes, counted b
   // point is off the remaining links by more than 1e-9 d.
   int fronts = 0;
   for (const auto& [k, why] : r.failures) {
-    // The nodes stopped at the fold limit are listed too, by their guard's code.
-    if (r.nodes[k].status == NodeStatus::kShearLimit) continue;
+    // The shear-limit and overlap nodes are listed too, by their codes.
+    if (r.nodes[k].status == NodeStatus::kShearLimit || r.nodes[k].status == NodeStatus::kOverlap)
+      continue;
     CHECK(r.nodes[k].status == NodeStatus::kConflict);
     if (std::string(why) != "the fronts disagree: a third link is off") continue;
     ++fronts;
@@ -826,16 +827,16 @@ TEST_CASE("drape: where fronts disagree no point fits: conflict nodes, counted b
 }
 
 TEST_CASE("drape: a node between two mapped nodes of one thread too far apart is a conflict") {
-  // A fuzz drape (seed 12) on the saddle: fronts of cloth meet from both sides of nodes whose
-  // only mapped neighbours lie on one thread, more than the two links apart. No point joins
-  // them; the reason says so (it said "no intersection (the spheres do not meet)"), and the
-  // node is a conflict, not a failure.
-  const Face f = builtin("saddle");
-  const Vec3 w3(-0.524273, 0.711874, -0.467304);
-  const DrapeResult r = run(f, problem(0.517907, Vec2(0, 0), Vec2(0.680328, 0.732908),
-                                       {Vec2(0.732908, -0.680328), Vec2(-0.732908, 0.680328)},
-                                       Vec3(-3.919251, 6.948146, -0.068130),
-                                       Vec3(-0.779846, -0.044677, -0.624375), {w3, -w3}));
+  // A torus closed both ways (R 30, r 10), d = 1.5, the two sweeps meeting round the inner
+  // equator: fronts of cloth meet from both sides of a node whose only mapped neighbours lie on
+  // one thread, more than the two links apart. No point joins them; the reason says so (it
+  // said "no intersection (the spheres do not meet)"), and the node is a conflict, not a
+  // failure.
+  const Face f =
+      builtin("torus", {{"R", 30}, {"r", 10}, {"t0", -180}, {"t1", 180}, {"angle", 360}});
+  const DrapeResult r =
+      run(f, problem(1.5, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)}, Vec3(0, 40, 0),
+                     Vec3(0, 0, 1), {Vec3(0, 0, 1), Vec3(0, 0, -1)}));
   const auto& why = r.metrics.nodes.conflict_reasons;
   const auto stretch = why.find("the fronts disagree: the thread between them would stretch");
   REQUIRE(stretch != why.end());
@@ -921,16 +922,18 @@ TEST_CASE("drape: a base plane nearly tangent to the face ends the path: partial
                                     {across, Vec3(-across)});
     const DrapeResult r = run(f, pb);
     CHECK(r.metrics.nodes.failed == 0);
-    CHECK(r.metrics.nodes.conflict == 0);
     CHECK(r.partial);
     int warned = 0;
     for (const Warning& w : support::with_code(r.warnings, WarningCode::kPathEnds))
       warned += support::value(w, 0) == 0.0 && support::value(w, 1) == 0.0;
     if (theta_deg < 2) {
+      CHECK(r.metrics.nodes.conflict == 0);
       CHECK(r.base_path.size() == 1);
       CHECK(r.metrics.nodes.path_end == 2);
       CHECK(warned == 1);
     } else {
+      // (The cloth swept into the small circle meets itself round its middle: conflicts
+      // there, where the links cannot meet.)
       CHECK(r.metrics.nodes.path_end == 0);
       CHECK(warned == 0);
       CHECK(r.base_path.size() >= 20);
@@ -1017,18 +1020,21 @@ TEST_CASE("drape: the support's degree elevation and knot remapping keep the sur
     }
 }
 
-TEST_CASE("drape: every shear-limit stop is counted by the guard that made it") {
+TEST_CASE(
+    "drape: only the lock stops a node at the shear limit; a fold is an overlap by its guard") {
   // With a lock angle the nodes whose angle passes it stop as "lock" and the nodes beyond
-  // them as "behind_stop"; without one nothing stops as "lock": the fuzz drape on the
-  // hemisphere (seed 11) stops nodes at the fold limit only. The counts add up to the
-  // shear-limit nodes, and every listed node is one.
-  auto counted = [](const DrapeResult& r) {
+  // them as "behind_stop"; without one no node stops at the shear limit: the fuzz drape on the
+  // hemisphere (seed 11) shears the cloth until its fronts meet where no point joins them
+  // (conflicts) and it comes round onto itself (overlaps), with nothing spread behind them.
+  // Every count adds up to its status's nodes, and every listed node has that status.
+  auto listed = [](const DrapeResult& r, NodeStatus status) {
     std::uint64_t n = 0;
-    for (const auto& [code, count] : r.metrics.nodes.shear_limit_reasons) n += count;
-    std::uint64_t listed = 0;
-    for (const auto& [k, why] : r.failures)
-      if (r.nodes[k].status == NodeStatus::kShearLimit) ++listed;
-    CHECK(listed == n);
+    for (const auto& [k, why] : r.failures) n += r.nodes[k].status == status ? 1 : 0;
+    return n;
+  };
+  auto sum = [](const std::map<std::string, std::uint64_t>& reasons) {
+    std::uint64_t n = 0;
+    for (const auto& [code, count] : reasons) n += count;
     return n;
   };
   const Face octant = builtin("sphere-octant", {{"R", 20}});
@@ -1038,10 +1044,15 @@ TEST_CASE("drape: every shear-limit stop is counted by the guard that made it") 
                             problem(0.5, Vec2(15, 0), Vec2(1, 1), {Vec2(-1, 1)}, Vec3(0, 0, 20),
                                     Vec3(0, 1, 0), {Vec3(0, 1, 0)}),
                             lock);
-  REQUIRE(c.metrics.nodes.shear_limit > 0);
-  CHECK(counted(c) == c.metrics.nodes.shear_limit);
-  CHECK(c.metrics.nodes.shear_limit_reasons.count("lock") == 1);
-  CHECK(c.metrics.nodes.shear_limit_reasons.count("fold_angle") == 0);
+  const NodeCounts& cn = c.metrics.nodes;
+  REQUIRE(cn.shear_limit > 0);
+  CHECK(sum(cn.shear_limit_reasons) == cn.shear_limit);
+  CHECK(listed(c, NodeStatus::kShearLimit) == cn.shear_limit);
+  CHECK(cn.shear_limit_reasons.count("lock") == 1);
+  for (const auto& [code, count] : cn.shear_limit_reasons) {
+    INFO(code << ": " << count);
+    CHECK((code == "lock" || code == "behind_stop"));
+  }
 
   const Face hemi = builtin("hemisphere", {{"R", 1.0}});
   const Vec3 w3(0.259241, 0.965348, 0.029947);
@@ -1049,14 +1060,68 @@ TEST_CASE("drape: every shear-limit stop is counted by the guard that made it") 
                                           {Vec2(0.238460, -0.971152), Vec2(-0.238460, 0.971152)},
                                           Vec3(-0.156435, -0.287080, 0.517885),
                                           Vec3(-0.135449, 0.932291, -0.335392), {w3, -w3}));
-  REQUIRE(h.metrics.nodes.shear_limit > 0);
-  CHECK(counted(h) == h.metrics.nodes.shear_limit);
-  CHECK(h.metrics.nodes.shear_limit_reasons.count("lock") == 0);
-  for (const auto& [code, count] : h.metrics.nodes.shear_limit_reasons) {
+  const NodeCounts& hn = h.metrics.nodes;
+  CHECK(hn.shear_limit == 0);
+  CHECK(hn.shear_limit_reasons.empty());
+  REQUIRE(hn.overlap > 0);
+  CHECK(sum(hn.overlap_reasons) == hn.overlap);
+  CHECK(listed(h, NodeStatus::kOverlap) == hn.overlap);
+  REQUIRE(hn.conflict > 0);
+  CHECK(sum(hn.conflict_reasons) == hn.conflict);
+  for (const auto& [code, count] : hn.overlap_reasons) {
     INFO(code << ": " << count);
     CHECK((code == "fold_angle" || code == "flat_cell" || code == "cell_folds" ||
-           code == "behind_stop"));
+           code == "on_laid_cloth" || code == "thread_turns_back"));
   }
+}
+
+TEST_CASE(
+    "drape: where the two sweeps meet round a closed torus, links that cannot meet are "
+    "conflicts, not shear stops") {
+  // A torus closed both ways (R 30, r 10), the base path round its outer equator (it comes
+  // round onto itself), one sweep up and one down the tube: the two sweeps' cloth meets round
+  // the inner equator. A node whose weft and warp neighbours there (one from each sweep, the
+  // cell's fourth corner not mapped) lie farther apart than its two links has no position at
+  // any shear: a conflict; where the net folds there, an overlap by the fold guard. No lock,
+  // so no node stops at the shear limit, and nothing spreads behind a stop.
+  const Face torus =
+      builtin("torus", {{"R", 30}, {"r", 10}, {"t0", -180}, {"t1", 180}, {"angle", 360}});
+  std::uint64_t folds = 0;
+  for (const double d : {2.0, 3.0, 4.0}) {
+    const DrapeResult r =
+        run(torus, problem(d, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)}, Vec3(0, 40, 0),
+                           Vec3(0, 0, 1), {Vec3(0, 0, 1), Vec3(0, 0, -1)}));
+    INFO("d = " << d);
+    const NodeCounts& n = r.metrics.nodes;
+    CHECK(n.shear_limit == 0);
+    CHECK(n.shear_limit_reasons.empty());
+    CHECK(n.conflict_reasons.count("the fronts disagree: the links cannot meet") == 1);
+    // Each such conflict has a mapped weft and warp neighbour farther apart than its two links.
+    std::uint64_t apart = 0;
+    for (const auto& [k, why] : r.failures) {
+      if (std::strcmp(why, "the fronts disagree: the links cannot meet") != 0) continue;
+      const DrapeNode& q = r.nodes[k];
+      bool found = false;
+      for (const ThreadDir a : {ThreadDir::kPlusX, ThreadDir::kMinusX})
+        for (const ThreadDir b : {ThreadDir::kPlusY, ThreadDir::kMinusY}) {
+          const std::int32_t ka = q.nb[static_cast<int>(a)], kb = q.nb[static_cast<int>(b)];
+          if (ka < 0 || kb < 0) continue;
+          const DrapeNode& na = r.nodes[static_cast<std::size_t>(ka)];
+          const DrapeNode& nb = r.nodes[static_cast<std::size_t>(kb)];
+          if (na.mapped() && nb.mapped() && (na.point - nb.point).norm() > 2 * d) found = true;
+        }
+      if (found) ++apart;
+    }
+    CHECK(apart == n.conflict_reasons.at("the fronts disagree: the links cannot meet"));
+    // Where the net folds there (a fold guard fires), the node is an overlap by that guard.
+    std::uint64_t overlaps = 0;
+    for (const auto& [code, count] : n.overlap_reasons) {
+      overlaps += count;
+      if (code == "fold_angle" || code == "flat_cell" || code == "cell_folds") folds += count;
+    }
+    CHECK(overlaps == n.overlap);
+  }
+  CHECK(folds > 0);
 }
 
 TEST_CASE(

@@ -26,17 +26,17 @@ enum class NodeStatus : std::uint8_t {
   kMapped,      ///< on the face, all constraints satisfied
   kOutside,     ///< its solution lies outside the face (domain or trims)
   kOffPly,      ///< beyond the ply rectangle: no cloth there
-  kShearLimit,  ///< the thread angle would pass the lock angle (eq. 12) or come within
-                ///< Tolerances::fold_angle of 0 or pi, or no point fits its links (the cell is
-                ///< sheared so flat they pass below the face), or its cell would fold (the net
-                ///< around it is sheared flat), or the node has one mapped neighbour and a
-                ///< stopped one (its thread would fold past it): ShearStop says which, and
-                ///< NodeCounts::shear_limit_reasons counts them
+  kShearLimit,  ///< the thread angle would pass the lock angle (eq. 12), or the node has one
+                ///< mapped neighbour and one stopped at the lock (its thread would fold past
+                ///< it); NodeCounts::shear_limit_reasons counts them. Never without a lock.
   kFailed,      ///< the solver found no solution (see the solver's reason)
   kOverlap,     ///< the cloth would lie on cloth already laid: the base path or the surface
                 ///< closes on itself (a closed plane section, a seam crossed all round), a
-                ///< thread turns back on itself, or a net sheared past 60 degrees comes back
-                ///< over itself
+                ///< thread turns back on itself, a net sheared past 60 degrees comes back
+                ///< over itself, or the cloth folds flat (the fold guards: a thread angle
+                ///< within Tolerances::fold_angle of 0 or pi, a cell sheared so flat that its
+                ///< links pass below the face, a cell that would fold over its fourth corner);
+                ///< NodeCounts::overlap_reasons counts them
   /// Two fronts of cloth met at the node and disagree: no point of the surface satisfies all
   /// its links (over-determined on a 2-D surface), so the cloth cannot be laid there without a
   /// dart or a splice. Either the node was solved from two neighbours and its link to a
@@ -208,9 +208,9 @@ struct DrapeResult {
   std::vector<DrapeNode> nodes;          ///< every node reached, in resolution order
   std::shared_ptr<NodeIndex> index;      ///< NodeId -> position in `nodes` (kernel internal)
   std::vector<std::uint32_t> base_path;  ///< base-path nodes in order, mapped or kInHole
-  /// Why each failed, conflict or shear-limit node (kFailed, kConflict, kShearLimit: its
-  /// status tells which) was not mapped: (index in `nodes`, the reason; for kShearLimit the
-  /// code of its ShearStop), in resolution order.
+  /// Why each failed, conflict, shear-limit or overlap node (kFailed, kConflict, kShearLimit,
+  /// kOverlap: its status tells which) was not mapped: (index in `nodes`, the reason; for
+  /// kShearLimit and kOverlap a code, NodeCounts), in resolution order.
   std::vector<std::pair<std::uint32_t, const char*>> failures;
   std::shared_ptr<const Ply> ply;
   DrapeMetrics metrics;

@@ -22,10 +22,15 @@ struct NodeCounts {
   /// The failed nodes counted by the solver's reason (SolveResult::reason, e.g. "no convergence
   /// within the iteration cap"); the counts add up to `failed`.
   std::map<std::string, std::uint64_t> failed_reasons;
-  /// The shear-limit nodes counted by the guard that stopped them (to_string(ShearStop):
-  /// "lock", "fold_angle", "flat_cell", "cell_folds", "behind_stop"); the counts add up to
+  /// The shear-limit nodes counted by the guard that stopped them: "lock" (past the lock
+  /// angle) and "behind_stop" (one neighbour mapped, one at the lock); the counts add up to
   /// `shear_limit`.
   std::map<std::string, std::uint64_t> shear_limit_reasons;
+  /// The overlap nodes counted by the test that stopped them: "on_laid_cloth" (within half a
+  /// spacing of cloth laid farther away on the ply), "thread_turns_back", and the fold guards
+  /// "fold_angle", "flat_cell", "cell_folds" (the cloth folded onto itself); the counts add up
+  /// to `overlap`.
+  std::map<std::string, std::uint64_t> overlap_reasons;
   /// The conflict nodes counted by their reason ("the fronts disagree: a third link is off",
   /// "the fronts disagree: the thread between them would stretch"); the counts add up to
   /// `conflict`.

@@ -36,7 +36,21 @@ SolveResult Scanner::solve_two(const DrapeNode& q, const DrapeNode& a, ThreadDir
     r.reason = "the fronts disagree: the thread between them would stretch";
     r.fronts_disagree = true;
   }
-  if (corner && (r.status == SolveStatus::kConverged || r.status == SolveStatus::kShearLimit) &&
+  // A weft and a warp neighbour farther apart than their two links, the cell's fourth corner
+  // not mapped: no position of the node joins them, at any shear (the thread angle would pass
+  // pi). Fronts of cloth that met around a gap of the net (a conflict), not the shear limit.
+  if (!corner && is_weft(da) != is_weft(db) && r.status == SolveStatus::kShearLimit &&
+      (b.point - a.point).norm() > ra + rb) {
+    r.status = SolveStatus::kFailed;
+    r.shear_stop = ShearStop::kNone;
+    r.reason = "the fronts disagree: the links cannot meet";
+    r.fronts_disagree = true;
+  }
+  // (A solve that found only the branch folding the cell against the ply's orientation is the
+  // same fold when that solution lies on the corner's side.)
+  const bool folded = r.status == SolveStatus::kFailed && r.folded_branch;
+  if (corner &&
+      (r.status == SolveStatus::kConverged || r.status == SolveStatus::kShearLimit || folded) &&
       r.point.allFinite() && cell_folds(r, a, b, *corner)) {
     r.status = SolveStatus::kShearLimit;
     r.shear_stop = ShearStop::kCellFolds;

@@ -110,10 +110,15 @@ void Scanner::resolve(std::uint32_t idx, const SolveResult& r) {
         if (s_.in_hole(r.at)) n.flags |= DrapeNode::kInHole;
       }
       break;
-    case SolveStatus::kShearLimit:
-      n.status = NodeStatus::kShearLimit;
-      res_.failures.emplace_back(idx, to_string(shear_stop(r)));
+    case SolveStatus::kShearLimit: {
+      // Only the lock stops a node at the shear limit; a fold guard's node is cloth folded
+      // onto itself (an overlap, counted by the guard's code).
+      const ShearStop stop = shear_stop(r);
+      const bool lock = stop == ShearStop::kLock || stop == ShearStop::kBehindStop;
+      n.status = lock ? NodeStatus::kShearLimit : NodeStatus::kOverlap;
+      res_.failures.emplace_back(idx, to_string(stop));
       break;
+    }
     case SolveStatus::kFailed:
       // The base path ends where its plane's section turns back (path_end).
       if (r.section_ends && n.has(DrapeNode::kOnPath)) {
@@ -161,14 +166,16 @@ bool Scanner::overlaps(std::uint32_t k) {
   });
 }
 
-// Node k, mapped or in a hole, lies on cloth already laid: mapped, it is an overlap; in a
-// hole, the cloth under the hole goes no further from it.
-void Scanner::stop_overlap(std::uint32_t k) {
+// Node k, mapped or in a hole, lies on cloth already laid (`why`: the test that found it):
+// mapped, it is an overlap; in a hole, the cloth under the hole goes no further from it.
+void Scanner::stop_overlap(std::uint32_t k, const char* why) {
   DrapeNode& n = node(k);
-  if (n.mapped())
+  if (n.mapped()) {
     n.status = NodeStatus::kOverlap;
-  else
+    res_.failures.emplace_back(k, why);
+  } else {
     n.flags = static_cast<std::uint8_t>(n.flags & ~DrapeNode::kInHole);
+  }
 }
 
 bool Scanner::cancelled_now() {
@@ -241,10 +248,11 @@ bool Scanner::folds_back(std::uint32_t k) const {
   return false;
 }
 
-// True if a neighbour of q stopped at the shear limit. Such a node, reached from one side
-// only, is stopped as well: continuing its thread straight (solver 3) past the locked
-// node would fold the cloth over the cells the lock left open (on the sphere octant,
-// case (c) with a 30 degree lock: mapped nodes sheared to 88 degrees, links off by 0.7 d).
+// True if a neighbour of q stopped at the shear limit (the lock, or behind it: a fold guard's
+// node is an overlap). Such a node, reached from one side only, is stopped as well: continuing its
+// thread straight (solver 3) past the locked node would fold the cloth over the cells the lock left
+// open (on the sphere octant, case (c) with a 30 degree lock: mapped nodes sheared to 88 degrees,
+// links off by 0.7 d).
 bool Scanner::behind_lock(const DrapeNode& q) const {
   for (int d = 0; d < 4; ++d) {
     const std::int32_t k = q.nb[d];
@@ -283,8 +291,10 @@ void Scanner::step(std::uint32_t qi) {
   // net sheared nearly flat), or fold its threads back (folds_back()). In a hole the cloth
   // under the hole stops there (the node stays outside).
   if (!node(qi).carries()) return;
-  const bool over = opt_.overlap_test && overlaps(qi);
-  if (over || folds_back(qi)) stop_overlap(qi);
+  if (opt_.overlap_test && overlaps(qi))
+    stop_overlap(qi, kOnLaidCloth);
+  else if (folds_back(qi))
+    stop_overlap(qi, kThreadTurnsBack);
   if (node(qi).carries()) push_neighbours(qi);
 }
 

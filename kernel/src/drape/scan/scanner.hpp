@@ -52,6 +52,11 @@ inline constexpr double kExtrapolationTrust = 0.1;
 inline constexpr double kGuessCorrectionTrust = 0.1;
 inline constexpr double kGuessCorrectionMinRel = 1e-8;
 
+// The overlap nodes' reasons besides the fold guards' (to_string(ShearStop)): the node lands
+// on cloth already laid (Scanner::overlaps), a thread turns back there (Scanner::folds_back).
+inline constexpr const char* kOnLaidCloth = "on_laid_cloth";
+inline constexpr const char* kThreadTurnsBack = "thread_turns_back";
+
 struct FrontierEntry {
   double sweep;  // distance from the base path along the sweep direction
   double dist;   // distance to the start (tie-break)
@@ -112,7 +117,7 @@ class Scanner {
   std::uint32_t node_for(const NodeId& id, const Vec2& pos);
   void resolve(std::uint32_t idx, const SolveResult& r);
   bool overlaps(std::uint32_t k);
-  void stop_overlap(std::uint32_t k);
+  void stop_overlap(std::uint32_t k, const char* why);
   // The neighbour across the link in direction d if the cloth goes on from it: mapped, or in
   // a hole of the face (DrapeNode::carries).
   const DrapeNode* mapped_nb(const DrapeNode& n, ThreadDir d) const {

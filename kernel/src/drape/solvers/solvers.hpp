@@ -30,8 +30,9 @@ enum class SolveStatus : std::uint8_t {
 /// Name of a status ("converged", "left_face", "shear_limit", "failed").
 const char* to_string(SolveStatus s);
 
-/// Which guard stopped a node at the shear limit (SolveStatus::kShearLimit,
-/// NodeStatus::kShearLimit).
+/// Which guard stopped a node at the shear limit (SolveStatus::kShearLimit): the lock's
+/// (NodeStatus::kShearLimit) or a fold guard's (the cloth folds onto itself:
+/// NodeStatus::kOverlap).
 enum class ShearStop : std::uint8_t {
   kNone,
   /// Eq. (12): the thread angle at the node (SolveResult::thread_angle) passes gamma_min or
@@ -45,8 +46,8 @@ enum class ShearStop : std::uint8_t {
   /// The cell would fold: the node lies on the same side of the line between its two
   /// neighbours as the cell's fourth corner (the net around it is sheared past flat).
   kCellFolds,
-  /// The node has one mapped neighbour and one stopped at the shear limit: its thread,
-  /// continued straight past the stopped node, would fold over the cells left open.
+  /// The node has one mapped neighbour and one stopped at the lock: its thread, continued
+  /// straight past the stopped node, would fold over the cells left open.
   kBehindStop,
 };
 /// Reason code of a stop: "lock", "fold_angle", "flat_cell", "cell_folds", "behind_stop"
@@ -71,6 +72,9 @@ struct SolveResult {
   /// spheres' circle of intersection passing the face at a distance (kShearLimit where the
   /// links are a weft and a warp link, else kFailed).
   bool no_point = false;
+  /// For the two-sphere solver (kFailed): Newton converged only on the branch that folds the
+  /// triangle (a, b, p) against the ply's orientation; `point` is that solution.
+  bool folded_branch = false;
   /// For the base-path solver (kFailed): the base plane's section of the surface turns back
   /// towards the known point, or ends where the plane touches the surface, before it reaches
   /// the step's distance: no point ahead exists, and the path ends there (the plane nearly

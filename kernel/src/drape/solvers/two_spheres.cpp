@@ -236,6 +236,7 @@ class TwoSpheres {
     if (!on_branch(c_.res.point, face_normal(s_, c_.res.at, c_.last), c_.res.at)) {
       c_.res.status = SolveStatus::kFailed;
       c_.res.reason = "only the folded branch was found";
+      c_.res.folded_branch = true;
       return false;
     }
     finish();
