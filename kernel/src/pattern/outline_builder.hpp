@@ -165,6 +165,7 @@ class OutlineBuilder {
   std::vector<std::vector<int>> pieces_by_area() const;
   std::vector<std::pair<int, int>> whole_cell_edges(const std::vector<bool>& twice);
   void polygon_corners(int k, std::vector<ClothCorner>& out) const;
+  int seam_border(int k, const std::vector<std::int32_t>& node_at) const;
 
   // ---- Virtual corners (virtual_corners.cpp)
   std::vector<Nb> virtual_neighbours(const NodeId& id, bool solved_only) const;
