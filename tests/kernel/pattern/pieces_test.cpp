@@ -65,6 +65,21 @@ int outer_loops(const std::vector<OutlineLoop>& loops, double max_area = INFINIT
   return n;
 }
 
+// The largest distance on the ply from a vertex of `loops` to the nearest mapped node.
+double farthest_from_cloth(const std::vector<OutlineLoop>& loops, const DrapeResult& r) {
+  std::vector<Vec2> mapped;
+  for (const DrapeNode& n : r.nodes)
+    if (n.mapped()) mapped.push_back(n.ply);
+  double farthest = 0.0;
+  for (const auto& l : loops)
+    for (const Vec2& p : l.points) {
+      double near = INFINITY;
+      for (const Vec2& q : mapped) near = std::min(near, (p - q).norm());
+      farthest = std::max(farthest, near);
+    }
+  return farthest;
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -128,6 +143,7 @@ TEST_CASE("flat pattern: a tube of 8 skins wrapped whole is cut in one piece (no
   const auto defects = support::outline_defects(fp.cut, d);
   INFO(support::describe(defects));
   CHECK(defects.empty());
+  CHECK(farthest_from_cloth(fp.cut, *res) <= std::sqrt(2.0) * d);
   const double largest = fp.outline.front().area;
   CHECK(std::abs(fp.cut_area - (largest - fp.cut_removed_area + fp.cut_added_area)) <=
         1e-9 * largest);
@@ -162,15 +178,5 @@ TEST_CASE("flat pattern: a sphere of 8 faces wrapped whole: no piece beyond the 
   const auto defects = support::outline_defects(fp.cut, d);
   INFO(support::describe(defects));
   CHECK(defects.empty());
-  std::vector<Vec2> mapped;
-  for (const DrapeNode& n : res->nodes)
-    if (n.mapped()) mapped.push_back(n.ply);
-  double farthest = 0.0;
-  for (const auto& l : fp.cut)
-    for (const Vec2& p : l.points) {
-      double near = INFINITY;
-      for (const Vec2& q : mapped) near = std::min(near, (p - q).norm());
-      farthest = std::max(farthest, near);
-    }
-  CHECK(farthest <= std::sqrt(2.0) * d);
+  CHECK(farthest_from_cloth(fp.cut, *res) <= std::sqrt(2.0) * d);
 }
