@@ -8,6 +8,7 @@
 
 #include "support/problems.hpp"
 #include "support/shells.hpp"
+#include "support/surfaces.hpp"
 
 #include <cmath>
 
@@ -317,17 +318,13 @@ TEST_CASE("flat pattern: a strip whose surface folds back past its long edge is 
   // past the folded edge are carried into the ply through cells with a placed corner (first
   // order): each within kCornerRel of a cell's area and of a link's length.
   constexpr double W = 20, H = 60, d = 1.0, kCornerRel = 0.5;
+  // Bezier poles of the cubic (power basis 0, 1, 0.45, -0.6): 0, 1/3, 1/3 + (1 + 0.45) / 3, 0.85;
+  // y = H v (equally spaced poles).
   FaceData fd;
-  NurbsSurfaceData& s = fd.surface;
-  s.degree_u = 3;
-  s.degree_v = 1;
-  s.count_u = 4;
-  s.count_v = 2;
-  s.knots_u = {0, 0, 0, 0, 1, 1, 1, 1};
-  s.knots_v = {0, 0, 1, 1};
-  // Bezier poles of the cubic (power basis 0, 1, 0.45, -0.6): 0, 1/3, 1/3 + (1 + 0.45) / 3, 0.85.
-  for (const double x : {0.0, 1.0 / 3, (1.0 + 1.45) / 3, 0.85})
-    for (const double y : {0.0, H}) s.poles.emplace_back(W * x / 0.85, y, 0.0);
+  fd.surface = support::bezier_patch(3);
+  const double x[4] = {0.0, 1.0 / 3, (1.0 + 1.45) / 3, 0.85};
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) fd.surface.pole(i, j) = Vec3(W * x[i] / 0.85, H * j / 3, 0.0);
   auto f = Face::create(std::move(fd));
   REQUIRE(f.ok());
   for (const double deg : {10.0, 20.0, 30.0}) {
