@@ -270,6 +270,7 @@ void add_flat_outline(nlohmann::json& j, const FlatPattern& fp) {
                        {"removed_area", fp.cut_removed_area},
                        {"added_area", fp.cut_added_area},
                        {"slivers", fp.slivers},
+                       {"laid_twice_area", fp.laid_twice_area},
                        {"loops", loops_json(fp.cut)}};
   j["flat_outline_exact"] = {
       {"area", fp.area}, {"perimeter", fp.perimeter}, {"loops", loops_json(fp.outline)}};

@@ -16,6 +16,9 @@ constexpr double kBentEdge = 1e-3;
 // A crossing taken from the piece nearest an edge (the chords missed it) is kept this far
 // (of the edge) from the edge's ends.
 constexpr double kNearestEndMargin = 1e-9;
+// Bisection steps for where a thread followed from a node on the face leaves it (2^-30 of
+// the link: far below the outline's other errors).
+constexpr int kSectionBisections = 30;
 
 }  // namespace
 
@@ -238,9 +241,11 @@ std::vector<int> OutlineBuilder::crossings(int a, int b) {
         ids.push_back(surface_vertex(segment_point(c.loop, c.seg, c.s), P.p2 + c.t * (Q.p2 - P.p2),
                                      c.loop, c.seg, c.s));
     } else {
-      for (const Crossing& c : chart_crossings(P, Q, pu, qu)) {
-        const int v = surface_vertex(s_.locate(P.at, pu + c.t * (qu - pu)),
-                                     P.p2 + c.t * (Q.p2 - P.p2), c.loop, c.seg, c.s);
+      const std::vector<Crossing> cs = chart_crossings(P, Q, pu, qu);
+      for (const Crossing& c : cs) {
+        const SurfaceLocation at = s_.locate(P.at, pu + c.t * (qu - pu));
+        const Vec2 p2 = cs.size() == 1 ? crossing_p2(P, Q, c.t, at) : P.p2 + c.t * (Q.p2 - P.p2);
+        const int v = surface_vertex(at, p2, c.loop, c.seg, c.s);
         if (c.loop < 0) locate_on_boundary(verts_[static_cast<std::size_t>(v)]);
         ids.push_back(v);
       }
@@ -251,6 +256,39 @@ std::vector<int> OutlineBuilder::crossings(int a, int b) {
   std::vector<int> out = it->second;
   if (flip) std::reverse(out.begin(), out.end());
   return out;
+}
+
+// The ply point of the one crossing of edge P -> Q, at t along it and `at` on the surface:
+// where the edge's corners are the drape's or solved, t along the edge (their map). Where
+// one was placed (virtual_by_extrapolation: no point of the surface, its (u, v) only first
+// order), the link from the other corner, on the face, is followed as the drape follows a
+// thread (solver 3: the surface's section by the plane of the link and the normal there):
+// the crossing lies at the distance where that section leaves the face, bisected; at the
+// chord's length to `at` where the section does not leave within the link.
+Vec2 OutlineBuilder::crossing_p2(const Vertex& P, const Vertex& Q, double t,
+                                 const SurfaceLocation& at) const {
+  const Vec2 lin = P.p2 + t * (Q.p2 - P.p2);
+  if (P.placed == Q.placed || !(P.in || Q.in)) return lin;
+  const Vertex& on = P.in ? P : Q;
+  const Vertex& off = P.in ? Q : P;
+  const double link = (off.p2 - on.p2).norm();
+  if (!(link > 0.0)) return lin;
+  auto on_face = [&](double r) {
+    const SolveResult res = solve_plane_sphere(s_, {on.p3, on.at, r, off.p3 - on.p3}, st_);
+    return res.status == SolveStatus::kConverged;
+  };
+  double f = 1.0;
+  if (!on_face(link)) {
+    double lo = 0.0, hi = 1.0;
+    for (int k = 0; k < kSectionBisections; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (on_face(mid * link) ? lo : hi) = mid;
+    }
+    f = 0.5 * (lo + hi);
+  } else if (const SurfaceEval1 e = s_.eval1(at); e.ok) {
+    f = std::min((e.p - on.p3).norm() / link, 1.0);
+  }
+  return on.p2 + f * (off.p2 - on.p2);
 }
 
 // True when the (u, v) segment pu -> qu of edge P -> Q, near a pole, is no straight edge

@@ -69,6 +69,7 @@ int OutlineBuilder::node_vertex(const NodeId& id) {
     v.at = p->at;
     v.p3 = p->point;
     v.in = p->in;
+    v.placed = p->placed > 0;
     // A pole is a collapsed edge of the boundary (find_poles): nodes away from those are
     // none (no evaluation).
     SurfaceEval1 e;

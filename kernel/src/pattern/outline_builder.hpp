@@ -70,11 +70,12 @@ class OutlineBuilder {
     SurfaceLocation at;      // where it lies on the surface (if has_uv)
     Vec3 p3 = Vec3::Zero();  // its 3D point (if has_uv)
     bool has_uv = false;
-    bool in = false;    // on the surface
-    bool node = false;  // a node of the ply (not a crossing or boundary vertex)
-    bool pole = false;  // at a degenerate point (a collapsed edge): its free parameter means
-                        // nothing and is taken from its neighbours when interpolating
-    int free = 1;       // at a pole: 0 if u is the free parameter, 1 if v
+    bool in = false;      // on the surface
+    bool node = false;    // a node of the ply (not a crossing or boundary vertex)
+    bool placed = false;  // a virtual corner placed, not solved: no point of the surface
+    bool pole = false;    // at a degenerate point (a collapsed edge): its free parameter means
+                          // nothing and is taken from its neighbours when interpolating
+    int free = 1;         // at a pole: 0 if u is the free parameter, 1 if v
     int bloop = -1, bseg = -1;  // for a boundary crossing: the boundary segment it lies on
     double bs = 0.0;            // and the parameter along it (0 at its start, 1 at its end)
   };
@@ -83,6 +84,9 @@ class OutlineBuilder {
     SurfaceLocation at;
     Vec3 point;
     bool in;
+    // A virtual corner placed, not solved (no point of the surface): how many placed
+    // corners it was placed from, plus one; 0 for one solved or mapped.
+    int placed = 0;
   };
   // A known neighbour of a node to be solved.
   struct Nb {
@@ -161,13 +165,16 @@ class OutlineBuilder {
   std::vector<std::vector<int>> pieces_by_area() const;
   std::vector<std::pair<int, int>> whole_cell_edges(const std::vector<bool>& twice);
   void polygon_corners(int k, std::vector<ClothCorner>& out) const;
+  int seam_border(int k, const std::vector<std::int32_t>& node_at) const;
 
   // ---- Virtual corners (virtual_corners.cpp)
-  std::vector<Nb> virtual_neighbours(const NodeId& id) const;
+  std::vector<Nb> virtual_neighbours(const NodeId& id, bool solved_only) const;
   bool accept_virtual(const NodeId& id, const SolveResult& res);
   bool on_side(const Vec3& a, const Vec3& b, const Vec3& p, double side) const;
   bool virtual_by_spheres(const NodeId& id);
+  std::optional<PlyNeighbour> thread_before(const Nb& a) const;
   bool virtual_by_continuation(const NodeId& id, bool drape_only);
+  bool virtual_by_extrapolation(const NodeId& id);
 
   // ---- Poles and the boundary as 3D pieces (poles.cpp)
   void find_poles();
@@ -195,6 +202,7 @@ class OutlineBuilder {
   std::optional<Crossing> chord_crossing(const EdgePlane& E, const Piece& pc, const Vec2& a,
                                          const Vec2& e) const;
   std::vector<int> crossings(int a, int b);
+  Vec2 crossing_p2(const Vertex& P, const Vertex& Q, double t, const SurfaceLocation& at) const;
   std::vector<Crossing> chart_crossings(const Vertex& P, const Vertex& Q, const Vec2& pu,
                                         const Vec2& qu) const;
   bool bent(const Vertex& P, const Vertex& Q, const Vec2& pu, const Vec2& qu) const;

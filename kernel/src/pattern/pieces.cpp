@@ -143,15 +143,24 @@ double net_area(const std::vector<OutlineLoop>& loops) {
 
 std::vector<bool> polygons_laid_twice(const std::vector<std::vector<int>>& pieces,
                                       std::size_t polygons, const ClothCorners& corners,
-                                      double radius, double separation) {
+                                      double radius, double separation, const SeamBorder& border) {
   std::vector<bool> twice(polygons, false);
   if (pieces.size() < 2) return twice;
   ClothIndex cloth(pieces, corners, radius, separation);
   for (int p : pieces[0]) cloth.add(p);
   for (std::size_t k = 1; k < pieces.size(); ++k) {
-    for (int p : pieces[k]) twice[static_cast<std::size_t>(p)] = cloth.covers(p);
-    for (int p : pieces[k])
+    bool enclosed = static_cast<bool>(border), seam = false;
+    for (int p : pieces[k]) {
+      twice[static_cast<std::size_t>(p)] = cloth.covers(p);
+      if (!enclosed || twice[static_cast<std::size_t>(p)]) continue;
+      const int b = border(p);
+      enclosed = b >= 0;
+      seam = seam || b > 0;
+    }
+    for (int p : pieces[k]) {
+      if (enclosed && seam) twice[static_cast<std::size_t>(p)] = true;
       if (!twice[static_cast<std::size_t>(p)]) cloth.add(p);
+    }
   }
   return twice;
 }
@@ -279,16 +288,47 @@ std::vector<std::pair<int, int>> OutlineBuilder::whole_cell_edges(const std::vec
   return out;
 }
 
+// What stops the cloth round cloth polygon k (piece_of_polygon's numbering), seen from the
+// cells at its node corners (SeamBorder): the drape nodes there that are not mapped. `node_at`
+// gives the drape node of each vertex (-1 for none).
+int OutlineBuilder::seam_border(int k, const std::vector<std::int32_t>& node_at) const {
+  int out = 0;
+  auto look = [&](std::int32_t node) {
+    const NodeId& id = r_.nodes[static_cast<std::size_t>(node)].id;
+    if (id.is_path_only()) return;
+    for (std::int32_t di = -1; di <= 1; ++di)
+      for (std::int32_t dj = -1; dj <= 1; ++dj) {
+        const DrapeNode* n = r_.find(NodeId::regular(id.i + di, id.j + dj));
+        if (!n || n->mapped() || n->status == NodeStatus::kOutside ||
+            n->status == NodeStatus::kOffPly)
+          continue;
+        out = n->status == NodeStatus::kOverlap && out >= 0 ? 1 : -1;
+      }
+  };
+  const std::size_t ne = exact_.size();
+  if (static_cast<std::size_t>(k) >= ne) {
+    for (std::int32_t node : whole_.cells[static_cast<std::size_t>(k) - ne].node) look(node);
+  } else {
+    for (int v : exact_[static_cast<std::size_t>(k)])
+      if (node_at[static_cast<std::size_t>(v)] >= 0) look(node_at[static_cast<std::size_t>(v)]);
+  }
+  return out;
+}
+
 OutlineBuilder::LaidOnce OutlineBuilder::laid_once(const std::vector<OutlineLoop>& outline) {
   LaidOnce out;
   out.loops = outline;
   if (std::count_if(outline.begin(), outline.end(), [](const auto& l) { return !l.hole; }) < 2)
     return out;
   const std::size_t ne = exact_.size();
+  std::vector<std::int32_t> node_at(verts_.size(), -1);
+  for (std::size_t n = 0; n < drape_vertices_.size(); ++n)
+    if (drape_vertices_[n] >= 0 && r_.nodes[n].mapped())
+      node_at[static_cast<std::size_t>(drape_vertices_[n])] = static_cast<std::int32_t>(n);
   const std::vector<bool> twice = polygons_laid_twice(
       pieces_by_area(), ne + whole_.cells.size(),
       [this](int k, std::vector<ClothCorner>& c) { polygon_corners(k, c); }, kOverlapRel * ply_.d(),
-      kOverlapSeparation * ply_.d());
+      kOverlapSeparation * ply_.d(), [&](int k) { return seam_border(k, node_at); });
   out.polygons = static_cast<int>(std::count(twice.begin(), twice.end(), true));
   if (out.polygons == 0) return out;
   std::vector<Polygon> kept;

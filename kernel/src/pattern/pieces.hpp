@@ -29,14 +29,25 @@ struct ClothCorner {
 /// surface).
 using ClothCorners = std::function<void(int p, std::vector<ClothCorner>& out)>;
 
+/// What stops the cloth round cloth polygon p: -1 a stop of another kind than the seam (a
+/// shear limit, a failure, a conflict) at one of its node corners' cells, else 1 where the
+/// drape stopped a node there as overlap (cloth there would lie on cloth already laid: the
+/// seam where the cloth meets itself), else 0 (mapped nodes, or the face's edge).
+using SeamBorder = std::function<int(int p)>;
+
 /// The cloth polygons laid twice. `pieces[k]` lists the polygons (0 .. polygons - 1) of
 /// piece k, larger pieces first. A polygon of piece k is laid twice when one of its node
 /// corners lies within `radius` (3D) of a polygon of a piece before it that is not laid
 /// twice, that polygon at least `separation` away from the node on the ply (a polygon
-/// nearer on the ply is the same cloth, as at a vertex two pieces share). No polygon of the
-/// first piece is.
+/// nearer on the ply is the same cloth, as at a vertex two pieces share). The whole of a
+/// later piece is when the cloth round its other polygons stops at the seam, and only there
+/// or at the face's edge (`border`, if given: every polygon 0 or 1, one of them 1): the
+/// piece lies beyond the seam, which the cloth cannot cross, cut off from the cloth by the
+/// nodes the drape stopped on cloth round it (nodes that escaped the drape's overlap test
+/// between those that did not). No polygon of the first piece is.
 std::vector<bool> polygons_laid_twice(const std::vector<std::vector<int>>& pieces,
                                       std::size_t polygons, const ClothCorners& corners,
-                                      double radius, double separation);
+                                      double radius, double separation,
+                                      const SeamBorder& border = {});
 
 }  // namespace plyfit::detail

@@ -3,9 +3,23 @@
 #include "pattern/cells.hpp"
 #include "pattern/outline_builder.hpp"
 
+#include <algorithm>
 #include <set>
 
 namespace plyfit::detail {
+
+namespace {
+
+// A placed corner continues a segment whose ends were placed at most this many times over
+// (a cell's corners past the face from its corner on it, across a diagonal, and round the
+// narrow tip of a face): farther from the cloth a repeated segment drifts off the surface,
+// and the cells there have no corner on the face.
+constexpr int kMaxPlacedDepth = 4;
+// A placed corner's step in (u, v) is lengthened to at most this many of its thread's last
+// steps to leave the face.
+constexpr int kMaxPlacedSteps = 4;
+
+}  // namespace
 
 // They are solved the way the drape would have: from a weft and a warp neighbour (two
 // spheres) wherever two are known, which propagates no error; a thread is continued through
@@ -22,21 +36,28 @@ void OutlineBuilder::solve_virtual_corners() {
       if (!position(c) && slot.emplace(c.key(), todo.size()).second) todo.push_back(c);
   // Work lists, so that every node is tried again only when a neighbour gains a position:
   // `queue` for two spheres; `retry` (ordered: deterministic) for a continuation along any
-  // segment. Whether a node continues along the drape's own segments depends on the drape
-  // alone, so one pass in order (`next`) tries each node once.
+  // segment, `extrapolate` for the last resort where no solve lands. Whether a node continues along
+  // the drape's own segments depends on the drape alone, so one pass in order (`next`) tries each
+  // node once.
   std::vector<std::size_t> queue;
-  std::set<std::size_t> retry;
+  std::set<std::size_t> retry, extrapolate;
   for (std::size_t k = todo.size(); k-- > 0;) {
     queue.push_back(k);
     retry.insert(k);
+    extrapolate.insert(k);
   }
-  auto solved = [&](const NodeId& id) {
+  // A corner solved makes its neighbours worth trying again by every means; one placed by
+  // extrapolation (no point of the surface, so no solve starts from it) only by that.
+  auto solved = [&](const NodeId& id, bool extrapolated) {
     for (int d = 0; d < 4; ++d)
       if (const auto n = ply_.neighbour(id.i, id.j, static_cast<ThreadDir>(d)))
         if (const auto it = slot.find(n->id.key());
             it != slot.end() && !virtual_.count(n->id.key())) {
-          queue.push_back(it->second);
-          retry.insert(it->second);
+          if (!extrapolated) {
+            queue.push_back(it->second);
+            retry.insert(it->second);
+          }
+          extrapolate.insert(it->second);
         }
   };
   auto known = [&](std::size_t k) { return virtual_.count(todo[k].key()) > 0; };
@@ -45,19 +66,27 @@ void OutlineBuilder::solve_virtual_corners() {
     while (!queue.empty()) {
       const std::size_t k = queue.back();
       queue.pop_back();
-      if (!known(k) && virtual_by_spheres(todo[k])) solved(todo[k]);
+      if (!known(k) && virtual_by_spheres(todo[k])) solved(todo[k], false);
     }
     bool progress = false;
     for (; next < todo.size() && !progress; ++next)
       if (!known(next) && virtual_by_continuation(todo[next], true)) {
-        solved(todo[next]);
+        solved(todo[next], false);
         progress = true;
       }
     while (!progress && !retry.empty()) {
       const std::size_t k = *retry.begin();
       retry.erase(retry.begin());
       if (!known(k) && virtual_by_continuation(todo[k], false)) {
-        solved(todo[k]);
+        solved(todo[k], false);
+        progress = true;
+      }
+    }
+    while (!progress && !extrapolate.empty()) {
+      const std::size_t k = *extrapolate.begin();
+      extrapolate.erase(extrapolate.begin());
+      if (!known(k) && virtual_by_extrapolation(todo[k])) {
+        solved(todo[k], true);
         progress = true;
       }
     }
@@ -70,7 +99,8 @@ void OutlineBuilder::solve_virtual_corners() {
 // the mapped side there), or one the drape reached and stopped for another reason than
 // leaving the face (a shear limit, an overlap, a failure, a conflict: the cloth goes no
 // further there, and a corner solved past such a node can fold its cell).
-std::vector<OutlineBuilder::Nb> OutlineBuilder::virtual_neighbours(const NodeId& id) const {
+std::vector<OutlineBuilder::Nb> OutlineBuilder::virtual_neighbours(const NodeId& id,
+                                                                   bool solved_only) const {
   std::vector<Nb> nbs;
   if (id.is_path_only() || virtual_.count(id.key())) return nbs;
   if (const DrapeNode* n = r_.find(id);
@@ -83,7 +113,8 @@ std::vector<OutlineBuilder::Nb> OutlineBuilder::virtual_neighbours(const NodeId&
     const auto dir = static_cast<ThreadDir>(d);
     const auto n = ply_.neighbour(id.i, id.j, dir);
     if (!n) continue;
-    if (auto p = position(n->id)) nbs.push_back({n->id, n->rest, *p, dir});
+    if (auto p = position(n->id); p && !(solved_only && p->placed > 0))
+      nbs.push_back({n->id, n->rest, *p, dir});
   }
   return nbs;
 }
@@ -107,7 +138,7 @@ bool OutlineBuilder::on_side(const Vec3& a, const Vec3& b, const Vec3& p, double
 
 // A virtual corner from a weft and a warp neighbour with positions.
 bool OutlineBuilder::virtual_by_spheres(const NodeId& id) {
-  const std::vector<Nb> nbs = virtual_neighbours(id);
+  const std::vector<Nb> nbs = virtual_neighbours(id, true);
   const Vec2 q2 = ply_.pos(id);
   for (const Nb& a : nbs)
     for (const Nb& b : nbs) {
@@ -133,25 +164,56 @@ bool OutlineBuilder::virtual_by_spheres(const NodeId& id) {
   return false;
 }
 
+// The node before neighbour `a` on the thread through the node and `a`, beyond `a`.
+std::optional<PlyNeighbour> OutlineBuilder::thread_before(const Nb& a) const {
+  if (!a.id.is_path_only()) return ply_.neighbour(a.id.i, a.id.j, a.dir);
+  for (const auto& tn : ply_.thread_neighbours(a.id))
+    if (tn.dir == a.dir) return tn.n;
+  return std::nullopt;
+}
+
 // A virtual corner continuing a thread through a neighbour: the neighbour's predecessor
 // beyond it, away from the node, gives the thread's last segment. With `drape_only`, both
 // ends of that segment must be the drape's own nodes.
 bool OutlineBuilder::virtual_by_continuation(const NodeId& id, bool drape_only) {
-  for (const Nb& a : virtual_neighbours(id)) {
-    std::optional<PlyNeighbour> before;
-    if (!a.id.is_path_only()) {
-      before = ply_.neighbour(a.id.i, a.id.j, a.dir);
-    } else {
-      for (const auto& tn : ply_.thread_neighbours(a.id))
-        if (tn.dir == a.dir) before = tn.n;
-    }
+  for (const Nb& a : virtual_neighbours(id, true)) {
+    const std::optional<PlyNeighbour> before = thread_before(a);
     if (!before) continue;
     if (drape_only && (virtual_.count(a.id.key()) || virtual_.count(before->id.key()))) continue;
     const auto pb = position(before->id);
-    if (!pb) continue;
+    if (!pb || pb->placed > 0) continue;
     if (accept_virtual(
             id, solve_plane_sphere(s_, {a.p.point, a.p.at, a.rest, a.p.point - pb->point}, st_)))
       return true;
+  }
+  return false;
+}
+
+// A virtual corner where no solve lands on the surface extended past the face (past a
+// strongly curved edge the extension folds back and the cloth's next node has no place on
+// it; near a tapering tip it runs away): the thread's last segment repeated, in (u, v) as
+// the drape's own first guess (eq. 10) and in 3D. Such a corner is no point of the surface:
+// it only tells where the cell's edges leave the face (in (u, v)), and each crossing is then
+// placed along its edge at its chord's length from the end on the face (crossings()).
+bool OutlineBuilder::virtual_by_extrapolation(const NodeId& id) {
+  for (const Nb& a : virtual_neighbours(id, false)) {
+    const std::optional<PlyNeighbour> before = thread_before(a);
+    if (!before) continue;
+    const auto pb = position(before->id);
+    const int placed = pb ? std::max(pb->placed, a.p.placed) + 1 : 0;
+    if (!pb || placed > kMaxPlacedDepth) continue;
+    const double len = (a.p.point - pb->point).norm();
+    if (!(len > 0.0)) continue;
+    // Where the face's parametrisation slows towards its edge, the repeated step stops short
+    // of the edge that the drape's node passed: it is lengthened until it leaves the face.
+    const Vec2 step = s_.delta(pb->at, a.p.at) * (a.rest / len);
+    for (int m = 1; m <= kMaxPlacedSteps; ++m) {
+      const SurfaceLocation at = s_.locate(a.p.at, a.p.at.uv + m * step);
+      if (s_.contains(at)) continue;
+      virtual_[id.key()] = Position{
+          s_.wrap(at), a.p.point + (a.p.point - pb->point) * (a.rest / len), false, placed};
+      return true;
+    }
   }
   return false;
 }

@@ -8,6 +8,7 @@
 
 #include "support/problems.hpp"
 #include "support/shells.hpp"
+#include "support/surfaces.hpp"
 
 #include <cmath>
 
@@ -304,5 +305,37 @@ TEST_CASE(
     CHECK(gap > 0.0);
     if (previous_gap > 0.0) CHECK(std::abs(previous_gap / gap - 4.0) < 0.2);
     previous_gap = gap;
+  }
+}
+
+TEST_CASE("flat pattern: a strip whose surface folds back past its long edge is cut to it") {
+  // A plane strip W x H at z = 0, x(u) cubic: x = W (u + 0.45 u^2 - 0.6 u^3) / 0.85, so x(1) =
+  // W with dx/du > 0 on [0, 1], but past u = 1 the extension turns back at u = 1.036, x =
+  // 1.0024 W: no point lies a link past the edge x = W, and no corner of the cells that edge
+  // cuts can be solved there. The threads run at an angle to the strip, so the edges cut the
+  // cells anywhere. The surface is a plane: the outline is the W x H rectangle, along the
+  // edges to the bisection of where each link leaves the face. Only the face's two corners
+  // past the folded edge are carried into the ply through cells with a placed corner (first
+  // order): each within kCornerRel of a cell's area and of a link's length.
+  constexpr double W = 20, H = 60, d = 1.0, kCornerRel = 0.5;
+  // Bezier poles of the cubic (power basis 0, 1, 0.45, -0.6): 0, 1/3, 1/3 + (1 + 0.45) / 3, 0.85;
+  // y = H v (equally spaced poles).
+  FaceData fd;
+  fd.surface = support::bezier_patch(3);
+  const double x[4] = {0.0, 1.0 / 3, (1.0 + 1.45) / 3, 0.85};
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) fd.surface.pole(i, j) = Vec3(W * x[i] / 0.85, H * j / 3, 0.0);
+  auto f = Face::create(std::move(fd));
+  REQUIRE(f.ok());
+  for (const double deg : {10.0, 20.0, 30.0}) {
+    const double th = deg * kPi / 180;
+    const Vec3 w(-std::sin(th), std::cos(th), 0);
+    const FlatPattern fp =
+        drape_flat(*f, d, Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)}, Vec3(W / 2, H / 2, 0), w, {w, -w});
+    INFO("threads at " << deg << " degrees: area " << fp.area << ", perimeter " << fp.perimeter);
+    REQUIRE(fp.outline.size() == 1);
+    check_loops(fp, d);
+    CHECK(std::abs(fp.area - W * H) <= 2 * kCornerRel * d * d);
+    CHECK(std::abs(fp.perimeter - 2 * (W + H)) <= 2 * kCornerRel * d);
   }
 }

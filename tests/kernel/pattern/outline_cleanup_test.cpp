@@ -15,6 +15,7 @@
 #include "support/problems.hpp"
 #include "support/shells.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <sstream>
@@ -258,13 +259,16 @@ TEST_CASE("outline cleanup: a drape's strip narrower than w is cut off (hemisphe
   CHECK(fp.cut_removed_area > 0.0);
   // What goes is narrow: less than w times the exact outline's perimeter.
   CHECK(fp.cut_removed_area + fp.cut_added_area < 0.5 * d * fp.perimeter);
-  // Off, the cut outline is the exact one.
+  // Off, the cut outline is the exact one, less its pieces beyond the seam (the two cut off
+  // between the face's edge and the nodes stopped by overlap: pieces.hpp), loop for loop.
   FlatPatternOptions off;
   off.min_width = 0.0;
   const FlatPattern fo = flat_pattern(f, *r, off);
-  REQUIRE(fo.cut.size() == fo.outline.size());
-  for (std::size_t k = 0; k < fo.cut.size(); ++k) CHECK(fo.cut[k].points == fo.outline[k].points);
-  CHECK(fo.cut_area == fo.area);
+  for (const auto& c : fo.cut)
+    CHECK(std::any_of(fo.outline.begin(), fo.outline.end(),
+                      [&](const OutlineLoop& l) { return l.points == c.points; }));
+  CHECK(fo.cut.size() < fo.outline.size());
+  CHECK(fo.cut_area == Approx(fo.area - fo.laid_twice_area).epsilon(1e-12));
   CHECK(fo.slivers == 0);
 }
 
