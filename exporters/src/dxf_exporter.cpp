@@ -81,29 +81,6 @@ Extents drawing_extents(const DrapeResult& r, const PlySpec& spec,
   return e;
 }
 
-// Segments of the line {p : p[axis] = c} inside the outline (even-odd over all loops, each
-// edge half-open so that a vertex on the line counts once).
-std::vector<std::pair<double, double>> clip_line(const std::vector<OutlineLoop>& loops, int axis,
-                                                 double c) {
-  const int other = 1 - axis;
-  std::vector<double> xs;
-  for (const auto& l : loops) {
-    const auto n = l.points.size();
-    for (std::size_t k = 0; k < n; ++k) {
-      const Vec2& a = l.points[k];
-      const Vec2& b = l.points[(k + 1) % n];
-      if ((a[axis] <= c) == (b[axis] <= c)) continue;
-      const double t = (c - a[axis]) / (b[axis] - a[axis]);
-      xs.push_back(a[other] + t * (b[other] - a[other]));
-    }
-  }
-  std::sort(xs.begin(), xs.end());
-  std::vector<std::pair<double, double>> segs;
-  for (std::size_t k = 0; k + 1 < xs.size(); k += 2)
-    if (xs[k + 1] > xs[k]) segs.emplace_back(xs[k], xs[k + 1]);
-  return segs;
-}
-
 // OUTLINE and HOLES: the cut outline's loops.
 void add_outline(dxf::Writer& e, const std::vector<OutlineLoop>& loops) {
   for (const auto& l : loops) e.polyline(l.hole ? "HOLES" : "OUTLINE", l.points, true);
@@ -118,7 +95,7 @@ void add_thread_grid(dxf::Writer& e, const std::vector<OutlineLoop>& loops, cons
     for (auto i = static_cast<long long>(std::ceil(box.lo[axis] / pitch));
          static_cast<double>(i) * pitch <= box.hi[axis]; ++i) {
       const double c = static_cast<double>(i) * pitch;
-      for (const auto& [a, b] : clip_line(loops, axis, c)) {
+      for (const auto& [a, b] : detail::clip_line(loops, axis, c)) {
         const Vec2 from = axis == 0 ? Vec2(c, a) : Vec2(a, c);
         const Vec2 to = axis == 0 ? Vec2(c, b) : Vec2(b, c);
         e.line(dxf::kThreadsLayer, from, to);
@@ -205,7 +182,7 @@ void add_pieces(dxf::Writer& e, const SplicePlan& plan, const std::vector<Outlin
     dxf::add_labels(e, lines, shape, place, layer.c_str(), layer.c_str());
   }
   for (const Seam& s : plan.seams)
-    for (const auto& [a, b] : clip_line(loops, 0, s.x))
+    for (const auto& [a, b] : detail::clip_line(loops, 0, s.x))
       e.line(kSeamsLayer, Vec2(s.x, a), Vec2(s.x, b));
 }
 

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <limits>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 namespace plyfit::exporters::detail {
@@ -57,5 +58,10 @@ std::vector<NetCell> mapped_cells(const DrapeResult& r);
 
 /// The ply positions of a cell's corners, in order.
 std::vector<Vec2> cell_ply_points(const DrapeResult& r, const NetCell& c);
+
+/// Segments (from, to along the other axis) of the line {p : p[axis] = c} inside the loops
+/// (even-odd over all loops, each edge half-open so that a vertex on the line counts once).
+std::vector<std::pair<double, double>> clip_line(const std::vector<OutlineLoop>& loops, int axis,
+                                                 double c);
 
 }  // namespace plyfit::exporters::detail

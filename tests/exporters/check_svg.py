@@ -14,6 +14,10 @@ them against DIR/report.json:
   picture's width (at 0.62 em a character, wider than DejaVu Sans's average; in px of the
   title block's own scale), and the
   subtitle lines put together hold the whole subtitle (the mold's file name, never its folder, and the shear summary);
+- flat.svg of a ply split for the roll (report.json `pieces`): one outline of class "piece"
+  per piece, named, in order, each drawn as wide and high as its loops and placed beside the
+  first as report.json places it; the seams (id "seams") dashed, each a vertical line at its
+  seam's x; of a ply with darts: two cut lines per dart of as many segments as its points;
 - shear.svg has one unit, degrees: no pi in any text, the gamma axis labelled in degrees;
 - view.svg is small: well-formed and self-contained, at most VIEW_PX wide and high, no text,
   between 1 and VIEW_MAX_CELLS cells (polygons of class "cell"), the base path drawn.
@@ -114,6 +118,63 @@ def title_scale(root):
     return walk(root, 1.0) or 1.0
 
 
+def extent(pts):
+    return (min(p[0] for p in pts), max(p[0] for p in pts), min(p[1] for p in pts), max(p[1] for p in pts))
+
+
+def segments(d):
+    """The segments of a path of "M a L b" pairs."""
+    pts = path_points(d)
+    return [(pts[k], pts[k + 1]) for k in range(0, len(pts) - 1, 2)]
+
+
+def check_pieces_and_darts(root, report, path):
+    """flat.svg's pieces and seams against report.json's pieces and splices, and its dart cut
+    lines against report.json's darts (relative to the first piece: the drawing's origin is
+    its own)."""
+    out = []
+    tol = 2 * WRITTEN_MM
+    pieces = report.get("pieces", [])
+    drawn = [el for el in root.iter(SVG + "path") if "piece" in el.get("class", "").split()]
+    if len(drawn) != len(pieces):
+        out.append("%s: %d piece outlines, report.json has %d pieces" % (path, len(drawn), len(pieces)))
+    elif pieces:
+        ref = None
+        for el, piece in zip(drawn, pieces):
+            if el.get("data-name") != piece["name"]:
+                out.append("%s: piece %r drawn as %r" % (path, piece["name"], el.get("data-name")))
+            x0, x1, y0, y1 = extent(path_points(el.get("d")))
+            pts = [p for l in piece["loops"] for p in l["points"]]
+            px0, px1, py0, py1 = extent(pts)
+            if ref is None:
+                ref = (x0, px0)
+            if abs((x1 - x0) - (px1 - px0)) > tol or abs((y1 - y0) - (py1 - py0)) > tol:
+                out.append("%s: piece %s drawn %.3f x %.3f, its loops are %.3f x %.3f"
+                           % (path, piece["name"], x1 - x0, y1 - y0, px1 - px0, py1 - py0))
+            if abs((x0 - ref[0]) - (px0 - ref[1])) > tol:
+                out.append("%s: piece %s drawn at %.3f from the first, report.json %.3f"
+                           % (path, piece["name"], x0 - ref[0], px0 - ref[1]))
+        seams = [el for el in root.iter(SVG + "path") if el.get("id") == "seams"]
+        want = report["splices"]["seams"]
+        if len(seams) != 1 or not seams[0].get("stroke-dasharray"):
+            out.append("%s: %d seam paths, dashed: %s" % (path, len(seams), seams and seams[0].get("stroke-dasharray")))
+        else:
+            segs = segments(seams[0].get("d"))
+            xs = sorted({round(a[0], 2) for a, b in segs})
+            if any(abs(a[0] - b[0]) > WRITTEN_MM for a, b in segs):
+                out.append("%s: a seam is not along the warp" % path)
+            if len(xs) != len(want) or any(abs((x - ref[0]) - (s["x"] - ref[1])) > tol for x, s in zip(xs, want)):
+                out.append("%s: seams drawn at %s from the first piece, report.json %s"
+                           % (path, [round(x - ref[0], 2) for x in xs], [round(s["x"] - ref[1], 2) for s in want]))
+    darts = report.get("darts", {}).get("darts", [])
+    want = sum(2 * (d["cut_line_points"] - 1) for d in darts if d["cut_line_points"] >= 2)
+    lines = [el for el in root.iter(SVG + "path") if el.get("id") == "darts"]
+    got = len(segments(lines[0].get("d"))) if lines else 0
+    if got != want:
+        out.append("%s: %d dart cut line segments, report.json's darts make %d" % (path, got, want))
+    return out
+
+
 def main():
     d = sys.argv[1]
     with open(os.path.join(d, "report.json"), encoding="utf-8") as f:
@@ -181,6 +242,7 @@ def main():
                 if abs(dw - (max(xs) - min(xs))) > 2 * WRITTEN_MM or abs(dh - (max(ys) - min(ys))) > 2 * WRITTEN_MM:
                     failures.append("%s: the outline is drawn %.3f x %.3f, report.json's is %.3f x %.3f mm"
                                     % (path, dw, dh, max(xs) - min(xs), max(ys) - min(ys)))
+            failures += check_pieces_and_darts(root, report, path)
             bars = [el for el in root.iter(SVG + "g") if el.get("id") == "scale-bar"]
             if len(bars) != 1:
                 failures.append("%s: %d scale bars" % (path, len(bars)))

@@ -3,7 +3,9 @@
 // in the pixel pictures relative to the drawing, never smaller than on paper, and the net's
 // strokes thinner than its cells.
 #include <plyfit/kernel/flat_pattern.hpp>
+#include <plyfit/kernel/splice.hpp>
 
+#include "net_util.hpp"
 #include "render/label_placement.hpp"
 #include "render/text.hpp"
 #include "svg/draw.hpp"
@@ -210,6 +212,37 @@ std::string dart_lines(const DrapeResult& r, const Layout& l) {
          px(l.scale.edge_stroke(1.8)) + "\" fill=\"none\" stroke-linejoin=\"round\"/>\n";
 }
 
+// The pieces' outline colours, in turn (pieces next to each other differ), and the seams'.
+const char* const kPieceColours[] = {"#1f5fd6", "#e07b00", "#008a5e", "#8a5a00"};
+const char* const kSeamColour = "#cc00cc";
+
+// A pattern split for the roll: each piece's loops as an outline of its own (class "piece",
+// data-name its name), and the seams where pieces meet, dashed (id "seams"): the warp lines
+// x = s clipped to the cut outline, as flat.dxf's SEAMS.
+std::string pieces_and_seams(const ExportContext& ctx, const Layout& l) {
+  if (!ctx.splices || !ctx.splices->split() || !ctx.flat) return "";
+  const Frame& f = l.frame;
+  const double w = l.scale.edge_stroke(1.4);
+  std::string o =
+      "<g id=\"pieces\" fill=\"none\" stroke-width=\"" + px(w) + "\" stroke-linejoin=\"round\">\n";
+  std::size_t k = 0;
+  for (const SplicePiece& p : ctx.splices->pieces) {
+    std::vector<std::vector<Vec2>> loops;
+    for (const auto& loop : p.loops) loops.push_back(mapped(f, loop.points));
+    const char* colour = kPieceColours[k++ % std::size(kPieceColours)];
+    o += "<path class=\"piece\" data-name=\"" + render::xml_escape(p.name) + "\" d=\"" +
+         loops_path(loops) + "\" stroke=\"" + colour + "\" fill-rule=\"evenodd\"/>\n";
+  }
+  o += "</g>\n";
+  std::string seams;
+  for (const Seam& s : ctx.splices->seams)
+    for (const auto& [a, b] : detail::clip_line(ctx.flat->cut, 0, s.x))
+      add_segment(seams, f.map({s.x, a}), f.map({s.x, b}));
+  return o + "<path id=\"seams\" d=\"" + seams + "\" stroke=\"" + kSeamColour +
+         "\" stroke-width=\"" + px(w) + "\" stroke-dasharray=\"" + px(6 * w) + " " + px(4 * w) +
+         "\" fill=\"none\"/>\n";
+}
+
 // The cells whose shear exceeds the warning angle.
 std::string shear_warnings(const ExportContext& ctx, const std::vector<detail::NetCell>& cells,
                            const Layout& l) {
@@ -286,22 +319,30 @@ std::string scale_bar(const Frame& f) {
   return o + "</g>\n";
 }
 
-// The legend and the ply axes, in px beside the drawing.
-std::string flat_legend(const render::ShearScale& scale, double warn, const Frame& f) {
+// The legend and the ply axes, in px beside the drawing; the darts' cut lines and the pieces
+// and seams when there are some.
+std::string flat_legend(const ExportContext& ctx, const render::ShearScale& scale, double warn,
+                        const Frame& f) {
   double legend_end = 0.0;
-  std::string lg = legend(0, 10, scale, warn,
-                          {{"<rect x=\"{X}\" y=\"{Y}\" width=\"24\" height=\"12\" fill=\"none\" "
-                            "stroke=\"#ff00cc\" stroke-width=\"1.6\"/>",
-                            "shear > " + render::degrees_text(warn * kRadToDeg, 1)},
-                           {sym_line("#1a1a1a", 2.0), "mapped threads"},
-                           {sym_line("#000000", 2.6), "mapped cells' edge"},
-                           {sym_line("#e8112d", 1.8), "exact outline"},
-                           {"<circle cx=\"{XM}\" cy=\"{YM}\" r=\"3\" fill=\"#000\"/>", "base path"},
-                           {"<circle cx=\"{XM}\" cy=\"{YM}\" r=\"5\" fill=\"#fff\" "
-                            "stroke=\"#1f5fd6\" stroke-width=\"2\"/>",
-                            "start P\u209b, sweeps"},
-                           {sym_line("#dddddd", 1.0), "ply threads"}},
-                          &legend_end);
+  std::vector<LegendEntry> entries = {
+      {"<rect x=\"{X}\" y=\"{Y}\" width=\"24\" height=\"12\" fill=\"none\" "
+       "stroke=\"#ff00cc\" stroke-width=\"1.6\"/>",
+       "shear > " + render::degrees_text(warn * kRadToDeg, 1)},
+      {sym_line("#1a1a1a", 2.0), "mapped threads"},
+      {sym_line("#000000", 2.6), "mapped cells' edge"},
+      {sym_line("#e8112d", 1.8), "exact outline"}};
+  if (!ctx.result.darts.empty()) entries.push_back({sym_line("#8800aa", 1.8), "dart cut lines"});
+  if (ctx.splices && ctx.splices->split() && ctx.flat) {
+    entries.push_back({sym_line(kPieceColours[0], 1.4), "pieces (one colour each)"});
+    entries.push_back({sym_line(kSeamColour, 1.4, "6 4"), "seams"});
+  }
+  entries.push_back({"<circle cx=\"{XM}\" cy=\"{YM}\" r=\"3\" fill=\"#000\"/>", "base path"});
+  entries.push_back(
+      {"<circle cx=\"{XM}\" cy=\"{YM}\" r=\"5\" fill=\"#fff\" "
+       "stroke=\"#1f5fd6\" stroke-width=\"2\"/>",
+       "start P\u209b, sweeps"});
+  entries.push_back({sym_line("#dddddd", 1.0), "ply threads"});
+  std::string lg = legend(0, 10, scale, warn, entries, &legend_end);
   const double ax = 20, ay = legend_end + 70;
   lg += arrow({ax, ay}, {ax + 40, ay}, "#444", 1.4);
   lg += arrow({ax, ay}, {ax, ay - 40}, "#444", 1.4);
@@ -324,11 +365,12 @@ std::string flat_svg(const ExportContext& ctx) {
   o += cells_and_links(ctx, cells, scale, l);
   if (ctx.flat) o += outlines(*ctx.flat, l);
   o += shear_warnings(ctx, cells, l);
+  o += pieces_and_seams(ctx, l);
   o += dart_lines(ctx.result, l);
   o += nodes(ctx.result, l);
   o += start_and_sweeps(ctx.problem.ply, l);
   o += scale_bar(f);
-  o += flat_legend(scale, ctx.options.warn_shear, f);
+  o += flat_legend(ctx, scale, ctx.options.warn_shear, f);
   o += "</svg>\n";
   return o;
 }

@@ -3,6 +3,7 @@
 // max_drapes drapes in all (docs/decisions/darts.md).
 #include "drape/darts.hpp"
 #include "drape/drape.hpp"
+#include "drape/scan/solve_memo.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -77,52 +78,48 @@ Vec3 direction_at(const DrapeResult& r, const DrapeNode& n, const Vec2& u) {
   return e[0] * u.x() + e[1] * u.y();
 }
 
-// A dart's points must project back onto the surface (DartSet::create checks them as the
-// user's): where the surface's projection finds another face (a thin shell's other side), the
-// walk stops.
-bool projects_onto(const DrapeSurface& s, const Vec3& p, double on_mold) {
-  const Projection back = s.project(p);
-  return back.ok && back.distance <= on_mold;
-}
-
-// Points of a walk on the surface from p along dir, at most `length` long: each step
-// projected, the direction kept along the last step, until the face's edge or a sharp crease
-// stops it.
-std::vector<Vec3> walk(const DrapeSurface& s, Vec3 p, Vec3 dir, double h, double length,
-                       double on_mold) {
-  std::vector<Vec3> pts;
+// A walk on the surface from p along dir, at most `length` long: each step projected, the
+// direction kept along the last step, until the face's edge or a sharp crease stops it. The
+// points are kept with their normals (the dart's curve: not projected again).
+void walk(const DrapeSurface& s, Vec3 p, Vec3 dir, double h, double length, detail::DartCurve& c) {
   const int steps = static_cast<int>(std::ceil(length / h));
   for (int k = 0; k < steps; ++k) {
     const Projection pr = s.project(p + h * dir.normalized());
     // The face's edge (a step shorter than half its length), or a crease the surface turns
     // away at (the step lands farther than its length from the surface).
-    if (!pr.ok || pr.distance > h || !projects_onto(s, pr.point, on_mold)) break;
+    if (!pr.ok || pr.distance > h) break;
     const Vec3 step = pr.point - p;
     if (step.norm() < 0.5 * h) break;
-    pts.push_back(pr.point);
+    const SurfaceNormal n = s.normal(pr.at);
+    if (!n.ok) break;
+    c.add(pr.point, n.n);
     dir = step;
     p = pr.point;
   }
-  return pts;
 }
 
 // The dart for the stop next to mapped node n: along the snapped direction from the start to n,
 // from the face's edge (or the surface's size away) to kTipInsideRel spacings short of n
-// towards the start (its tip, in cloth sheared less).
-std::vector<Vec3> walk_out(const DrapeSurface& s, const DrapeResult& r, const DrapeNode& n,
-                           double on_mold) {
+// towards the start (its tip, in cloth sheared less). None (no points) when the tip would lie
+// farther than `tip_within` from the start (3D): the tip is walked first.
+detail::DartCurve walk_out(const DrapeSurface& s, const DrapeResult& r, const DrapeNode& n,
+                           double tip_within) {
   const Vec2 from = n.ply - r.ply->spec().start;
   if (!(from.norm() > 0.0)) return {};
   const Vec3 dir = direction_at(r, n, snapped_direction(from));
-  if (!(dir.norm() > 0.0)) return {};
-  if (!projects_onto(s, n.point, on_mold)) return {};
+  const SurfaceNormal at_n = s.normal(n.at());
+  if (!(dir.norm() > 0.0) || !at_n.ok) return {};
   const double h = kWalkStepRel * r.ply->d();
   const double inside = std::min(kTipInsideRel * r.ply->d(), 0.5 * from.norm());
-  std::vector<Vec3> pts = walk(s, n.point, dir, h, s.size(), on_mold);
-  std::reverse(pts.begin(), pts.end());
-  pts.push_back(n.point);
-  for (const Vec3& p : walk(s, n.point, -dir, h, inside, on_mold)) pts.push_back(p);
-  return pts;
+  detail::DartCurve in, out, dart;
+  walk(s, n.point, -dir, h, inside, in);
+  const Vec3 tip = in.points.empty() ? n.point : in.points.back();
+  if ((tip - r.start_point).norm() > tip_within) return {};
+  walk(s, n.point, dir, h, s.size(), out);
+  for (std::size_t k = out.points.size(); k-- > 0;) dart.add(out.points[k], out.normals[k]);
+  dart.add(n.point, at_n.n);
+  for (std::size_t k = 0; k < in.points.size(); ++k) dart.add(in.points[k], in.normals[k]);
+  return dart;
 }
 
 double distance_to_curve(const std::vector<Vec3>& c, const Vec3& p) {
@@ -136,7 +133,8 @@ double distance_to_curve(const std::vector<Vec3>& c, const Vec3& p) {
 // kDartSpacingRel * d of it: then that dart is walked again from it if the new tip lies nearer
 // the start than the dart's (by a spacing at least), so that darts comb the zone a few cells
 // apart and reach into the cloth that is sheared less.
-bool propose_darts(const DrapeSurface& s, const DrapeResult& r, double on_mold, DrapeProblem& pb) {
+bool propose_darts(const DrapeSurface& s, const DrapeResult& r,
+                   std::vector<detail::DartCurve>& darts) {
   std::vector<std::uint32_t> fronts = front_nodes(r);
   const Vec2 start = r.ply->spec().start;
   auto from_start = [&](std::uint32_t k) { return (r.nodes[k].ply - start).norm(); };
@@ -144,30 +142,30 @@ bool propose_darts(const DrapeSurface& s, const DrapeResult& r, double on_mold, 
                    [&](std::uint32_t a, std::uint32_t b) { return from_start(a) < from_start(b); });
   const double d = r.ply->d(), spacing = kDartSpacingRel * d;
   const Vec3& start3 = r.start_point;
-  const std::size_t given = pb.darts.size();
-  std::vector<bool> walked(pb.darts.size(), false);
+  const std::size_t given = darts.size();
+  std::vector<bool> walked(darts.size(), false);
   bool changed = false;
   for (std::uint32_t k : fronts) {
     const DrapeNode& tip = r.nodes[k];
-    auto near = std::find_if(pb.darts.begin(), pb.darts.end(), [&](const std::vector<Vec3>& c) {
-      return distance_to_curve(c, tip.point) <= spacing;
+    auto near = std::find_if(darts.begin(), darts.end(), [&](const detail::DartCurve& c) {
+      return distance_to_curve(c.points, tip.point) <= spacing;
     });
-    if (near != pb.darts.end()) {
-      const auto i = static_cast<std::size_t>(near - pb.darts.begin());
+    if (near != darts.end()) {
+      const auto i = static_cast<std::size_t>(near - darts.begin());
+      const double tip_now = (near->points.back() - start3).norm();
       // Walked only when its tip (kTipInsideRel spacings in from the node) can lie nearer.
       const double reach = (tip.point - start3).norm() - kTipInsideRel * d;
-      if (i >= walked.size() || walked[i] || reach > (near->back() - start3).norm() - d) continue;
-      std::vector<Vec3> dart = walk_out(s, r, tip, on_mold);
-      if (dart.size() < 2 || (dart.back() - start3).norm() > (near->back() - start3).norm() - d)
-        continue;
+      if (i >= walked.size() || walked[i] || reach > tip_now - d) continue;
+      detail::DartCurve dart = walk_out(s, r, tip, tip_now - d);
+      if (dart.points.size() < 2) continue;
       *near = std::move(dart);
       walked[i] = changed = true;
       continue;
     }
-    if (pb.darts.size() - given >= kDartsPerDrape) continue;
-    std::vector<Vec3> dart = walk_out(s, r, tip, on_mold);
-    if (dart.size() < 2) continue;
-    pb.darts.push_back(std::move(dart));
+    if (darts.size() - given >= kDartsPerDrape) continue;
+    detail::DartCurve dart = walk_out(s, r, tip, INFINITY);
+    if (dart.points.size() < 2) continue;
+    darts.push_back(std::move(dart));
     changed = true;
   }
   return changed;
@@ -181,15 +179,24 @@ bool laid(const DrapeResult& r) {
 
 Result<DrapeResult> drape_auto_darts(const DrapeSurface& s, const DrapeProblem& problem,
                                      const DrapeOptions& opt, int max_drapes) {
-  DrapeProblem pb = problem;
-  auto r = drape(s, pb, opt);
+  detail::SolveMemo memo[2];  // the last drape's solves, and the next one's
+  auto r = drape(s, problem, opt, detail::Redrape{nullptr, nullptr, &memo[0]});
   if (!r) return r;
+  // The given darts as the first drape took them, then the walked ones: each dart is put on
+  // the surface once.
+  auto given = detail::DartSet::create(s, problem.darts, r->ply->d(), opt.tol);
+  if (!given) return given.error();
+  std::vector<detail::DartCurve> darts = given->curves();
   int drapes = 1;
-  while (!laid(*r) && drapes < max_drapes &&
-         propose_darts(s, *r, opt.tol.boundary_on_mold_rel * s.size(), pb)) {
-    auto next = drape(s, pb, opt);
-    if (!next) return next;
-    r = std::move(next);
+  while (!laid(*r) && drapes < max_drapes && propose_darts(s, *r, darts)) {
+    const detail::DartSet set = detail::DartSet::of(darts, r->ply->d());
+    detail::SolveMemo& last = memo[(drapes - 1) % 2];
+    detail::SolveMemo& next = memo[drapes % 2];
+    next = detail::SolveMemo{};
+    auto again = drape(s, problem, opt, detail::Redrape{&set, &last, &next});
+    if (!again) return again;
+    r = std::move(again);
+    r->solves_reused = next.reused;
     ++drapes;
   }
   r->drapes = static_cast<std::uint32_t>(drapes);

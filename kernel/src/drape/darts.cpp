@@ -28,11 +28,7 @@ Result<DartCurve> follow_curve(const DrapeSurface& s, const std::vector<Vec3>& g
       return Error{ErrorCode::kDartOffMold,
                    "dart",
                    {number(k + 1), pr.ok ? pr.distance : -1.0, on_mold, point_text(p)}};
-    const SurfaceNormal n = s.normal(pr.at);
-    if (!c.points.empty() && (pr.point - c.points.back()).norm() == 0.0) return ok_status();
-    if (!c.points.empty()) c.length += (pr.point - c.points.back()).norm();
-    c.points.push_back(pr.point);
-    c.normals.push_back(n.n);
+    c.add(pr.point, s.normal(pr.at).n);
     return ok_status();
   };
   for (std::size_t i = 0; i < given.size(); ++i) {
@@ -46,22 +42,31 @@ Result<DartCurve> follow_curve(const DrapeSurface& s, const std::vector<Vec3>& g
   }
   if (c.points.size() < 2)
     return Error{ErrorCode::kDartCurvePoints, "dart", {number(k + 1), number(c.points.size())}};
-  c.lo = c.hi = c.points.front();
-  for (const Vec3& p : c.points) c.lo = c.lo.cwiseMin(p), c.hi = c.hi.cwiseMax(p);
   return c;
 }
 
-// Distance from p to the box [lo, hi].
-double box_distance(const Vec3& lo, const Vec3& hi, const Vec3& p) {
-  return (p - p.cwiseMax(lo).cwiseMin(hi)).norm();
+// Distance from p to the segment a-b.
+double segment_distance(const Vec3& a, const Vec3& b, const Vec3& p) {
+  const Vec3 e = b - a;
+  const double ee = e.squaredNorm();
+  const double t = ee > 0.0 ? std::clamp((p - a).dot(e) / ee, 0.0, 1.0) : 0.0;
+  return (p - (a + t * e)).norm();
 }
 
 }  // namespace
 
+void DartCurve::add(const Vec3& p, const Vec3& n) {
+  if (!points.empty() && (p - points.back()).norm() == 0.0) return;
+  if (points.empty()) lo = hi = p;
+  if (!points.empty()) length += (p - points.back()).norm();
+  lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  points.push_back(p);
+  normals.push_back(n);
+}
+
 Result<DartSet> DartSet::create(const DrapeSurface& s, const std::vector<std::vector<Vec3>>& darts,
                                 double d, const Tolerances& tol) {
-  DartSet set;
-  set.d_ = d;
+  std::vector<DartCurve> curves;
   const double on_mold = tol.boundary_on_mold_rel * s.size();
   for (std::size_t k = 0; k < darts.size(); ++k) {
     const auto& given = darts[k];
@@ -71,62 +76,100 @@ Result<DartSet> DartSet::create(const DrapeSurface& s, const std::vector<std::ve
       return Error{ErrorCode::kDartCurvePoints, "dart", {number(k + 1), number(given.size())}};
     auto c = follow_curve(s, given, k, kDartStepRel * d, on_mold);
     if (!c) return c.error();
-    set.curves_.push_back(std::move(c).value());
+    curves.push_back(std::move(c).value());
   }
+  return of(std::move(curves), d);
+}
+
+DartSet DartSet::of(std::vector<DartCurve> curves, double d) {
+  DartSet set;
+  set.curves_ = std::move(curves);
+  set.d_ = d;
+  set.index();
   return set;
 }
 
+void DartSet::index() {
+  const double reach = kDartNearRel * d_;
+  segments_.cell = reach;
+  for (std::size_t c = 0; c < curves_.size(); ++c) {
+    const auto& pts = curves_[c].points;
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+      const Vec3 lo = pts[k].cwiseMin(pts[k + 1]).array() - reach;
+      const Vec3 hi = pts[k].cwiseMax(pts[k + 1]).array() + reach;
+      segments_.add_box(lo, hi, {static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(k)});
+      segment_max_ = std::max(segment_max_, (pts[k + 1] - pts[k]).norm());
+    }
+  }
+}
+
+double DartSet::distance(const Segment& g, const Vec3& p) const {
+  const auto& pts = curves_[g.curve].points;
+  return segment_distance(pts[g.k], pts[g.k + 1], p);
+}
+
 bool DartSet::near(const Vec3& p) const {
-  return nearest(p) >= 0;
+  const auto* segs = segments_.in(p);
+  if (!segs) return false;
+  const double reach = kDartNearRel * d_;
+  return std::any_of(segs->begin(), segs->end(),
+                     [&](const Segment& g) { return distance(g, p) <= reach; });
 }
 
 int DartSet::nearest(const Vec3& p) const {
+  const auto* segs = segments_.in(p);
+  if (!segs) return -1;
   int best = -1;
   double best_d = kDartNearRel * d_;
-  for (std::size_t k = 0; k < curves_.size(); ++k) {
-    const double dist = box_distance(curves_[k].lo, curves_[k].hi, p);
-    if (dist <= best_d) best = static_cast<int>(k), best_d = dist;
-  }
+  for (const Segment& g : *segs)
+    if (const double dist = distance(g, p); dist <= best_d)
+      best = static_cast<int>(g.curve), best_d = dist;
   return best;
 }
 
+// A segment of a dart crossing the link p-q passes within |p - q| plus the normal reach plus
+// its own length of p: within kDartNearRel * d (the index's reach) for links and neighbours
+// two links apart; a longer segment p-q is tested against every segment.
 bool DartSet::crosses(const Vec3& p, const Vec3& q) const {
+  const double within = (q - p).norm() + kDartOffsetRel * d_ + segment_max_;
+  if (within <= kDartNearRel * d_) {
+    const auto* segs = segments_.in(p);
+    return segs && std::any_of(segs->begin(), segs->end(), [&](const Segment& g) {
+             return crosses(curves_[g.curve], g.k, p, q);
+           });
+  }
   for (const DartCurve& c : curves_)
-    if (crosses(c, p, q)) return true;
+    for (std::size_t k = 0; k + 1 < c.points.size(); ++k)
+      if (crosses(c, k, p, q)) return true;
   return false;
 }
 
-// The link p-q crosses curve c: in the tangent plane of a dart segment (the mean of its ends'
-// normals) p and q lie on two sides of the segment's line, the crossing falls within the
-// segment (half-open, so that a crossing at a shared point counts once), and the link passes
-// within kDartOffsetRel * d of it along the normal.
-bool DartSet::crosses(const DartCurve& c, const Vec3& p, const Vec3& q) const {
+// The link p-q crosses segment k of curve c: in the tangent plane of the segment (the mean of
+// its ends' normals) p and q lie on two sides of the segment's line, the crossing falls
+// within the segment (half-open, so that a crossing at a shared point counts once), and the
+// link passes within kDartOffsetRel * d of it along the normal.
+bool DartSet::crosses(const DartCurve& c, std::size_t k, const Vec3& p, const Vec3& q) const {
   const double reach = kDartOffsetRel * d_;
+  const Vec3& c0 = c.points[k];
+  const Vec3& c1 = c.points[k + 1];
   const Vec3 lo = p.cwiseMin(q).array() - reach, hi = p.cwiseMax(q).array() + reach;
-  if ((lo.array() > c.hi.array()).any() || (hi.array() < c.lo.array()).any()) return false;
-  for (std::size_t k = 0; k + 1 < c.points.size(); ++k) {
-    const Vec3& c0 = c.points[k];
-    const Vec3& c1 = c.points[k + 1];
-    if ((lo.array() > c0.cwiseMax(c1).array()).any() ||
-        (hi.array() < c0.cwiseMin(c1).array()).any())
-      continue;
-    const Vec3 n = (c.normals[k] + c.normals[k + 1]).normalized();
-    Vec3 e1 = c1 - c0;
-    e1 -= e1.dot(n) * n;
-    const double len = e1.norm();
-    if (!(len > 0.0) || !n.allFinite()) continue;
-    e1 /= len;
-    const Vec3 e2 = n.cross(e1);
-    const double op = (p - c0).dot(e2), oq = (q - c0).dot(e2);
-    if ((op >= 0.0) == (oq >= 0.0)) continue;
-    const double f = op / (op - oq);  // where the link meets the segment's line
-    const double t = ((p - c0).dot(e1) + f * (q - p).dot(e1)) / len;
-    const bool last = k + 2 == c.points.size();
-    if (t < 0.0 || t > 1.0 || (t == 1.0 && !last)) continue;
-    const double h = (p - c0).dot(n) + f * (q - p).dot(n);
-    if (std::abs(h) <= reach) return true;
-  }
-  return false;
+  if ((lo.array() > c0.cwiseMax(c1).array()).any() || (hi.array() < c0.cwiseMin(c1).array()).any())
+    return false;
+  const Vec3 n = (c.normals[k] + c.normals[k + 1]).normalized();
+  Vec3 e1 = c1 - c0;
+  e1 -= e1.dot(n) * n;
+  const double len = e1.norm();
+  if (!(len > 0.0) || !n.allFinite()) return false;
+  e1 /= len;
+  const Vec3 e2 = n.cross(e1);
+  const double op = (p - c0).dot(e2), oq = (q - c0).dot(e2);
+  if ((op >= 0.0) == (oq >= 0.0)) return false;
+  const double f = op / (op - oq);  // where the link meets the segment's line
+  const double t = ((p - c0).dot(e1) + f * (q - p).dot(e1)) / len;
+  const bool last = k + 2 == c.points.size();
+  if (t < 0.0 || t > 1.0 || (t == 1.0 && !last)) return false;
+  const double h = (p - c0).dot(n) + f * (q - p).dot(n);
+  return std::abs(h) <= reach;
 }
 
 namespace {

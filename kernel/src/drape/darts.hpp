@@ -22,8 +22,8 @@ inline constexpr double kDartStepRel = 0.5;
 // passes within kDartOffsetRel * d of the dart along the normal there: a link and a dart on
 // the part meet to their chords' sag; farther apart they are on two sheets of the part.
 inline constexpr double kDartOffsetRel = 0.5;
-// Nodes within kDartNearRel * d of a dart's bounding box are tested (a node's neighbours lie
-// within one link of it, two of each other).
+// Nodes within kDartNearRel * d of a dart's curve are tested (a node's neighbours lie within
+// one link of it, two of each other; a link crossing the dart passes within half a spacing).
 inline constexpr double kDartNearRel = 3.0;
 
 /// A dart's curve on the surface, with the normals the crossing test projects along.
@@ -32,9 +32,47 @@ struct DartCurve {
   std::vector<Vec3> normals;
   Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();  // bounding box
   double length = 0.0;
+  /// Appends a point of the surface and its unit normal (a repeated point is dropped).
+  void add(const Vec3& p, const Vec3& n);
 };
 
-/// The darts of a drape, projected onto its surface.
+/// Items by 3D position in cubes of side `cell` (a hash of their integer coordinates).
+template <class T>
+struct CubeGrid {
+  double cell = 1.0;
+  std::unordered_map<std::uint64_t, std::vector<T>> bins;
+  static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
+    return (static_cast<std::uint64_t>(x & 0x1fffff) << 42) |
+           (static_cast<std::uint64_t>(y & 0x1fffff) << 21) |
+           static_cast<std::uint64_t>(z & 0x1fffff);
+  }
+  std::int64_t at(double v) const { return static_cast<std::int64_t>(std::floor(v / cell)); }
+  void add(const Vec3& p, T k) { bins[key(at(p.x()), at(p.y()), at(p.z()))].push_back(k); }
+  /// Adds k to every cube the box [lo, hi] meets.
+  void add_box(const Vec3& lo, const Vec3& hi, T k) {
+    for (std::int64_t x = at(lo.x()); x <= at(hi.x()); ++x)
+      for (std::int64_t y = at(lo.y()); y <= at(hi.y()); ++y)
+        for (std::int64_t z = at(lo.z()); z <= at(hi.z()); ++z) bins[key(x, y, z)].push_back(k);
+  }
+  /// The items of the cube holding p (nullptr: none).
+  const std::vector<T>* in(const Vec3& p) const {
+    auto it = bins.find(key(at(p.x()), at(p.y()), at(p.z())));
+    return it == bins.end() ? nullptr : &it->second;
+  }
+  /// Calls f(k) for the items in the 27 cubes around p.
+  template <class F>
+  void around(const Vec3& p, F&& f) const {
+    const std::int64_t x = at(p.x()), y = at(p.y()), z = at(p.z());
+    for (std::int64_t a = -1; a <= 1; ++a)
+      for (std::int64_t b = -1; b <= 1; ++b)
+        for (std::int64_t c = -1; c <= 1; ++c)
+          if (auto it = bins.find(key(x + a, y + b, z + c)); it != bins.end())
+            for (const T& k : it->second) f(k);
+  }
+};
+using NodeGrid = CubeGrid<std::uint32_t>;
+
+/// The darts of a drape, on its surface, with an index of their segments.
 class DartSet {
  public:
   /// The curves projected onto `s` and followed at kDartStepRel * d. Errors (blaming "dart"):
@@ -44,44 +82,31 @@ class DartSet {
   /// distance, the tolerance and the point).
   static Result<DartSet> create(const DrapeSurface& s, const std::vector<std::vector<Vec3>>& darts,
                                 double d, const Tolerances& tol);
+  /// Curves already on the surface (each of 2 points at least, with their normals), as a walk
+  /// on it made them: not projected again.
+  static DartSet of(std::vector<DartCurve> curves, double d);
   bool empty() const { return curves_.empty(); }
   const std::vector<DartCurve>& curves() const { return curves_; }
-  /// True when p lies within kDartNearRel * d of some dart's bounding box.
+  /// True when p lies within kDartNearRel * d of some dart's curve.
   bool near(const Vec3& p) const;
-  /// The dart whose bounding box p lies nearest to (-1: none within reach).
+  /// The dart whose curve passes nearest to p (-1: none within kDartNearRel * d).
   int nearest(const Vec3& p) const;
   /// True when the segment p-q (a link on the part) crosses some dart.
   bool crosses(const Vec3& p, const Vec3& q) const;
 
  private:
-  bool crosses(const DartCurve& c, const Vec3& p, const Vec3& q) const;
+  struct Segment {
+    std::uint32_t curve, k;  // points k and k + 1 of curves_[curve]
+  };
+  void index();
+  double distance(const Segment& g, const Vec3& p) const;
+  bool crosses(const DartCurve& c, std::size_t k, const Vec3& p, const Vec3& q) const;
   std::vector<DartCurve> curves_;
   double d_ = 1.0;
-};
-
-/// Nodes by 3D position in cubes of side `cell` (a hash of their integer coordinates).
-struct NodeGrid {
-  double cell = 1.0;
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> bins;
-  static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
-    return (static_cast<std::uint64_t>(x & 0x1fffff) << 42) |
-           (static_cast<std::uint64_t>(y & 0x1fffff) << 21) |
-           static_cast<std::uint64_t>(z & 0x1fffff);
-  }
-  std::int64_t at(double v) const { return static_cast<std::int64_t>(std::floor(v / cell)); }
-  void add(const Vec3& p, std::uint32_t k) {
-    bins[key(at(p.x()), at(p.y()), at(p.z()))].push_back(k);
-  }
-  /// Calls f(k) for the nodes in the 27 cubes around p.
-  template <class F>
-  void around(const Vec3& p, F&& f) const {
-    const std::int64_t x = at(p.x()), y = at(p.y()), z = at(p.z());
-    for (std::int64_t a = -1; a <= 1; ++a)
-      for (std::int64_t b = -1; b <= 1; ++b)
-        for (std::int64_t c = -1; c <= 1; ++c)
-          if (auto it = bins.find(key(x + a, y + b, z + c)); it != bins.end())
-            for (std::uint32_t k : it->second) f(k);
-  }
+  // Each segment in every cube of side kDartNearRel * d that its box grown by that much meets:
+  // the cube holding p lists every segment within kDartNearRel * d of p.
+  CubeGrid<Segment> segments_;
+  double segment_max_ = 0.0;  // the longest segment
 };
 
 /// Each dart as the drape laid it (DrapeResult::darts): its cut lines through the cells of each

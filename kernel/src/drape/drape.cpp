@@ -319,6 +319,11 @@ void scan_and_measure(const DrapeSurface& s, const DrapeOptions& opt, const Vec3
 }  // namespace
 
 Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const DrapeOptions& opt) {
+  return drape(s, pb, opt, detail::Redrape{});
+}
+
+Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const DrapeOptions& opt,
+                          const detail::Redrape& again) {
   const auto t0 = std::chrono::steady_clock::now();
   auto ply = Ply::create(pb.ply, opt.tol);
   if (!ply) return ply.error();
@@ -337,13 +342,16 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
   res.ply = mply;
   res.nodes.reserve(
       expected_nodes(s, *mply, res.start_point, res.base_normal, pb.sweeps, opt.max_nodes));
-  auto darts = detail::DartSet::create(s, pb.darts, mply->d(), opt.tol);
-  if (!darts) return darts.error();
+  auto given = again.darts ? Result<detail::DartSet>(detail::DartSet())
+                           : detail::DartSet::create(s, pb.darts, mply->d(), opt.tol);
+  if (!given) return given.error();
+  const detail::DartSet& darts = again.darts ? *again.darts : *given;
   detail::Scanner scanner(s, *mply, opt, res);  // sized by the reserve
   if (*curve) scanner.follow(&**curve);
-  scanner.cut_along(&*darts);
+  scanner.cut_along(&darts);
+  scanner.memo(again.last, again.next);
   scan_and_measure(s, opt, *t3, scanner, res);
-  detail::lay_darts(*darts, scanner.cut_out(), opt.tol, res);
+  detail::lay_darts(darts, scanner.cut_out(), opt.tol, res);
   warn_scan_stops(scanner, opt, res);
   warn_path_ends(s, res);
   warn_thread_ends(scanner, res);

@@ -4,6 +4,9 @@
 
 #include <catch2/catch.hpp>
 
+#include "drape/darts.hpp"
+#include "drape/drape.hpp"
+#include "drape/scan/solve_memo.hpp"
 #include "support/builtin_surfaces.hpp"
 #include "support/problems.hpp"
 
@@ -159,4 +162,46 @@ TEST_CASE("darts: automatic darts on a hemisphere locked at 40 degrees") {
   CHECK(r.metrics.nodes.conflict == 0);
   CHECK(r.metrics.nodes.shear_limit == 0);
   CHECK(r.metrics.shear_max <= opt.lock_angle);
+}
+
+TEST_CASE("darts: a drape made again takes the unchanged solves and lays what a fresh one does") {
+  const double R = 10.0, d = 0.5;
+  const MoldSurface f = builtin_surface("hemisphere", {{"R", R}});
+  DrapeProblem pb = problem(d, Vec2(0, 0), Vec2(0, 1), {Vec2(-1, 0), Vec2(1, 0)}, Vec3(0, 0, R),
+                            Vec3(1, 0, 0), {Vec3(1, 0, 0), Vec3(-1, 0, 0)});
+  detail::SolveMemo first;
+  const DrapeResult plain = ok(drape(f.impl(), pb, {}, detail::Redrape{nullptr, nullptr, &first}));
+  // A dart on the meridian at azimuth 45 deg from the rim up to 40 deg from the pole: the cloth
+  // swept before it reaches the dart's cells is the same as without it.
+  std::vector<Vec3> curve;
+  for (double polar = 90.0; polar >= 40.0; polar -= 1.0) {
+    const double t = polar * kDegToRad, az = 45.0 * kDegToRad;
+    curve.push_back(R * Vec3(std::sin(t) * std::cos(az), std::sin(t) * std::sin(az), std::cos(t)));
+  }
+  auto darts = detail::DartSet::create(f.impl(), {curve}, d, Tolerances{});
+  REQUIRE(darts);
+  detail::SolveMemo next;
+  const DrapeResult again = ok(drape(f.impl(), pb, {}, detail::Redrape{&*darts, &first, &next}));
+  const DrapeResult fresh = ok(drape(f.impl(), pb, {}, detail::Redrape{&*darts}));
+  INFO("nodes " << fresh.nodes.size() << ", solves taken from the drape before " << next.reused);
+  CHECK(next.reused > 0);
+  CHECK(next.reused < fresh.nodes.size());
+  // Every node as the fresh drape has it: the same status and, mapped, the same point to the
+  // solver's accuracy (links to 1e-10 d).
+  REQUIRE(again.nodes.size() == fresh.nodes.size());
+  std::size_t differ = 0;
+  double moved = 0.0;
+  for (const DrapeNode& n : fresh.nodes) {
+    const DrapeNode* m = again.find(n.id);
+    if (!m || m->status != n.status) {
+      ++differ;
+      continue;
+    }
+    if (n.mapped()) moved = std::max(moved, (m->point - n.point).norm());
+  }
+  CHECK(differ == 0);
+  CHECK(moved < kFlatRel * d);
+  CHECK(again.darts.size() == 1);
+  CHECK(again.darts[0].removed_area == Approx(fresh.darts[0].removed_area).epsilon(1e-6));
+  CHECK(plain.metrics.nodes.mapped > 0);
 }

@@ -224,9 +224,14 @@ struct DrapeResult {
   double drape_ms = 0.0;         ///< wall time of drape()
   /// Links not enforced because they cross a dart, as sorted keys (link_key()).
   std::vector<std::uint64_t> cut_links;
+  /// Per node (when as long as `nodes`): true when some link of it is in cut_links.
+  std::vector<bool> cut_ends;
   std::vector<DartResult> darts;  ///< per DrapeProblem::darts, in order
   std::uint32_t drapes = 1;       ///< drapes made (drape_auto_darts: up to its max_drapes)
   bool darts_auto = false;        ///< the darts were proposed by drape_auto_darts
+  /// drape_auto_darts: nodes of the last drape that took the drape before's solve (they saw
+  /// the same cloth: neighbours and theirs the same) instead of solving again.
+  std::uint64_t solves_reused = 0;
 
   /// The key of the link between nodes a and b (indices into `nodes`, either order).
   static std::uint64_t link_key(std::uint32_t a, std::uint32_t b) {
@@ -249,7 +254,9 @@ struct DrapeResult {
   const DrapeNode* linked(const DrapeNode& n, ThreadDir dir) const {
     const DrapeNode* m = neighbour(n, dir);
     if (!m || cut_links.empty()) return m;
-    return cut(index_of(n), index_of(*m)) ? nullptr : m;
+    const std::uint32_t a = index_of(n);
+    if (cut_ends.size() == nodes.size() && !cut_ends[a]) return m;
+    return cut(a, index_of(*m)) ? nullptr : m;
   }
   std::uint32_t index_of(const DrapeNode& n) const {
     return static_cast<std::uint32_t>(&n - nodes.data());

@@ -102,6 +102,9 @@ void Scanner::finish_cuts() {
   parked_.clear();
   res_.cut_links.assign(cuts_.begin(), cuts_.end());
   std::sort(res_.cut_links.begin(), res_.cut_links.end());
+  res_.cut_ends.assign(res_.nodes.size(), false);
+  for (std::uint64_t key : res_.cut_links)
+    res_.cut_ends[key >> 32] = res_.cut_ends[key & 0xffffffffu] = true;
 }
 
 }  // namespace plyfit::detail

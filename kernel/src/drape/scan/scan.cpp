@@ -284,7 +284,7 @@ void Scanner::step(std::uint32_t qi) {
   if (darts_ && near_dart(known, nk)) {
     if (!solve_beside_darts(qi, known, nk, r)) return;  // parked: no side's cloth holds it yet
   } else {
-    r = solve_known(qi, known, nk);
+    r = solve_or_reuse(qi, known, nk);
   }
   resolve(qi, r);
   // The cloth can come round onto itself (a closed face, a face that wraps over itself, a

@@ -10,6 +10,7 @@
 #include "drape/solvers/solvers.hpp"
 
 #include "drape/scan/overlap_grid.hpp"
+#include "drape/scan/solve_memo.hpp"
 #include "drape/seed_curve.hpp"
 
 #include <cstdint>
@@ -83,6 +84,10 @@ class Scanner {
   void follow(const SeedPolyline* curve) { seed_curve_ = curve; }
   /// The darts the scan cuts the cloth along (kept by the caller during run()).
   void cut_along(const DartSet* darts) { darts_ = darts->empty() ? nullptr : darts; }
+  /// Solves from `last` (the last drape's, or nullptr) where a node sees the same cloth, and
+  /// every solve kept in `next` (nullptr: none kept, none taken); both kept by the caller
+  /// during run().
+  void memo(const SolveMemo* last, SolveMemo* next);
   /// Per dart: the ply nodes no side's cloth holds (their links to both sides cross it).
   const std::vector<std::uint64_t>& cut_out() const { return cut_out_; }
   bool truncated() const { return truncated_; }
@@ -141,6 +146,10 @@ class Scanner {
   void best_pair(const DrapeNode& q, const Known known[4], int nk, int& best_a, int& best_b) const;
   SolveResult solve_from_two(std::uint32_t qi, const Known known[4], int nk);
   SolveResult solve_known(std::uint32_t qi, const Known known[4], int nk);
+
+  // solve_memo.cpp
+  std::uint64_t seen(const DrapeNode& q) const;
+  SolveResult solve_or_reuse(std::uint32_t qi, const Known known[4], int nk);
 
   // dart_cuts.cpp
   bool near_dart(const Known known[4], int nk) const;
@@ -216,7 +225,9 @@ class Scanner {
   std::unordered_set<std::uint64_t> cuts_;    // links across a dart (DrapeResult::link_key)
   std::unordered_set<std::uint32_t> parked_;  // nodes whose cloth so far lies across a dart
   std::vector<std::uint64_t> cut_out_;        // per dart: nodes left parked at the end
-  bool curve_along_ = true;                   // the curve's later points lie ahead along t3
+  const SolveMemo* memo_last_ = nullptr;
+  SolveMemo* memo_next_ = nullptr;
+  bool curve_along_ = true;  // the curve's later points lie ahead along t3
 };
 
 }  // namespace plyfit::detail
