@@ -482,7 +482,7 @@ Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const To
                  s->DynamicType()->Name()};
 
   const double size = info.bbox.diagonal();
-  if (!(size > 0.0)) return Error{"the face has zero size"};
+  if (!(size > 0.0)) return Error{ErrorCode::kFaceZeroSize};
   const double tol3d = tol.trim_chord_rel * size;
   const Rect fr = uv_bounds(work);
   {
