@@ -87,7 +87,8 @@ int run_shell(const std::vector<std::string>& args) {
       "shared edges %d, largest gap closed %.3g mm; %zu loops, %zu points, %zu segments "
       "on shared edges, %zu free\n",
       shell->edge_count, shell->tolerance, loops, points, shared_segments, free_segments);
-  for (const auto& w : (*file)->summary().warnings) std::printf("warning: %s\n", w.c_str());
+  for (const auto& w : (*file)->summary().warnings)
+    std::printf("warning: %s\n", exporters::message(w).c_str());
   std::printf("open (read + transfer):            %8.1f ms (median of %d)\n", 1e3 * t_open,
               std::max(runs, kMinRuns));
   std::printf("open + convert_shell:              %8.1f ms\n", 1e3 * t_shell);

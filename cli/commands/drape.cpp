@@ -89,9 +89,8 @@ int drape_job(const DrapeJob& job, bool quiet, const OutcomeFile& outcome) {
   if (!out) return outcome.fail(kExitFailure, out.error(), job.name_input);
   std::cout << drape_summary(*out, job.outdir);
   if (!quiet) {
-    for (const auto& w : out->mold_warnings) std::cerr << "plyfit: warning: " << w << "\n";
-    for (const auto& w : out->warnings)
-      std::cerr << "plyfit: warning: " << exporters::message(w) << "\n";
+    for (const auto* ws : {&out->mold_warnings, &out->warnings})
+      for (const auto& w : *ws) std::cerr << "plyfit: warning: " << exporters::message(w) << "\n";
   }
   return outcome.write(kExitOk, *out);
 }

@@ -112,7 +112,7 @@ struct JobOutcome {
   std::vector<Warning> warnings;  ///< the drape's (why partial, and notes)
   /// The mold's (reading and sewing it: report.json's mold.warnings, e.g. faces that share
   /// no edge form separate shells).
-  std::vector<std::string> mold_warnings;
+  std::vector<Warning> mold_warnings;
   /// The flat pattern's cut outline (FlatPattern::cut), for drawings of several plies.
   std::vector<OutlineLoop> cut;
   /// The pieces and seams, when the job has a roll width (SplicePlan::split() when cut).

@@ -2,6 +2,9 @@
 
 #include "report/text_format.hpp"
 
+#include <plyfit/exporters/messages.hpp>
+#include <plyfit/exporters/warnings_json.hpp>
+
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -74,7 +77,7 @@ nlohmann::json to_json(const Mold& m) {
                 {"trimmed", s.trimmed},
                 {"with_holes", s.with_holes},
                 {"reversed", s.reversed}}},
-              {"warnings", m.warnings}};
+              {"warnings", exporters::warnings_json(m.warnings)}};
 }
 
 std::string csv(const Vec3& v) {
@@ -135,7 +138,7 @@ void print_listing(const Mold& m, std::ostream& os) {
   if (m.warnings.empty()) {
     os << "warnings: none\n";
   } else {
-    for (const auto& w : m.warnings) os << "warning: " << w << "\n";
+    for (const auto& w : m.warnings) os << "warning: " << exporters::message(w) << "\n";
   }
 }
 

@@ -2,6 +2,8 @@
 
 #include "report/text_format.hpp"
 
+#include <plyfit/exporters/messages.hpp>
+#include <plyfit/exporters/warnings_json.hpp>
 #include <plyfit/kernel/types.hpp>
 
 #include <nlohmann/json.hpp>
@@ -56,7 +58,7 @@ std::vector<FaceLinks> face_links(const MoldSurface& shell, const std::vector<in
 }
 
 void print_links(const std::string& path, const std::vector<FaceLinks>& links,
-                 const std::vector<std::string>& warnings, bool json, std::ostream& os) {
+                 const std::vector<Warning>& warnings, bool json, std::ostream& os) {
   if (json) {
     nlohmann::json faces = nlohmann::json::array();
     for (const FaceLinks& f : links) {
@@ -68,8 +70,10 @@ void print_links(const std::string& path, const std::vector<FaceLinks>& links,
                        {"free_runs", f.free.runs},
                        {"free_length_mm", f.free.length}});
     }
-    os << nlohmann::json{{"file", path}, {"faces", std::move(faces)}, {"warnings", warnings}}.dump(
-              2)
+    os << nlohmann::json{{"file", path},
+                         {"faces", std::move(faces)},
+                         {"warnings", exporters::warnings_json(warnings)}}
+              .dump(2)
        << "\n";
     return;
   }
@@ -87,7 +91,7 @@ void print_links(const std::string& path, const std::vector<FaceLinks>& links,
   if (warnings.empty()) {
     os << "warnings: none\n";
   } else {
-    for (const auto& w : warnings) os << "warning: " << w << "\n";
+    for (const auto& w : warnings) os << "warning: " << exporters::message(w) << "\n";
   }
 }
 

@@ -26,6 +26,6 @@ std::vector<FaceLinks> face_links(const MoldSurface& shell, const std::vector<in
 
 /// The links as a table, or (json) as JSON; `warnings` are the sewing's.
 void print_links(const std::string& path, const std::vector<FaceLinks>& links,
-                 const std::vector<std::string>& warnings, bool json, std::ostream& os);
+                 const std::vector<Warning>& warnings, bool json, std::ostream& os);
 
 }  // namespace plyfit::cli

@@ -4,6 +4,7 @@
 
 #include <plyfit/exporters/exporters.hpp>
 #include <plyfit/exporters/messages.hpp>
+#include <plyfit/exporters/warnings_json.hpp>
 #include <plyfit/kernel/flat_pattern.hpp>
 #include <plyfit/kernel/splice.hpp>
 
@@ -16,7 +17,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <type_traits>
 #include <utility>
 
 namespace plyfit::exporters {
@@ -82,21 +82,6 @@ std::string unit_name(const std::string& given) {
 // A face by its index in the mold file: the k-th face draped.
 int file_index(const ExportContext& ctx, std::size_t k) {
   return k < ctx.run.faces.size() ? ctx.run.faces[k] : static_cast<int>(k);
-}
-
-// The one place that turns warnings into report.json's text: a warning code through
-// exporters::message(); a warning still in words (the mold readers' until they become codes) as
-// it is.
-template <typename W>
-nlohmann::json warning_texts(const std::vector<W>& warnings) {
-  nlohmann::json out = nlohmann::json::array();
-  for (const W& w : warnings) {
-    if constexpr (std::is_same_v<W, Warning>)
-      out.push_back(message(w));
-    else
-      out.push_back(w);
-  }
-  return out;
 }
 
 // The inputs of the run, echoed.
@@ -195,7 +180,7 @@ nlohmann::json mold_json(const ExportContext& ctx) {
           {"face", face},
           {"faces", faces},
           {"crease_angle_max_deg", m.crease_angle_max * kRadToDeg},
-          {"warnings", warning_texts(ctx.run.warnings)}};
+          {"warnings", warnings_json(ctx.run.warnings)}};
 }
 
 // Node counts by status, with the reasons of the failed, conflicting, shear-limit and
@@ -344,7 +329,7 @@ std::string report_json(const ExportContext& ctx) {
   const DrapeResult& r = ctx.result;
   nlohmann::json j;
   j["status"] = r.partial ? "partial" : "ok";
-  j["warnings"] = warning_texts(r.warnings);
+  j["warnings"] = warnings_json(r.warnings);
   j["inputs"] = inputs_json(ctx);
   j["mold"] = mold_json(ctx);
   j["start"] = {{"point", vec(r.start_point)},

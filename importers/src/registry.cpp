@@ -91,7 +91,7 @@ std::vector<int> MoldFile::all_faces() const {
 }
 
 Result<ShellData> load_shell(const std::string& path, const std::vector<int>& indices,
-                             const ImportOptions& options, std::vector<std::string>* warnings) {
+                             const ImportOptions& options, std::vector<Warning>* warnings) {
   auto file = open_mold(path, options);
   if (!file) return file.error();
   auto shell = (*file)->convert_shell(indices);

@@ -176,4 +176,15 @@ FaceMeasure measure_face(const TopoDS_Face& face, double rel_tol, bool with_box,
   return m;
 }
 
+std::optional<Warning> area_warning(const FaceMeasure& m, double rel, int face,
+                                    const std::string& entity) {
+  if (!m.measured)
+    return Warning{WarningCode::kFaceAreaUnmeasured, {std::int64_t{face}, entity, m.failure}};
+  if (m.converged) return std::nullopt;
+  Warning w{WarningCode::kFaceAreaShort, {std::int64_t{face}, entity, rel}};
+  // Without an estimate (OpenCASCADE's integration, no pcurves) the accuracy is unknown.
+  if (m.area > 0.0 && m.error > 0.0) w.values.emplace_back(m.error / m.area);
+  return w;
+}
+
 }  // namespace plyfit::importers::occt

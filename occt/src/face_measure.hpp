@@ -16,6 +16,7 @@
 // plyfit_occt_measure, linked by the module and by the tests and benchmarks that call it.
 
 #include <plyfit/kernel/nurbs.hpp>
+#include <plyfit/kernel/result.hpp>
 #include <plyfit/kernel/types.hpp>
 
 #include <Geom_BSplineSurface.hxx>
@@ -24,6 +25,7 @@
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Wire.hxx>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -69,6 +71,13 @@ constexpr int kBoxEdgeSamples = 64;
 /// its work cap of surface evaluations (FaceMeasure::measured says whether it measured).
 FaceMeasure measure_face(const TopoDS_Face& face, double rel_tol, bool with_box,
                          bool transposed = false);
+
+/// The warning of face `face` (made by the file's entity `entity`, or "") whose measure `m`
+/// falls short of the relative accuracy `rel` it was asked for: kFaceAreaUnmeasured {face,
+/// entity, why} when it was not measured, kFaceAreaShort {face, entity, rel, the relative error
+/// reached when estimated}; none when it reached `rel`.
+std::optional<Warning> area_warning(const FaceMeasure& m, double rel, int face,
+                                    const std::string& entity);
 
 /// The kernel's plain data of an OpenCASCADE B-spline surface (same parametrization).
 NurbsSurfaceData nurbs_data(const Handle(Geom_BSplineSurface) & b);

@@ -36,6 +36,7 @@
 #include <cstdio>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <set>
 #include <utility>
 
@@ -83,21 +84,6 @@ Vec3 vec(const gp_Pnt& p) {
 
 // ---------------------------------------------------------------------------------------------
 // Listing: surface kind, degrees, range, natural boundary.
-
-// Empty when `m` reached the relative accuracy `rel`, else what it reached; why it was not
-// measured when it was not (FaceInfo::area_measured).
-std::string area_accuracy_note(const FaceMeasure& m, double rel) {
-  if (!m.measured) return m.failure;
-  if (m.converged) return {};
-  char buf[160];
-  if (m.area > 0.0 && m.error > 0.0)
-    std::snprintf(buf, sizeof buf, "area to %.1e relative (estimated), not the %.0e asked",
-                  m.error / m.area, rel);
-  else
-    std::snprintf(buf, sizeof buf,
-                  "area by OpenCASCADE's integration (no pcurves), accuracy unknown");
-  return buf;
-}
 
 // Strips rectangular trims to find the kind of surface a face lies on.
 Handle(Geom_Surface) basis_of(Handle(Geom_Surface) s) {
@@ -264,7 +250,10 @@ void file_neighbours(const TopTools_IndexedMapOfShape& faces, std::vector<FaceIn
   }
 }
 
-FaceInfo describe_face(const TopoDS_Face& f, int index, double area_rel, std::string& area_note) {
+// Face `index` of the file (made by its entity `entity`) listed, with its area to `area_rel`;
+// `area_note` is the area's warning when it falls short (area_warning()).
+FaceInfo describe_face(const TopoDS_Face& f, int index, const std::string& entity, double area_rel,
+                       std::optional<Warning>& area_note) {
   FaceInfo info;
   info.index = index;
   info.reversed = f.Orientation() == TopAbs_REVERSED;
@@ -278,7 +267,7 @@ FaceInfo describe_face(const TopoDS_Face& f, int index, double area_rel, std::st
   info.area = m.area;
   info.area_measured = m.measured;
   info.bbox = m.bbox;
-  area_note = area_accuracy_note(m, area_rel);
+  area_note = area_warning(m, area_rel, index, entity);
   const int wires = count_wires(f);
   info.holes = std::max(0, wires - 1);
   info.trimmed = !natural_boundary(f, s, nurbs_range(f, s), info.bbox.diagonal());
@@ -493,7 +482,7 @@ Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const To
                  s->DynamicType()->Name()};
 
   const double size = info.bbox.diagonal();
-  if (!(size > 0.0)) return Error{"the face has zero size"};
+  if (!(size > 0.0)) return Error{ErrorCode::kFaceZeroSize};
   const double tol3d = tol.trim_chord_rel * size;
   const Rect fr = uv_bounds(work);
   {
@@ -559,29 +548,7 @@ class OcctMoldFile final : public MoldFile {
 
   const Mold& mold() const override {
     if (!listed_) {
-      int failed = 0, short_areas = 0, invalid = 0;
-      std::string first, first_short, first_invalid;
-      for (int i = 0; i < faces_.Extent(); ++i) {
-        const size_t k = static_cast<size_t>(i);
-        if (!describe_once(i, false)) {
-          if (failed++ == 0) first = failure_[k];
-        } else if (!mold_.faces[k].area_measured) {
-          if (invalid++ == 0) first_invalid = face_name(i, entities_) + ": " + note_text(k);
-        } else if (!note_[k].empty() && state_[k] == State::kListed && short_areas++ == 0) {
-          first_short = face_name(i, entities_) + ": " + note_[k];
-        }
-      }
-      if (invalid)
-        mold_.warnings.push_back(
-            "listing: " + std::to_string(invalid) +
-            " faces whose area could not be measured (first: " + first_invalid + ")");
-      if (failed)
-        mold_.warnings.push_back("listing: " + std::to_string(failed) +
-                                 " faces could not be described (first: " + first + ")");
-      if (short_areas)
-        mold_.warnings.push_back("listing: " + std::to_string(short_areas) +
-                                 " face areas short of the accuracy asked (first: " + first_short +
-                                 ")");
+      list_faces();
       file_neighbours(faces_, mold_.faces);
       listed_ = true;
     }
@@ -606,7 +573,7 @@ class OcctMoldFile final : public MoldFile {
     if (!describe_once(index, true))
       return Error{what + ": " + failure_[static_cast<size_t>(index)]};
     if (!mold_.faces[static_cast<size_t>(index)].area_measured) {
-      Error e{ErrorCode::kFaceAreaNotMeasured, mold_.source, {note_[static_cast<size_t>(index)]}};
+      Error e{ErrorCode::kFaceAreaNotMeasured, mold_.source, {why_not_measured(index)}};
       e.face = index;
       e.where = entities_[static_cast<size_t>(index)];
       return e;
@@ -622,10 +589,7 @@ class OcctMoldFile final : public MoldFile {
   Result<ShellData> convert_shell(const std::vector<int>& indices) override {
     const ShellInput in{mold_.source, faces_, precision_, options_,
                         [this](int i) { return describe(i); }};
-    std::vector<std::string> warnings;
-    auto r = sew_faces(in, indices, warnings);
-    for (auto& w : warnings) mold_.warnings.push_back(std::move(w));
-    return r;
+    return sew_faces(in, indices, mold_.warnings);
   }
 
  private:
@@ -646,7 +610,8 @@ class OcctMoldFile final : public MoldFile {
     const TopoDS_Face& f = TopoDS::Face(faces_(i + 1));
     if (state_[k] == State::kPending) {
       auto info = guarded("could not be described", [&]() -> Result<FaceInfo> {
-        return describe_face(f, i, precise ? kAreaRelPrecise : kAreaRelListing, note_[k]);
+        return describe_face(f, i, entities_[k], precise ? kAreaRelPrecise : kAreaRelListing,
+                             note_[k]);
       });
       if (info) {
         info->name = mold_.faces[k].name;
@@ -667,20 +632,49 @@ class OcctMoldFile final : public MoldFile {
       }
       mold_.faces[k].area = m->area;
       mold_.faces[k].area_measured = m->measured;
-      note_[k] = area_accuracy_note(*m, kAreaRelPrecise);
+      note_[k] = area_warning(*m, kAreaRelPrecise, i, entities_[k]);
       state_[k] = State::kPrecise;
     } else {
       return state_[k] != State::kFailed;
     }
-    if (state_[k] == State::kPrecise && !note_[k].empty())
-      mold_.warnings.push_back(face_name(i, entities_) + ": " + note_text(k));
+    if (state_[k] == State::kPrecise && note_[k]) mold_.warnings.push_back(*note_[k]);
     return state_[k] != State::kFailed;
   }
 
-  // Face k's note for a warning.
-  std::string note_text(size_t k) const {
-    if (mold_.faces[k].area_measured) return note_[k];
-    return "area not measured (" + note_[k] + "): an invalid face";
+  // The listing of every face (describe_once()) and its warnings: the faces that could not be
+  // described, whose area could not be measured, and whose area falls short of the listing's
+  // accuracy (counts, then the first such face's data).
+  void list_faces() const {
+    Warning failed{WarningCode::kListingFailedFaces, {}};
+    Warning unmeasured{WarningCode::kUnmeasuredFaces, {}};
+    Warning short_areas{WarningCode::kShortAreaFaces, {}};
+    std::int64_t n_failed = 0, n_unmeasured = 0, n_short = 0;
+    const auto first = [](Warning& w, std::int64_t& n, std::vector<MessageValue> data) {
+      if (n++ == 0) w.values = std::move(data);
+    };
+    for (int i = 0; i < faces_.Extent(); ++i) {
+      const size_t k = static_cast<size_t>(i);
+      if (!describe_once(i, false))
+        first(failed, n_failed, {std::int64_t{i}, entities_[k], failure_[k]});
+      else if (!mold_.faces[k].area_measured)
+        first(unmeasured, n_unmeasured, note_[k] ? note_[k]->values : std::vector<MessageValue>{});
+      else if (note_[k] && state_[k] == State::kListed)
+        first(short_areas, n_short, note_[k]->values);
+    }
+    for (auto [w, n] : {std::pair{&unmeasured, n_unmeasured}, std::pair{&failed, n_failed},
+                        std::pair{&short_areas, n_short}})
+      if (n > 0) {
+        w->values.insert(w->values.begin(), MessageValue{n});
+        mold_.warnings.push_back(std::move(*w));
+      }
+  }
+
+  // Why face `index`, listed, could not be measured (its note's last value).
+  std::string why_not_measured(int index) const {
+    const auto& note = note_[static_cast<size_t>(index)];
+    if (note && !note->values.empty())
+      if (const auto* why = std::get_if<std::string>(&note->values.back())) return *why;
+    return {};
   }
 
   mutable Mold mold_;
@@ -690,8 +684,8 @@ class OcctMoldFile final : public MoldFile {
   double precision_;
   mutable std::vector<State> state_;
   mutable std::vector<std::string> failure_;
-  // The area's accuracy when short of the asked; why it was not measured when it was not.
-  mutable std::vector<std::string> note_;
+  // The face's area warning: its accuracy when short of the asked, why it was not measured.
+  mutable std::vector<std::optional<Warning>> note_;
   mutable bool listed_ = false;
 };
 
@@ -753,8 +747,8 @@ Result<std::unique_ptr<MoldFile>> open_with(const std::string& path, const std::
   TopTools_IndexedMapOfShape faces;
   TopExp::MapShapes(ro.shape, TopAbs_FACE, faces);
   if (faces.IsEmpty())
-    return Error{
-        ErrorCode::kFileNoFaces, path, {ro.warnings.empty() ? std::string() : ro.warnings.front()}};
+    return Error{ErrorCode::kFileNoFaces, path,
+                 ro.warnings.empty() ? std::vector<MessageValue>{} : ro.warnings.front().values};
 
   Mold mold;
   mold.source = path;

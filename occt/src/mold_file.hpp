@@ -27,6 +27,7 @@
 #include <cstdint>
 #include <exception>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -55,10 +56,10 @@ class Deadline : public Message_ProgressIndicator {
 
 /// What a format's reader hands over to the shared code.
 struct ReadOutput {
-  TopoDS_Shape shape;                 ///< every transferred root, as one shape
-  std::string schema;                 ///< STEP schema, or IGES version and sending system
-  std::string unit;                   ///< the file's length unit, as the file names it
-  std::vector<std::string> warnings;  ///< summarised reader messages
+  TopoDS_Shape shape;             ///< every transferred root, as one shape
+  std::string schema;             ///< STEP schema, or IGES version and sending system
+  std::string unit;               ///< the file's length unit, as the file names it
+  std::vector<Warning> warnings;  ///< the reader's messages, summarised (reader_checks())
   /// Names of the entities that produced transferred faces, wires and edges.
   std::vector<std::pair<TopoDS_Shape, std::string>> shape_names;
   /// The file's length precision in millimetres (see file_precision()).
@@ -156,13 +157,15 @@ struct ShellInput {
 
 /// Sews faces `indices` of a file (empty: all) into a shell and converts them
 /// (MoldFile::convert_shell); what the sewing finds (several components, non-manifold edges,
-/// faces reoriented) is appended to `warnings`. Defined in occt_shell.cpp.
+/// faces reoriented) is appended to `warnings`. Defined in shell_sewing.cpp.
 Result<ShellData> sew_faces(const ShellInput& input, const std::vector<int>& indices,
-                            std::vector<std::string>& warnings);
+                            std::vector<Warning>& warnings);
 
-/// One-line summary of the fails and warnings of a check list, grouped by message
-/// ("load: 3 warnings (2x 'A', 1x 'B')"); empty when there are none.
-std::string summarise_checks(const Interface_CheckIterator& checks, const std::string& stage);
+/// The fails and warnings of a check list at `stage` ("load", "transfer") as one warning
+/// (WarningCode::kReaderMessages: their counts and the most frequent of OpenCASCADE's messages,
+/// which are its data); none when the list has neither.
+std::optional<Warning> reader_checks(const Interface_CheckIterator& checks,
+                                     const std::string& stage);
 
 /// The names of the entities of `process` that produced faces (or any shape), via `name_of`.
 std::vector<std::pair<TopoDS_Shape, std::string>> shape_names(

@@ -446,8 +446,7 @@ Status write_builtin(const BuiltinFace& face, const std::string& path,
     auto f = make_face(b, *dom);
     if (!f) return Error{path}.because(f.error());
     AtomicFile file(path, true);
-    if (!file.ok())
-      return Error{path + ": cannot create the file (folder missing or not writable?)"};
+    if (!file.ok()) return Error{ErrorCode::kFileNotCreated, path};
     const std::vector<NamedFace> names = {{*f, options.name}};
     const Status st = *format == "step" ? write_step(*f, names, path, options, file.stream())
                                         : write_iges(*f, names, path, options, file.stream());
@@ -467,7 +466,7 @@ Status write_faces(const ShellData& shell, const std::string& path,
                    const MoldWriteOptions& options) {
   auto format = format_of(path, options);
   if (!format) return format.error();
-  if (shell.faces.empty()) return Error{path + ": the shell has no faces"};
+  if (shell.faces.empty()) return Error{ErrorCode::kShellNoFaces, path};
   std::vector<BuiltinFace> faces;
   std::vector<ParamDomain> domains;
   double largest = 0.0;
@@ -512,8 +511,7 @@ Status write_faces(const ShellData& shell, const std::string& path,
         if (sew.IsModified(n.face)) n.face = TopoDS::Face(sew.Modified(n.face));
     }
     AtomicFile file(path, true);
-    if (!file.ok())
-      return Error{path + ": cannot create the file (folder missing or not writable?)"};
+    if (!file.ok()) return Error{ErrorCode::kFileNotCreated, path};
     const Status st = *format == "step" ? write_step(shape, named, path, options, file.stream())
                                         : write_iges(shape, named, path, options, file.stream());
     if (!st) return st;

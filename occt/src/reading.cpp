@@ -195,14 +195,13 @@ Status read_file(XSControl_Reader& reader, const std::string& path,
 void transfer_roots(XSControl_Reader& reader, Deadline& deadline,
                     const std::function<std::string(const Handle(Standard_Transient) &)>& name_of,
                     ReadOutput& out) {
-  if (auto w = summarise_checks(reader.WS()->ModelCheckList(), "load"); !w.empty())
-    out.warnings.push_back(w);
+  if (auto w = reader_checks(reader.WS()->ModelCheckList(), "load")) out.warnings.push_back(*w);
   reader.TransferRoots(deadline.Start());
   const Handle(Transfer_TransientProcess) process =
       reader.WS()->TransferReader()->TransientProcess();
   if (!process.IsNull())
-    if (auto w = summarise_checks(process->CheckList(Standard_False), "transfer"); !w.empty())
-      out.warnings.push_back(w);
+    if (auto w = reader_checks(process->CheckList(Standard_False), "transfer"))
+      out.warnings.push_back(*w);
   out.shape = reader.OneShape();
   out.shape_names = shape_names(process, name_of);
   TopTools_IndexedMapOfShape faces;
@@ -213,31 +212,46 @@ void transfer_roots(XSControl_Reader& reader, Deadline& deadline,
   out.precision = file_precision(reader);
 }
 
-std::string summarise_checks(const Interface_CheckIterator& checks, const std::string& stage) {
+namespace {
+
+// Reader messages named in a warning: the most frequent few of fails and of warnings.
+constexpr std::size_t kReaderMessagesShown = 3;
+
+// Appends to `values` the count of `messages` (by text: how often each was given), how many
+// kinds there are and how many are shown, then (count, text) of the most frequent shown.
+void add_messages(const std::map<std::string, int>& messages, std::vector<MessageValue>& values) {
+  std::vector<std::pair<int, std::string>> v;
+  std::int64_t total = 0;
+  for (const auto& [msg, k] : messages) {
+    v.emplace_back(-k, msg);
+    total += k;
+  }
+  std::sort(v.begin(), v.end());
+  const std::size_t shown = std::min(v.size(), kReaderMessagesShown);
+  values.insert(values.end(),
+                {total, static_cast<std::int64_t>(v.size()), static_cast<std::int64_t>(shown)});
+  for (std::size_t i = 0; i < shown; ++i) {
+    std::string msg = v[i].second;
+    std::replace(msg.begin(), msg.end(), '\n', ' ');
+    values.insert(values.end(), {std::int64_t{-v[i].first}, std::move(msg)});
+  }
+}
+
+}  // namespace
+
+std::optional<Warning> reader_checks(const Interface_CheckIterator& checks,
+                                     const std::string& stage) {
   std::map<std::string, int> fails, warnings;
-  int nf = 0, nw = 0;
   for (checks.Start(); checks.More(); checks.Next()) {
     const Handle(Interface_Check)& c = checks.Value();
-    for (int i = 1; i <= c->NbFails(); ++i, ++nf) fails[c->CFail(i)]++;
-    for (int i = 1; i <= c->NbWarnings(); ++i, ++nw) warnings[c->CWarning(i)]++;
+    for (int i = 1; i <= c->NbFails(); ++i) fails[c->CFail(i)]++;
+    for (int i = 1; i <= c->NbWarnings(); ++i) warnings[c->CWarning(i)]++;
   }
-  auto group = [](const std::map<std::string, int>& m, int n, const char* word) {
-    std::vector<std::pair<int, std::string>> v;
-    for (const auto& [msg, k] : m) v.emplace_back(-k, msg);
-    std::sort(v.begin(), v.end());
-    std::string s = std::to_string(n) + " " + word + (n == 1 ? "" : "s") + " (";
-    for (size_t i = 0; i < v.size() && i < 3; ++i) {
-      std::string msg = v[i].second;
-      std::replace(msg.begin(), msg.end(), '\n', ' ');
-      s += (i ? ", " : "") + std::to_string(-v[i].first) + "x '" + msg + "'";
-    }
-    if (v.size() > 3) s += ", ...";
-    return s + ")";
-  };
-  std::string out;
-  if (nf) out += group(fails, nf, "fail");
-  if (nw) out += (out.empty() ? "" : ", ") + group(warnings, nw, "warning");
-  return out.empty() ? out : stage + ": " + out;
+  if (fails.empty() && warnings.empty()) return std::nullopt;
+  Warning w{WarningCode::kReaderMessages, {stage}};
+  add_messages(fails, w.values);
+  add_messages(warnings, w.values);
+  return w;
 }
 
 std::vector<std::pair<TopoDS_Shape, std::string>> shape_names(

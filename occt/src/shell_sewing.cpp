@@ -75,11 +75,6 @@ std::string mm(double x) {
   return buf;
 }
 
-// "1 edge", "3 edges".
-std::string count(int n, const std::string& noun) {
-  return std::to_string(n) + " " + noun + (n == 1 ? "" : "s");
-}
-
 // Connected parts of the shell (faces joined by shared edges), by union-find.
 struct Parts {
   std::vector<int> parent;
@@ -345,23 +340,19 @@ Status convert_faces(const ShellInput& in, const Selection& sel,
 // The sewing's warnings: separate shells, non-manifold edges, faces reversed, a shell that
 // cannot be oriented.
 void add_sewing_warnings(size_t n, const Orientation& o, int non_manifold, int disagreeing,
-                         std::vector<std::string>& warnings) {
+                         std::vector<Warning>& warnings) {
   if (o.part_count > 1)
-    warnings.push_back("sewing: the " + std::to_string(n) + " faces form " +
-                       std::to_string(o.part_count) +
-                       " separate shells that no shared edge joins; a drape stays on the one it "
-                       "starts on");
+    warnings.push_back(
+        {WarningCode::kSeparateShells, {static_cast<std::int64_t>(n), std::int64_t{o.part_count}}});
   if (non_manifold > 0)
-    warnings.push_back("sewing: " + count(non_manifold, "edge") +
-                       (non_manifold == 1 ? " bounds" : " bound") +
-                       " more than two faces (non-manifold), treated as free");
-  if (!o.reoriented.empty())
-    warnings.push_back("sewing: " + face_list(o.reoriented) +
-                       " reversed to orient the shell consistently");
+    warnings.push_back({WarningCode::kNonManifoldEdges, {std::int64_t{non_manifold}}});
+  if (!o.reoriented.empty()) {
+    Warning w{WarningCode::kFacesReoriented, {}};
+    for (const int f : o.reoriented) w.values.emplace_back(std::int64_t{f});
+    warnings.push_back(std::move(w));
+  }
   if (disagreeing > 0)
-    warnings.push_back("sewing: " + count(disagreeing, "shared edge") +
-                       (disagreeing == 1 ? " joins" : " join") +
-                       " faces oriented against each other (a non-orientable shell)");
+    warnings.push_back({WarningCode::kShellNotOrientable, {std::int64_t{disagreeing}}});
 }
 
 }  // namespace
@@ -395,7 +386,7 @@ double file_precision(XSControl_Reader& reader) {
 }
 
 Result<ShellData> sew_faces(const ShellInput& in, const std::vector<int>& given,
-                            std::vector<std::string>& warnings) {
+                            std::vector<Warning>& warnings) {
   auto selected = select_faces(in, given);
   if (!selected) return selected.error();
   const Selection& sel = selected.value();

@@ -8,6 +8,7 @@
 #include "corpus.hpp"
 #include "face_measure.hpp"  // occt/src
 #include "occt/occt_reference.hpp"
+#include "support/warnings.hpp"
 
 #include <BRepCheck_Analyzer.hxx>
 #include <nlohmann/json.hpp>
@@ -128,10 +129,34 @@ TEST_CASE("importers: plyfit info lists a file with an invalid face, its area ma
     else
       CHECK(f["area_mm2"].get<double>() > 0.0);
   }
+  bool warned = false;
+  for (const auto& w : j["warnings"]) warned = warned || w["code"] == "unmeasured_faces";
+  CHECK(warned);
   const Run one = run_plyfit("info '" + path + "' --face " + std::to_string(kInvalidFace), dir);
   INFO("exit " << one.code << ", stderr: " << one.err);
   CHECK(one.code == 1);
   CHECK(std::count(one.err.begin(), one.err.end(), '\n') == 1);
   CHECK(one.err.find(path) != std::string::npos);
   CHECK(one.err.find("face " + std::to_string(kInvalidFace)) != std::string::npos);
+}
+
+TEST_CASE(
+    "importers: a face whose area cannot be measured is a warning of the listing and of the face") {
+  TempDir dir("invalid_brep_warnings");
+  auto file = importers::open_mold(invalid_brep_file(dir));
+  REQUIRE(file.ok());
+  const auto listing = support::with_code((*file)->mold().warnings, WarningCode::kUnmeasuredFaces);
+  REQUIRE(listing.size() == 1);
+  CHECK(support::value(listing[0], 0) == 1);  // faces
+  CHECK(support::value(listing[0], 1) == kInvalidFace);
+  CHECK_FALSE(support::text(listing[0], 3).empty());  // why
+  // Converting it fails; the face's own warning says why too.
+  auto face = (*file)->convert_face(kInvalidFace);
+  REQUIRE_FALSE(face.ok());
+  CHECK(face.error().code == ErrorCode::kFaceAreaNotMeasured);
+  CHECK(face.error().face == kInvalidFace);
+  const auto own =
+      support::with_code((*file)->summary().warnings, WarningCode::kFaceAreaUnmeasured);
+  REQUIRE(own.size() == 1);
+  CHECK(support::value(own[0], 0) == kInvalidFace);
 }

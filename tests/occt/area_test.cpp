@@ -30,6 +30,7 @@
 #include "face_measure.hpp"  // occt/src
 #include "occt/occt_reference.hpp"
 #include "occt/write_shapes.hpp"
+#include "support/warnings.hpp"
 
 #include <algorithm>
 #include "surface/face.hpp"
@@ -186,6 +187,41 @@ TEST_CASE("importers: face areas against closed forms: listed to 1e-6, described
     REQUIRE(first.ok());
     CHECK(first->area == described[0]);
     // No warning: every area reached its accuracy.
-    for (const auto& w : (*file)->summary().warnings) CHECK(w.find("area") == std::string::npos);
+    CHECK(support::with_codes((*file)->summary().warnings,
+                              {WarningCode::kFaceAreaShort, WarningCode::kFaceAreaUnmeasured,
+                               WarningCode::kShortAreaFaces, WarningCode::kUnmeasuredFaces})
+              .empty());
   }
+}
+
+TEST_CASE("importers: a face's area short of its accuracy is a warning with the accuracy reached") {
+  using importers::occt::area_warning;
+  importers::occt::FaceMeasure m;
+  m.area = 200.0;
+  m.error = 2e-5;
+  m.converged = true;
+  CHECK_FALSE(area_warning(m, 1e-9, 3, "#12"));
+  m.converged = false;
+  auto w = area_warning(m, 1e-9, 3, "#12");
+  REQUIRE(w);
+  CHECK(w->code == WarningCode::kFaceAreaShort);
+  CHECK(support::value(*w, 0) == 3);
+  CHECK(support::text(*w, 1) == "#12");
+  CHECK(support::value(*w, 2) == 1e-9);
+  CHECK(support::value(*w, 3) == 2e-5 / 200.0);
+  // No error estimate (OpenCASCADE's integration): the accuracy reached is not given.
+  m.error = 0.0;
+  w = area_warning(m, 1e-6, 0, "");
+  REQUIRE(w);
+  CHECK(w->code == WarningCode::kFaceAreaShort);
+  CHECK(w->values.size() == 3);
+  // Not measured: why, instead.
+  m.measured = false;
+  m.failure = "the integration gave no finite value";
+  w = area_warning(m, 1e-9, 5, "DE 7");
+  REQUIRE(w);
+  CHECK(w->code == WarningCode::kFaceAreaUnmeasured);
+  CHECK(support::value(*w, 0) == 5);
+  CHECK(support::text(*w, 1) == "DE 7");
+  CHECK(support::text(*w, 2) == m.failure);
 }

@@ -16,6 +16,7 @@
 #include <catch2/catch.hpp>
 
 #include "occt/occt_reference.hpp"
+#include "support/warnings.hpp"
 
 #include <map>
 #include <set>
@@ -276,11 +277,19 @@ inline void check_kernel_shell(const ShellData& data, int euler, int free_loops)
   if (free_loops != kUnchecked) CHECK(shell->free_loop_count() == free_loops);
 }
 
-/// True when one of `warnings` contains `text`.
-inline bool mentions(const std::vector<std::string>& warnings, const std::string& text) {
-  for (const auto& w : warnings)
-    if (w.find(text) != std::string::npos) return true;
-  return false;
+/// The warnings of sewing faces into a shell among `warnings`.
+inline std::vector<Warning> sewing_warnings(const std::vector<Warning>& warnings) {
+  return support::with_codes(warnings,
+                             {WarningCode::kSeparateShells, WarningCode::kNonManifoldEdges,
+                              WarningCode::kFacesReoriented, WarningCode::kShellNotOrientable});
+}
+
+/// The one warning of `warnings` with `code`, as the numbers of its values (empty when there
+/// is none; a second one fails the test).
+inline std::vector<double> the_warning(const std::vector<Warning>& warnings, WarningCode code) {
+  const auto found = support::with_code(warnings, code);
+  CHECK(found.size() <= 1);
+  return found.empty() ? std::vector<double>{} : support::numbers(found.front());
 }
 
 }  // namespace plyfit::test

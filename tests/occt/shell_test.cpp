@@ -114,12 +114,8 @@ TEST_CASE("importers: a box of six loose faces sews into a closed shell, oriente
     if (flipped >= 0) CHECK(outwards == 5);
     const bool kept = outwards > 3 || (outwards == 3 && out[0]);
     std::set<int> reversed;
-    std::string listed;
     for (int i = 0; i < 6; ++i)
-      if (out[i] != kept) {
-        reversed.insert(i);
-        listed += (listed.empty() ? "" : ", ") + std::to_string(i);
-      }
+      if (out[i] != kept) reversed.insert(i);
 
     auto shell = (*file)->convert_shell({});  // all faces
     INFO((shell.ok() ? std::string() : exporters::describe(shell.error())));
@@ -131,10 +127,10 @@ TEST_CASE("importers: a box of six loose faces sews into a closed shell, oriente
     CHECK(shell->tolerance <= kRoundoffRel * 50.0);
     const auto& warnings = (*file)->summary().warnings;
     if (reversed.empty())
-      CHECK_FALSE(mentions(warnings, "sewing"));
+      CHECK(sewing_warnings(warnings).empty());
     else
-      CHECK(mentions(warnings, (reversed.size() == 1 ? "sewing: face " : "sewing: faces ") +
-                                   listed + " reversed to orient the shell consistently"));
+      CHECK(the_warning(warnings, WarningCode::kFacesReoriented) ==
+            std::vector<double>(reversed.begin(), reversed.end()));
     auto [faces, sizes] = kernel_faces(**file, *shell);
     const ShellCheck c = check_shell(*shell, faces, sizes);  // uses opposite everywhere
     CHECK(c.shared == 12);
@@ -211,14 +207,15 @@ TEST_CASE("importers: the sewing closes a gap below the file's precision and rep
     REQUIRE(s.ok());
     CHECK(s->edge_count == 0);
     CHECK(s->tolerance == 0.0);
-    CHECK(mentions((*f)->summary().warnings, "sewing: the 2 faces form 2 separate shells"));
+    CHECK(the_warning((*f)->summary().warnings, WarningCode::kSeparateShells) ==
+          std::vector<double>{2, 2});
     auto c = importers::open_mold(coarse);
     REQUIRE(c.ok());
     s = (*c)->convert_shell({0, 1});
     REQUIRE(s.ok());
     CHECK(s->edge_count == 1);
     CHECK(std::abs(s->tolerance - kGap) <= gap_tol);
-    CHECK_FALSE(mentions((*c)->summary().warnings, "sewing"));
+    CHECK(sewing_warnings((*c)->summary().warnings).empty());
     auto [faces, sizes] = kernel_faces(**c, *s);
     const ShellCheck sc = check_shell(*s, faces, sizes);
     CHECK(sc.shared == 1);
@@ -263,14 +260,12 @@ TEST_CASE("importers: an edge of three faces is non-manifold: free, with a warni
   int of_three = 0;
   for (int e = 1; e <= edge_faces.Extent(); ++e) of_three += edge_faces(e).Extent() == 3;
   REQUIRE(of_three == 1);  // the file really holds it
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
   auto shell = importers::load_shell(path, {}, {}, &warnings);
   REQUIRE(shell.ok());
   CHECK(shell->edge_count == 0);
-  CHECK(mentions(warnings,
-                 "sewing: 1 edge bounds more than two faces (non-manifold), treated "
-                 "as free"));
-  CHECK(mentions(warnings, "sewing: the 3 faces form 3 separate shells"));
+  CHECK(the_warning(warnings, WarningCode::kNonManifoldEdges) == std::vector<double>{1});
+  CHECK(the_warning(warnings, WarningCode::kSeparateShells) == std::vector<double>{3, 3});
   for (const auto& f : shell->faces)
     for (const auto& loop : f.loops)
       for (auto t : loop.edges) CHECK(t == TrimLoop::kFreeEdge);
@@ -300,7 +295,7 @@ TEST_CASE("importers: bad face lists for a shell are one-line errors naming the 
   REQUIRE_FALSE(bad.ok());
   CHECK(bad.error().code == ErrorCode::kSewingToleranceInvalid);
   CHECK(bad.error().input == path);
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
   auto missing = importers::load_shell(dir.file("none.step"), {}, {}, &warnings);
   REQUIRE_FALSE(missing.ok());
   CHECK(exporters::describe(missing.error()).find(dir.file("none.step")) != std::string::npos);

@@ -6,6 +6,7 @@
 #include <plyfit/exporters/atomic_file.hpp>
 #include <plyfit/exporters/laminate.hpp>
 #include <plyfit/exporters/messages.hpp>
+#include <plyfit/exporters/warnings_json.hpp>
 
 #include "render/text.hpp"
 
@@ -163,9 +164,6 @@ std::string csv_field(const std::string& s) {
 std::string plybook_json(const Plybook& book) {
   nlohmann::json plies = nlohmann::json::array();
   for (const auto& p : book.plies) {
-    nlohmann::json warnings = nlohmann::json::array();
-    for (const auto& w : p.warnings)
-      warnings.push_back({{"code", to_string(w.code)}, {"text", message(w)}});
     nlohmann::json files = nlohmann::json::array();
     for (const auto& f : p.files) files.push_back(p.name + "/" + f);
     nlohmann::json ply = {{"sequence", p.sequence},
@@ -177,7 +175,7 @@ std::string plybook_json(const Plybook& book) {
                           {"error_code", p.error_code},
                           {"flat_area_mm2", p.flat_area},
                           {"shear_max_deg", p.shear_max_deg},
-                          {"warnings", warnings},
+                          {"warnings", warnings_json(p.warnings)},
                           {"files", files}};
     if (!p.pieces.empty()) add_pieces(ply, p);
     plies.push_back(std::move(ply));

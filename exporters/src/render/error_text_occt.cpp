@@ -51,10 +51,10 @@ std::string text_face_index_range(const Values& x) {
 
 PLYFIT_SENTENCE(text_read_time_limit, "reading took longer than the time limit ({n0} s)");
 
-// Values: the reader's first warning, or "".
+// Values: the reader's first warning's (warning_reader_messages()), or none.
 std::string text_file_no_faces(const Values& x) {
-  const std::string w = x.text(0);
-  return "no faces (nothing in the file transfers to a surface" + (w.empty() ? "" : "; " + w) + ")";
+  return "no faces (nothing in the file transfers to a surface" +
+         (x.v.empty() ? "" : "; " + warning_reader_messages(x)) + ")";
 }
 
 PLYFIT_SENTENCE(text_face_listed_twice, "face {n0} is listed twice");

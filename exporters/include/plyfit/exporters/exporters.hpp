@@ -40,8 +40,8 @@ struct RunInfo {
   std::string seed_curve_file;          ///< --seed-curve FILE[:PICK] (SeedCurve::kCurve)
   std::vector<std::string> dart_files;  ///< --dart FILE[:PICK], each as given
   double import_ms = 0, drape_ms = 0, total_ms = 0;
-  std::vector<std::string> outputs;   ///< exporter keys being written
-  std::vector<std::string> warnings;  ///< import warnings etc.
+  std::vector<std::string> outputs;  ///< exporter keys being written
+  std::vector<Warning> warnings;     ///< the mold's (Mold::warnings: reading, listing, sewing it)
 };
 
 /// The ply a drape laid (report.json `ply`): how it was defined and the frame measured on the

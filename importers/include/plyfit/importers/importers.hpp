@@ -130,6 +130,6 @@ Result<MoldSurface> load_face(const std::string& path, int index,
 /// `warnings`, when given, receives the file's reader and sewing warnings.
 Result<ShellData> load_shell(const std::string& path, const std::vector<int>& indices,
                              const ImportOptions& options = {},
-                             std::vector<std::string>* warnings = nullptr);
+                             std::vector<Warning>* warnings = nullptr);
 
 }  // namespace plyfit::importers

@@ -45,7 +45,9 @@ struct Mold {
   std::string schema;  ///< file schema / flavour (e.g. AUTOMOTIVE_DESIGN, IGES 5.3)
   std::string unit;    ///< the file's length unit; geometry is converted to millimetres
   std::vector<FaceInfo> faces;
-  std::vector<std::string> warnings;  ///< reader warnings, summarised (never printed raw)
+  /// What reading, listing and sewing it found that did not stop them (codes with data: the
+  /// reader's own messages, summarised, faces whose area falls short, separate shells, ...).
+  std::vector<Warning> warnings;
 };
 
 /// A point of a drape surface: the face it lies on and its parameters (u, v) there. The face

@@ -318,7 +318,18 @@ struct Error {
   X(PathSlit, path_slit)                      \
   /* kernel: splices */                       \
   X(SpliceStaggerUnmet, splice_stagger_unmet) \
-  X(DartsNotEnough, darts_not_enough)
+  X(DartsNotEnough, darts_not_enough)         \
+  /* importers and the OpenCASCADE module */  \
+  X(ReaderMessages, reader_messages)          \
+  X(FaceAreaShort, face_area_short)           \
+  X(FaceAreaUnmeasured, face_area_unmeasured) \
+  X(ListingFailedFaces, listing_failed_faces) \
+  X(UnmeasuredFaces, unmeasured_faces)        \
+  X(ShortAreaFaces, short_area_faces)         \
+  X(SeparateShells, separate_shells)          \
+  X(NonManifoldEdges, non_manifold_edges)     \
+  X(FacesReoriented, faces_reoriented)        \
+  X(ShellNotOrientable, shell_not_orientable)
 
 /// What a run reports that is not an error (see PLYFIT_WARNING_CODES).
 enum class WarningCode : std::uint16_t {
