@@ -156,14 +156,10 @@ std::vector<DroppedTrims> dropped_trims(const IGESControl_Reader& reader,
 }
 
 // The listing's warning for d: the face is listed and draped untrimmed, which the user must know.
-std::string dropped_trims_text(const DroppedTrims& d) {
-  char gap[96] = "";
-  if (d.gap_mm > 0.0)
-    std::snprintf(gap, sizeof gap, " (its model-space curves leave a gap of %.6g mm)", d.gap_mm);
-  return "trims: " + (d.face >= 0 ? "face " + std::to_string(d.face) : std::string("no face")) +
-         " (trimmed surface DE " + std::to_string(d.entity) + "): " + std::to_string(d.dropped) +
-         " of its " + std::to_string(d.loops) + " trim loop(s) could not be read and were dropped" +
-         gap + "; the face is listed and draped as its whole surface, untrimmed";
+Warning dropped_trims_warning(const DroppedTrims& d) {
+  return {WarningCode::kTrimLoopsDropped,
+          {std::int64_t{d.face}, std::int64_t{d.entity}, std::int64_t{d.dropped},
+           std::int64_t{d.loops}, d.gap_mm}};
 }
 
 }  // namespace
@@ -187,7 +183,7 @@ Result<occt::ReadOutput> read_iges(const std::string& path, occt::Deadline& dead
   // (A transfer stopped by the deadline is an error of the caller's: nothing to look at.)
   if (!deadline.expired() && !out.shape.IsNull())
     for (const DroppedTrims& d : dropped_trims(reader, out.shape))
-      out.warnings.push_back(dropped_trims_text(d));
+      out.warnings.push_back(dropped_trims_warning(d));
   return out;
 }
 

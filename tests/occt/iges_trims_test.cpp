@@ -124,10 +124,12 @@ void write_3d_trims(const TopoDS_Face& face, const std::string& path) {
   REQUIRE(w.Write(path.c_str()));
 }
 
+// Whether m warns trim_loops_dropped for `face` (its first value), with a gap measured.
 bool warns_trims(const Mold& m, int face) {
-  const std::string prefix = "trims: face " + std::to_string(face) + " ";
-  return std::any_of(m.warnings.begin(), m.warnings.end(),
-                     [&](const std::string& w) { return w.rfind(prefix, 0) == 0; });
+  return std::any_of(m.warnings.begin(), m.warnings.end(), [&](const Warning& w) {
+    return w.code == WarningCode::kTrimLoopsDropped && w.values.size() == 5 &&
+           std::get<std::int64_t>(w.values[0]) == face;
+  });
 }
 
 }  // namespace

@@ -130,4 +130,16 @@ std::string warning_shell_not_orientable(const Values& x) {
          " faces oriented against each other (a non-orientable shell)";
 }
 
+// Values: the face (-1: none made), the 144's entity (DE), loops dropped, loops it has, the
+// widest gap of the dropped loops' model-space curves in mm (0: unknown).
+std::string warning_trim_loops_dropped(const Values& x) {
+  char gap[96] = "";
+  if (x.number(4) > 0.0)
+    std::snprintf(gap, sizeof gap, " (its model-space curves leave a gap of %.6g mm)", x.number(4));
+  return "trims: " + (x.count(0) >= 0 ? "face " + x.n(0) : std::string("no face")) +
+         " (trimmed surface DE " + x.n(1) + "): " + x.n(2) + " of its " + x.n(3) +
+         " trim loop(s) could not be read and were dropped" + gap +
+         "; the face is listed and draped as its whole surface, untrimmed";
+}
+
 }  // namespace plyfit::exporters::render

@@ -329,7 +329,8 @@ struct Error {
   X(SeparateShells, separate_shells)          \
   X(NonManifoldEdges, non_manifold_edges)     \
   X(FacesReoriented, faces_reoriented)        \
-  X(ShellNotOrientable, shell_not_orientable)
+  X(ShellNotOrientable, shell_not_orientable) \
+  X(TrimLoopsDropped, trim_loops_dropped)
 
 /// What a run reports that is not an error (see PLYFIT_WARNING_CODES).
 enum class WarningCode : std::uint16_t {
