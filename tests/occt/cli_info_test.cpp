@@ -17,17 +17,14 @@ using namespace plyfit::test;
 
 TEST_CASE("importers: plyfit info lists the faces of a file") {
   TempDir dir("cli_info");
-  const std::string path = sample_mold("tube-window.step");
-  const Run r = check_info_table(path, dir, 1);
-  CHECK(r.out.find("summary: 1 faces (bspline 1), 1 rational, 1 trimmed (1 with holes)") !=
-        std::string::npos);
-  CHECK(r.out.find("'tube-window'") != std::string::npos);
-  CHECK(r.out.find("unit: millimetre") != std::string::npos);
-  CHECK(r.out.find("schema: AUTOMOTIVE_DESIGN") != std::string::npos);
-  // Reader messages appear summarised after the summary line: OpenCASCADE's STEP reader makes
-  // the closed B-spline of the tube periodic, and says so.
-  CHECK(r.out.find("\nwarning: transfer: 1 warning (1x 'Surface forced to be periodic')") !=
-        std::string::npos);
+  // OpenCASCADE's STEP reader makes the closed B-spline of the tube periodic, and says so:
+  // reader messages appear summarised after the summary line.
+  check_info_listings({{sample_mold("tube-window.step"),
+                        1,
+                        {"summary: 1 faces (bspline 1), 1 rational, 1 trimmed (1 with holes)",
+                         "'tube-window'", "unit: millimetre", "schema: AUTOMOTIVE_DESIGN",
+                         "\nwarning: transfer: 1 warning (1x 'Surface forced to be periodic')"}}},
+                      dir);
 }
 
 TEST_CASE("importers: plyfit info --json parses and matches the library's listing") {
@@ -44,9 +41,7 @@ TEST_CASE("importers: plyfit info --json parses and matches the library's listin
                                                0) == 0);
   }
   // Reader warnings reach the JSON too.
-  const Run w = run_plyfit("info --json '" + sample_mold("tube-window.step") + "'", dir);
-  REQUIRE(w.code == 0);
-  CHECK_FALSE(nlohmann::json::parse(w.out)["warnings"].empty());
+  check_info_json_warns(sample_mold("tube-window.step"), dir);
 }
 
 TEST_CASE("importers: plyfit info exit codes: 1 for a bad file, 2 for a bad command line") {
