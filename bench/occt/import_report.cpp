@@ -24,8 +24,6 @@
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
 
-#include <unistd.h>
-
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -147,16 +145,16 @@ double megabytes(const std::string& path) {
 ImportReport import_report(int runs, const std::string& stress_dir, const std::string& baseline) {
   Message::DefaultMessenger()->ChangePrinters().Clear();
   ImportReport rep;
-  rep.table.caption =
-      fmt("Import speed, medians of %d runs. *OpenCASCADE read*: STEPControl_Reader or "
-          "IGESControl_Reader, ReadFile and TransferRoots, in this process. *open*: "
-          "importers::open_mold (read, transfer, face walk); *listing*: open and mold() (every "
-          "face described, areas to 1e-6: plyfit info's work); *import*: load_face of the file's "
-          "heaviest face (most poles): open, its description with the area to 1e-9, conversion and "
-          "Face::create, what a drape's `timing_ms.import` covers. *plyfit info*: the whole "
-          "process, output discarded%s.",
-          std::max(runs, kMinRuns),
-          baseline.empty() ? "" : "; *before*: the same with the baseline binary");
+  rep.table.caption = format(
+      "Import speed, medians of %d runs. *OpenCASCADE read*: STEPControl_Reader or "
+      "IGESControl_Reader, ReadFile and TransferRoots, in this process. *open*: "
+      "importers::open_mold (read, transfer, face walk); *listing*: open and mold() (every "
+      "face described, areas to 1e-6: plyfit info's work); *import*: load_face of the file's "
+      "heaviest face (most poles): open, its description with the area to 1e-9, conversion and "
+      "Face::create, what a drape's `timing_ms.import` covers. *plyfit info*: the whole "
+      "process, output discarded%s.",
+      std::max(runs, kMinRuns),
+      baseline.empty() ? "" : "; *before*: the same with the baseline binary");
   rep.table.header = {
       "file",         "MB",   "faces",       "OpenCASCADE read (ms)",     "open (ms)",
       "listing (ms)", "face", "import (ms)", "import / OpenCASCADE read", "plyfit info (ms)"};
@@ -189,19 +187,19 @@ ImportReport import_report(int runs, const std::string& stress_dir, const std::s
     rep.max_ratio = std::max(rep.max_ratio, ratio);
     rep.max_info_s = std::max(rep.max_info_s, t_info);
     std::vector<std::string> row = {f.label,
-                                    fmt("%.2f", megabytes(f.path)),
-                                    fmt("%zu", (*file)->mold().faces.size()),
-                                    fmt("%.1f", 1e3 * t_occt),
-                                    fmt("%.1f", 1e3 * t_open),
-                                    fmt("%.1f", 1e3 * t_list),
-                                    fmt("%d", face),
-                                    fmt("%.1f", 1e3 * t_import),
-                                    fmt("%.2f", ratio),
-                                    fmt("%.0f", 1e3 * t_info)};
+                                    format("%.2f", megabytes(f.path)),
+                                    format("%zu", (*file)->mold().faces.size()),
+                                    format("%.1f", 1e3 * t_occt),
+                                    format("%.1f", 1e3 * t_open),
+                                    format("%.1f", 1e3 * t_list),
+                                    format("%d", face),
+                                    format("%.1f", 1e3 * t_import),
+                                    format("%.2f", ratio),
+                                    format("%.0f", 1e3 * t_info)};
     if (!baseline.empty()) {
       bool base_ok = true;
       row.push_back(
-          fmt("%.0f", 1e3 * median_process({baseline, "info", f.path}, {}, runs, &base_ok)));
+          format("%.0f", 1e3 * median_process({baseline, "info", f.path}, {}, runs, &base_ok)));
       if (!base_ok) row.back() += " (failed)";
     }
     rep.table.add(row);
@@ -264,9 +262,10 @@ Table area_table(const std::string& stress_dir) {
       occt_err = std::max(
           occt_err, std::abs(occt[static_cast<size_t>(i)] - described[static_cast<size_t>(i)]) /
                         described[static_cast<size_t>(i)]);
-    t.add({f.label, fmt("%d", n), fmt("%.1f", 1e3 * t_list), fmt("%.1f", 1e3 * t_desc),
-           fmt("%.0f%s", 1e3 * t_occt, once > kSlowOnceSeconds ? " (1 run)" : ""), fmt("%.1e", uv),
-           fmt("%.1e", listing_err), fmt("%.1e", occt_err), fmt("%d", short_of)});
+    t.add({f.label, format("%d", n), format("%.1f", 1e3 * t_list), format("%.1f", 1e3 * t_desc),
+           format("%.0f%s", 1e3 * t_occt, once > kSlowOnceSeconds ? " (1 run)" : ""),
+           format("%.1e", uv), format("%.1e", listing_err), format("%.1e", occt_err),
+           format("%d", short_of)});
   }
   return t;
 }
@@ -274,7 +273,7 @@ Table area_table(const std::string& stress_dir) {
 Table small_jobs_table(int runs, const std::string& baseline) {
   runs = std::max(runs, kSmallJobRuns);
   Table t;
-  t.caption = fmt(
+  t.caption = format(
       "Small jobs: wall-clock time of the whole plyfit process (posix_spawn to exit, output "
       "discarded), medians of %d runs. The drape is the built-in hemisphere (R = 1) at spacing "
       "0.1 with every output (report.json, flat.dxf, net.step, the SVGs, net.vtk). *OpenCASCADE "
@@ -284,8 +283,7 @@ Table small_jobs_table(int runs, const std::string& baseline) {
   t.header = {"job", "plyfit", "ms"};
   t.right = {false, false, true};
   const std::string bin = plyfit_binary();
-  const std::string out =
-      (fs::temp_directory_path() / ("plyfit-bench-small-" + std::to_string(::getpid()))).string();
+  const std::string out = scratch_path("small").string();
   const std::vector<std::string> drape = {"drape",         "--mold",    "builtin:hemisphere",
                                           "--spacing",     "0.1",       "--start2d",
                                           "0,0",           "--base2d",  "0,1",
@@ -322,7 +320,7 @@ Table small_jobs_table(int runs, const std::string& baseline) {
     bool ok = true;
     const double s = median_process(with(j.binary, j.args), j.env, runs, &ok);
     t.add({j.name, j.binary == bin ? "this build" : "baseline",
-           ok ? fmt("%.1f", 1e3 * s) : "failed"});
+           ok ? format("%.1f", 1e3 * s) : "failed"});
   }
   std::error_code ec;
   fs::remove_all(out, ec);

@@ -157,16 +157,16 @@ std::vector<CaseResult> run_cases() {
 
 Table make_table(const std::vector<CaseResult>& results) {
   Table t;
-  t.caption =
-      fmt("Point + first derivatives at %d random (u, v), median of %d runs", kEvaluations, kRuns);
+  t.caption = format("Point + first derivatives at %d random (u, v), median of %d runs",
+                     kEvaluations, kRuns);
   t.header = {"surface",           "native eval1 (ns)",           "OCCT D1 (ns)",
               "speed-up",          "OCCT cached adaptor D1 (ns)", "speed-up vs cached",
               "max rel. deviation"};
   t.right = {false, true, true, true, true, true, true};
   for (const CaseResult& r : results)
-    t.add({r.name, fmt("%.1f", r.native_ns), fmt("%.1f", r.occt_ns),
-           fmt("%.2fx", r.occt_ns / r.native_ns), fmt("%.1f", r.occt_cached_ns),
-           fmt("%.2fx", r.occt_cached_ns / r.native_ns), fmt("%.1e", r.max_rel_dev)});
+    t.add({r.name, format("%.1f", r.native_ns), format("%.1f", r.occt_ns),
+           format("%.2fx", r.occt_ns / r.native_ns), format("%.1f", r.occt_cached_ns),
+           format("%.2fx", r.occt_cached_ns / r.native_ns), format("%.1e", r.max_rel_dev)});
   return t;
 }
 

@@ -3,6 +3,8 @@
 // subcommand; shared timing helpers and the table type live here. Time figures are medians
 // of repeated runs; comparisons are ratios measured in the same run.
 
+#include <plyfit/exporters/format.hpp>
+
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -10,6 +12,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -137,15 +140,8 @@ inline std::string option_value(const std::vector<std::string>& args, const std:
   return fallback;
 }
 
-/// printf-style formatting into a std::string.
-template <typename... Args>
-std::string fmt(const char* format, Args... args) {
-  const int n = std::snprintf(nullptr, 0, format, args...);
-  std::string s(static_cast<std::size_t>(std::max(n, 0)) + 1, '\0');
-  std::snprintf(s.data(), s.size(), format, args...);
-  s.resize(static_cast<std::size_t>(std::max(n, 0)));
-  return s;
-}
+/// printf-style formatting into a std::string (the CLI's formatter).
+using exporters::format;
 
 /// A table of formatted cells: printed as Markdown, saved as CSV. `caption` says what was
 /// measured and how (printed above the table).
@@ -173,9 +169,14 @@ struct Table {
   std::string csv() const;
 };
 
-/// Whether `bin COMMAND` is in the build (its --help runs); when it is not, the caption of
-/// `t` says the table was not measured.
-bool command_available(Table& t, const std::string& bin, const std::string& command);
+/// The plyfit binary (plyfit_binary()) if `COMMAND` is in its build (its --help runs); when it
+/// is not, nothing, and the caption of `t` says the table was not measured. `*available` (when
+/// given) says which.
+std::optional<std::string> plyfit_with_command(Table& t, const std::string& command,
+                                               bool* available);
+
+/// A path of this process in the temporary folder, `plyfit-bench-NAME-PID`.
+std::filesystem::path scratch_path(const std::string& name);
 
 /// Medians of kMinRuns runs of the shell command `cmd` (run quietly), each after `before`
 /// (e.g. clearing its output folder): wall seconds and the CPU seconds of the processes it

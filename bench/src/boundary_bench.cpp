@@ -104,8 +104,8 @@ Table boundary_table(int runs, bool* ok) {
     const auto [whole, bound, with] = *m;
     const double a = whole / static_cast<double>(n0) * 1e9;
     const double w = with / static_cast<double>(n1) * 1e9;
-    t.add({c.name, std::to_string(n0), std::to_string(n1), fmt("%.1f", bound * 1e3), fmt("%.0f", a),
-           fmt("%.0f", w), fmt("%.2f", w / a)});
+    t.add({c.name, std::to_string(n0), std::to_string(n1), format("%.1f", bound * 1e3),
+           format("%.0f", a), format("%.0f", w), format("%.2f", w / a)});
   }
   return t;
 }

@@ -24,8 +24,8 @@ struct DartCase {
 // The hemisphere from its pole, both sweeps, locked at `lock` degrees.
 DartCase hemisphere_case(double R, double d, double lock) {
   DartCase c;
-  c.name = "hemisphere R = " + fmt("%g", R) + ", d = " + fmt("%g", d) + ", lock " +
-           fmt("%g", lock) + " deg";
+  c.name = "hemisphere R = " + format("%g", R) + ", d = " + format("%g", d) + ", lock " +
+           format("%g", lock) + " deg";
   auto fd = builtin_mold("hemisphere", {{"R", R}});
   if (fd) c.mold = MoldSurface::from_face(*fd);
   DrapeProblem& pb = c.problem;
@@ -66,10 +66,10 @@ Table darts_table(int runs, bool* ok) {
     }
     const auto [t0, t1] = *m;
     const bool laid = with->metrics.nodes.conflict == 0 && with->metrics.nodes.shear_limit == 0;
-    t.add({c.name, fmt("%u", with->drapes), laid ? "yes" : "no", fmt("%zu", with->darts.size()),
-           fmt("%zu", with->nodes.size()),
-           fmt("%llu", static_cast<unsigned long long>(with->solves_reused)), fmt("%.1f", t0 * 1e3),
-           fmt("%.1f", t1 * 1e3), fmt("%.2f", t1 / t0)});
+    t.add({c.name, format("%u", with->drapes), laid ? "yes" : "no",
+           format("%zu", with->darts.size()), format("%zu", with->nodes.size()),
+           format("%llu", static_cast<unsigned long long>(with->solves_reused)),
+           format("%.1f", t0 * 1e3), format("%.1f", t1 * 1e3), format("%.2f", t1 / t0)});
   }
   return t;
 }

@@ -100,17 +100,17 @@ ThroughputReport throughput_report(const ThroughputOptions& o) {
   auto faces = report_faces();
   if (failed(faces, "throughput", rep.ok)) return rep;
   Table& t = rep.table;
-  t.caption =
-      fmt("Plies of about size^2 nodes (spacing d = sqrt(face area / size^2)), unbounded ply, "
-          "default options. Time: wall time of drape() (scan and metrics), median of %d runs on "
-          "one core. Nodes: mapped regular and auxiliary nodes. Peak heap: the most heap bytes "
-          "held at once during drape() (replacement operator new counting malloc_usable_size; "
-          "everything: node vector growth, index, frontier, path, metrics), per mapped node. "
-          "Peak RSS: growth of the resident set's high-water mark during the first run. Held: "
-          "DrapeResult::bytes_per_node() after the drape. Flat pattern: wall time of "
-          "flat_pattern() on the drape's result (exact outline and staircase), median of %d "
-          "runs, per mapped node; sizes up to %d^2 only, to keep the report short.",
-          std::max(o.runs, kMinRuns), std::max(o.runs, kMinRuns), kFlatPatternMaxSize);
+  t.caption = format(
+      "Plies of about size^2 nodes (spacing d = sqrt(face area / size^2)), unbounded ply, "
+      "default options. Time: wall time of drape() (scan and metrics), median of %d runs on "
+      "one core. Nodes: mapped regular and auxiliary nodes. Peak heap: the most heap bytes "
+      "held at once during drape() (replacement operator new counting malloc_usable_size; "
+      "everything: node vector growth, index, frontier, path, metrics), per mapped node. "
+      "Peak RSS: growth of the resident set's high-water mark during the first run. Held: "
+      "DrapeResult::bytes_per_node() after the drape. Flat pattern: wall time of "
+      "flat_pattern() on the drape's result (exact outline and staircase), median of %d "
+      "runs, per mapped node; sizes up to %d^2 only, to keep the report short.",
+      std::max(o.runs, kMinRuns), std::max(o.runs, kMinRuns), kFlatPatternMaxSize);
   t.header = {"face",
               "size",
               "d (mm)",
@@ -155,13 +155,14 @@ ThroughputReport throughput_report(const ThroughputOptions& o) {
       if (size <= kFlatPatternMaxSize) {
         const double ft = median_time([&] { (void)flat_pattern(*rf.face, first.result); },
                                       std::max(o.runs, kMinRuns));
-        flat = fmt("%.0f", ft * 1e9 / n);
+        flat = format("%.0f", ft * 1e9 / n);
       }
-      t.add({rf.name, fmt("%d^2", size), fmt("%.4g", d), fmt("%.0f", n), fmt("%.1f", sec * 1e3),
-             fmt("%.2f", n / sec * 1e-6), fmt("%.0f", sec * 1e9 / n),
-             fmt("%.1f", sec * 1e9 / nlogn), fmt("%.0f", peak),
-             first.peak_rss_bytes >= 0 ? fmt("%.0f", first.peak_rss_bytes / n) : std::string("-"),
-             fmt("%.0f", first.result.bytes_per_node()), fmt("%.1e", err.link_rel), flat});
+      t.add(
+          {rf.name, format("%d^2", size), format("%.4g", d), format("%.0f", n),
+           format("%.1f", sec * 1e3), format("%.2f", n / sec * 1e-6), format("%.0f", sec * 1e9 / n),
+           format("%.1f", sec * 1e9 / nlogn), format("%.0f", peak),
+           first.peak_rss_bytes >= 0 ? format("%.0f", first.peak_rss_bytes / n) : std::string("-"),
+           format("%.0f", first.result.bytes_per_node()), format("%.1e", err.link_rel), flat});
       if (fi == 0) {
         rep.bicubic_nodes_per_s.push_back(n / sec);
         rep.bicubic_link_rel = std::max(rep.bicubic_link_rel, err.link_rel);
@@ -171,10 +172,10 @@ ThroughputReport throughput_report(const ThroughputOptions& o) {
                    sec * 1e3);
     }
     const std::size_t k = ns.size();
-    fit.add({rf.name, fmt("%.3f", loglog_slope(ns, ts)),
-             k >= 2 ? fmt("%.3f", loglog_slope({ns[k - 2], ns[k - 1]}, {ts[k - 2], ts[k - 1]}))
+    fit.add({rf.name, format("%.3f", loglog_slope(ns, ts)),
+             k >= 2 ? format("%.3f", loglog_slope({ns[k - 2], ns[k - 1]}, {ts[k - 2], ts[k - 1]}))
                     : std::string("-"),
-             k >= 1 ? fmt("%.1f .. %.1f", tnl.front(), tnl.back()) : std::string("-")});
+             k >= 1 ? format("%.1f .. %.1f", tnl.front(), tnl.back()) : std::string("-")});
   }
   return rep;
 }
@@ -202,19 +203,19 @@ ToleranceReport tolerance_report(int runs) {
   if (failed(faces, "tolerance", rep.ok)) return rep;
   const double default_tol = Tolerances{}.newton_residual_rel;
   Table& t = rep.table;
-  t.caption =
-      fmt("Newton tolerance newton_residual_rel (x d) against drape time (median of %d runs, "
-          "round-robin over the tolerances; evaluations/solve is the noise-free measure of the "
-          "cost) and "
-          "the constraint errors measured from the nodes: link length (max | |p_a - p_b| - rest | "
-          "/ d), distance to the surface / d (bicubic: Gauss-Newton foot point on OpenCASCADE's "
-          "Geom_BSplineSurface from each node's (u, v); sphere: | |p| - R |), base-plane distance "
-          "of the path nodes / d, and the largest node displacement from the net at the default "
-          "tolerance / d. The solver's stop is max(tol d, roundoff_rel (|x|max + face size + d)): "
-          "the floor "
-          "column is that rounding floor over d. Bicubic face at %d^2 nodes, sphere octant at "
-          "%d^2. The default (%.0e) is marked *.",
-          std::max(runs, kMinRuns), kToleranceSizeBicubic, kToleranceSizeSphere, default_tol);
+  t.caption = format(
+      "Newton tolerance newton_residual_rel (x d) against drape time (median of %d runs, "
+      "round-robin over the tolerances; evaluations/solve is the noise-free measure of the "
+      "cost) and "
+      "the constraint errors measured from the nodes: link length (max | |p_a - p_b| - rest | "
+      "/ d), distance to the surface / d (bicubic: Gauss-Newton foot point on OpenCASCADE's "
+      "Geom_BSplineSurface from each node's (u, v); sphere: | |p| - R |), base-plane distance "
+      "of the path nodes / d, and the largest node displacement from the net at the default "
+      "tolerance / d. The solver's stop is max(tol d, roundoff_rel (|x|max + face size + d)): "
+      "the floor "
+      "column is that rounding floor over d. Bicubic face at %d^2 nodes, sphere octant at "
+      "%d^2. The default (%.0e) is marked *.",
+      std::max(runs, kMinRuns), kToleranceSizeBicubic, kToleranceSizeSphere, default_tol);
   t.header = {"face",       "tolerance (x d)",  "floor/d",           "time (ms)",
               "ns/node",    "iterations/solve", "evaluations/solve", "solve residual/d",
               "link err/d", "surface dist/d",   "base-plane/d",      "displacement/d"};
@@ -268,12 +269,13 @@ ToleranceReport tolerance_report(int runs) {
       }
       const double n = static_cast<double>(net_nodes(r));
       const auto& m = r.metrics;
-      t.add({rf.name, fmt("%.0e%s", tol, tol == default_tol ? " *" : ""), fmt("%.1e", floor_rel),
-             fmt("%.1f", tm * 1e3), fmt("%.0f", tm * 1e9 / n),
-             fmt("%.2f", static_cast<double>(m.iterations) / static_cast<double>(m.solves)),
-             fmt("%.2f", static_cast<double>(m.evaluations) / static_cast<double>(m.solves)),
-             fmt("%.1e", m.solve_residual_max_rel), fmt("%.1e", err.link_rel),
-             fmt("%.1e", err.surface_rel), fmt("%.1e", err.base_plane_rel), fmt("%.1e", disp)});
+      t.add({rf.name, format("%.0e%s", tol, tol == default_tol ? " *" : ""),
+             format("%.1e", floor_rel), format("%.1f", tm * 1e3), format("%.0f", tm * 1e9 / n),
+             format("%.2f", static_cast<double>(m.iterations) / static_cast<double>(m.solves)),
+             format("%.2f", static_cast<double>(m.evaluations) / static_cast<double>(m.solves)),
+             format("%.1e", m.solve_residual_max_rel), format("%.1e", err.link_rel),
+             format("%.1e", err.surface_rel), format("%.1e", err.base_plane_rel),
+             format("%.1e", disp)});
       rep.points.push_back(
           {sphere ? "sphere octant" : "bicubic", tol, tm * 1e3, err.link_rel, err.surface_rel,
            static_cast<double>(m.iterations) / static_cast<double>(m.solves), disp});
@@ -297,15 +299,15 @@ std::string tolerance_summary(const std::vector<TolerancePoint>& points, double 
     };
     const TolerancePoint *def = at(default_tol), *t10 = at(1e-10), *t6 = at(1e-6), *t3 = at(1e-3);
     if (!def || !t10 || !t6 || !t3) continue;
-    out +=
-        fmt("- %s: at the default the drape takes %+.1f%% against a tolerance of 1e-6 d and "
-            "%+.1f%% against 1e-10 d (same run), for a link error of %.1e d instead of "
-            "%.1e d and %.1e d; Newton iterations per solve: %.2f at 1e-3, %.2f at 1e-10, "
-            "%.2f at the default. At 1e-10 d nodes move %.1e d from the default's net "
-            "(%.0f times the tolerance).\n",
-            face.c_str(), 100.0 * (def->ms / t6->ms - 1.0), 100.0 * (def->ms / t10->ms - 1.0),
-            def->link_rel, t6->link_rel, t10->link_rel, t3->iterations, t10->iterations,
-            def->iterations, t10->displacement, t10->displacement / 1e-10);
+    out += format(
+        "- %s: at the default the drape takes %+.1f%% against a tolerance of 1e-6 d and "
+        "%+.1f%% against 1e-10 d (same run), for a link error of %.1e d instead of "
+        "%.1e d and %.1e d; Newton iterations per solve: %.2f at 1e-3, %.2f at 1e-10, "
+        "%.2f at the default. At 1e-10 d nodes move %.1e d from the default's net "
+        "(%.0f times the tolerance).\n",
+        face.c_str(), 100.0 * (def->ms / t6->ms - 1.0), 100.0 * (def->ms / t10->ms - 1.0),
+        def->link_rel, t6->link_rel, t10->link_rel, t3->iterations, t10->iterations,
+        def->iterations, t10->displacement, t10->displacement / 1e-10);
   }
   return out;
 }
@@ -345,10 +347,10 @@ ConvergenceReport convergence_report() {
       std::string order = "-";
       const double e0 = k > 0 ? std::abs(s.err[k - 1]) : 0.0, e1 = std::abs(s.err[k]);
       if (e0 > 0 && e1 > 0)
-        order = fmt("%.2f%s", std::log(e0 / e1) / std::log(s.d[k - 1] / s.d[k]),
-                    (s.err[k - 1] > 0) != (s.err[k] > 0) ? " (sign change)" : "");
-      t.add({s.name, fmt("%.0f", L_over_d), fmt("%.4g", s.d[k]), fmt("%.0f", nodes[k]),
-             fmt("%.2e", s.err[k]), order});
+        order = format("%.2f%s", std::log(e0 / e1) / std::log(s.d[k - 1] / s.d[k]),
+                       (s.err[k - 1] > 0) != (s.err[k] > 0) ? " (sign change)" : "");
+      t.add({s.name, format("%.0f", L_over_d), format("%.4g", s.d[k]), format("%.0f", nodes[k]),
+             format("%.2e", s.err[k]), order});
     }
     series.push_back(s);
   };
@@ -421,7 +423,7 @@ ConvergenceReport convergence_report() {
     for (double x : s.err) e.push_back(std::abs(x));
     const std::size_t n3 = std::min<std::size_t>(3, s.d.size());
     const std::vector<double> d3(s.d.begin(), s.d.begin() + n3), e3(e.begin(), e.begin() + n3);
-    o.add({s.name, fmt("%.2f", loglog_slope(s.d, e)), fmt("%.2f", loglog_slope(d3, e3))});
+    o.add({s.name, format("%.2f", loglog_slope(s.d, e)), format("%.2f", loglog_slope(d3, e3))});
   }
   return rep;
 }
@@ -482,7 +484,7 @@ Result<std::vector<HardCase>> hard_cases() {
     for (auto& p : w.poles) p *= scale;
     auto f = data_face(w);
     if (!f) return f.error();
-    out.push_back({fmt("scale %.0e (wave x %.0e), d %.0e", scale, scale, 0.5 * scale),
+    out.push_back({format("scale %.0e (wave x %.0e), d %.0e", scale, scale, 0.5 * scale),
                    *f,
                    both(0.5 * scale, Vec3(50, 50, 0) * scale, Vec3(-0.3, 1, 0)),
                    {}});
@@ -517,7 +519,7 @@ Result<std::vector<HardCase>> hard_cases() {
     const double d = spacing_for_nodes(**f, 300.0 * 300.0);
     auto pb = middle_problem(**f, d, true);
     if (!pb) return pb.error();
-    out.push_back({fmt("%s (%s #%d), d %.3g", label, file, index, d), *f, *pb, {}});
+    out.push_back({format("%s (%s #%d), d %.3g", label, file, index, d), *f, *pb, {}});
   }
   (void)X;
   (void)Z;
@@ -528,18 +530,18 @@ Result<std::vector<HardCase>> hard_cases() {
 
 Table hard_case_table(int runs, bool* ok) {
   Table t;
-  t.caption =
-      fmt("Hard cases, one full drape each (unbounded ply, default options unless stated). "
-          "Status: complete, or partial with the drape's warnings. Nodes by status: mapped "
-          "(regular + auxiliary), outside the face, at the shear limit, failed (no solution) / "
-          "conflict (two fronts of cloth met and disagree) / overlap (the cloth would lie on "
-          "itself). Max residual: "
-          "the solvers' largest final residual (|F1| + |F2|) / d "
-          "(DrapeMetrics::solve_residual_max_rel); then, measured from the nodes, the largest "
-          "link-length error / d over all links between mapped nodes (including links that no "
-          "solve closed, where a node had more known neighbours than its solver uses) and the "
-          "base-plane distance / d. Time: median of %d runs.",
-          std::max(runs, kMinRuns));
+  t.caption = format(
+      "Hard cases, one full drape each (unbounded ply, default options unless stated). "
+      "Status: complete, or partial with the drape's warnings. Nodes by status: mapped "
+      "(regular + auxiliary), outside the face, at the shear limit, failed (no solution) / "
+      "conflict (two fronts of cloth met and disagree) / overlap (the cloth would lie on "
+      "itself). Max residual: "
+      "the solvers' largest final residual (|F1| + |F2|) / d "
+      "(DrapeMetrics::solve_residual_max_rel); then, measured from the nodes, the largest "
+      "link-length error / d over all links between mapped nodes (including links that no "
+      "solve closed, where a node had more known neighbours than its solver uses) and the "
+      "base-plane distance / d. Time: median of %d runs.",
+      std::max(runs, kMinRuns));
   t.header = {"case",
               "status",
               "mapped",
@@ -571,14 +573,14 @@ Table hard_case_table(int runs, bool* ok) {
     const NetErrors e = net_errors(r);
     const auto& m = r.metrics.nodes;
     t.add({c.name, drape_status(r),
-           fmt("%llu + %llu", (unsigned long long)m.mapped, (unsigned long long)m.auxiliary),
-           fmt("%llu", (unsigned long long)m.outside),
-           fmt("%llu", (unsigned long long)m.shear_limit),
-           fmt("%llu / %llu / %llu", (unsigned long long)m.failed, (unsigned long long)m.conflict,
-               (unsigned long long)m.overlap),
-           fmt("%.1e", r.metrics.solve_residual_max_rel), fmt("%.1e", e.link_rel),
-           fmt("%.1e", e.base_plane_rel), fmt("%.2f", e.max_shear * kRadToDeg),
-           fmt("%.2f", *tm * 1e3)});
+           format("%llu + %llu", (unsigned long long)m.mapped, (unsigned long long)m.auxiliary),
+           format("%llu", (unsigned long long)m.outside),
+           format("%llu", (unsigned long long)m.shear_limit),
+           format("%llu / %llu / %llu", (unsigned long long)m.failed,
+                  (unsigned long long)m.conflict, (unsigned long long)m.overlap),
+           format("%.1e", r.metrics.solve_residual_max_rel), format("%.1e", e.link_rel),
+           format("%.1e", e.base_plane_rel), format("%.2f", e.max_shear * kRadToDeg),
+           format("%.2f", *tm * 1e3)});
     std::fprintf(stderr, "hard: %s: %.2f ms\n", c.name.c_str(), *tm * 1e3);
   }
   return t;
@@ -611,15 +613,15 @@ Table overlap_table(int runs, std::vector<int> sizes, bool* ok) {
   Table t;
   if (sizes.empty()) sizes.assign(std::begin(kOverlapSizes), std::end(kOverlapSizes));
   runs = std::max(runs, kMinRuns);
-  t.caption =
-      fmt("Cost of the overlap test (every mapped node tested for landing on cloth already laid, "
-          "DrapeOptions::overlap_test) and closed against open faces: drape() wall time per mapped "
-          "node with the test and without it, runs alternating between the two in one process, "
-          "median of %d each; cost = with / without - 1 of the medians, and the median of the "
-          "same ratio over the pairs of runs made one after the other (paired: it follows the "
-          "machine's drift less). The closed hemisphere's ns/node is compared with the sphere "
-          "octant's (the same rational sphere, open) at the same size.",
-          runs);
+  t.caption = format(
+      "Cost of the overlap test (every mapped node tested for landing on cloth already laid, "
+      "DrapeOptions::overlap_test) and closed against open faces: drape() wall time per mapped "
+      "node with the test and without it, runs alternating between the two in one process, "
+      "median of %d each; cost = with / without - 1 of the medians, and the median of the "
+      "same ratio over the pairs of runs made one after the other (paired: it follows the "
+      "machine's drift less). The closed hemisphere's ns/node is compared with the sphere "
+      "octant's (the same rational sphere, open) at the same size.",
+      runs);
   t.header = {"face", "size",         "nodes",    "overlaps", "ns/node with", "ns/node without",
               "cost", "cost, paired", "vs octant"};
   t.right = {false, true, true, true, true, true, true, true, true};
@@ -670,11 +672,12 @@ Table overlap_table(int runs, std::vector<int> sizes, bool* ok) {
       const bool octant = rf.name.find("octant") != std::string::npos;
       const bool closed = rf.face->closes_on_itself();
       if (octant) octant_ns = ns_with;
-      t.add({rf.name, fmt("%d^2", size), fmt("%.0f", n),
-             fmt("%llu", (unsigned long long)first.metrics.nodes.overlap), fmt("%.0f", ns_with),
-             fmt("%.0f", ns_without), fmt("%+.1f %%", (ns_with / ns_without - 1) * 100),
-             fmt("%+.1f %%", (median(paired) - 1) * 100),
-             closed && octant_ns > 0 ? fmt("%.2fx", ns_with / octant_ns) : std::string("-")});
+      t.add({rf.name, format("%d^2", size), format("%.0f", n),
+             format("%llu", (unsigned long long)first.metrics.nodes.overlap),
+             format("%.0f", ns_with), format("%.0f", ns_without),
+             format("%+.1f %%", (ns_with / ns_without - 1) * 100),
+             format("%+.1f %%", (median(paired) - 1) * 100),
+             closed && octant_ns > 0 ? format("%.2fx", ns_with / octant_ns) : std::string("-")});
       std::fprintf(stderr, "overlap: %s %d^2: %.0f / %.0f ns/node\n", rf.name.c_str(), size,
                    ns_with, ns_without);
     }

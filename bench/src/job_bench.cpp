@@ -122,14 +122,14 @@ Table job_table(int runs, bool* ok) {
   for (int k = 0; k < runs; ++k)
     start.push_back(run_measured({plyfit_binary(), "--version"}, dir + "/rss").seconds);
   const double t0 = median(start);
-  t.caption =
-      fmt("The whole job as a user runs it: `plyfit drape --outputs json` as a process (import, "
-          "drape, flat pattern, metrics, report.json), median of %d runs each. Job = wall time "
-          "minus a process start (`plyfit --version`, %.1f ms). Peak RSS: the child's maximum "
-          "resident set as the OS reports it (wait4, through GNU time); bytes per node = (peak RSS "
-          "at about 1 M nodes "
-          "- peak RSS at about 1 k nodes) / (difference of their mapped nodes).",
-          runs, t0 * 1e3);
+  t.caption = format(
+      "The whole job as a user runs it: `plyfit drape --outputs json` as a process (import, "
+      "drape, flat pattern, metrics, report.json), median of %d runs each. Job = wall time "
+      "minus a process start (`plyfit --version`, %.1f ms). Peak RSS: the child's maximum "
+      "resident set as the OS reports it (wait4, through GNU time); bytes per node = (peak RSS "
+      "at about 1 M nodes "
+      "- peak RSS at about 1 k nodes) / (difference of their mapped nodes).",
+      runs, t0 * 1e3);
   t.header = {"face",      "nodes",         "job (ms)",          "drape (ms)", "rest (ms)",
               "M nodes/s", "peak RSS (MB)", "1 k-node RSS (MB)", "B/node"};
   t.right = {false, true, true, true, true, true, true, true, true};
@@ -142,11 +142,11 @@ Table job_table(int runs, bool* ok) {
       continue;
     }
     const double job = big.wall - t0;
-    t.rows.push_back({c.name, fmt("%.0f", big.nodes), fmt("%.0f", job * 1e3),
-                      fmt("%.0f", big.drape_ms), fmt("%.0f", job * 1e3 - big.drape_ms),
-                      fmt("%.2f", big.nodes / job * 1e-6), fmt("%.1f", big.rss / 1048576.0),
-                      fmt("%.1f", small.rss / 1048576.0),
-                      fmt("%.0f", (big.rss - small.rss) / (big.nodes - small.nodes))});
+    t.rows.push_back({c.name, format("%.0f", big.nodes), format("%.0f", job * 1e3),
+                      format("%.0f", big.drape_ms), format("%.0f", job * 1e3 - big.drape_ms),
+                      format("%.2f", big.nodes / job * 1e-6), format("%.1f", big.rss / 1048576.0),
+                      format("%.1f", small.rss / 1048576.0),
+                      format("%.0f", (big.rss - small.rss) / (big.nodes - small.nodes))});
   }
   capture("rm -rf '" + dir + "'");
   return t;
@@ -178,14 +178,14 @@ Table kindrape_table(int runs, int side, bool* ok) {
     return t;
   }
   const double nodes = static_cast<double>(net_nodes(first.result));
-  t.caption = fmt(
+  t.caption = format(
       "drape() alone on KinDrape's hemisphere (R 1, start at the pole, a %d x %d ply at d = %g), "
       "median of %d runs in one process (scratch reused, as in optimize), against KinDrape's "
       "Python drape of its 48 x 48 ply at about %.0f nodes/s on this class of machine.",
       side, side, d, runs, kKinDrapeNodesPerSecond);
-  t.rows.push_back({fmt("hemisphere R 1, %d x %d", side, side), fmt("%.0f", nodes),
-                    fmt("%.0f", *sec * 1e6), fmt("%.2f", nodes / *sec * 1e-6),
-                    fmt("%.0f", nodes / *sec / kKinDrapeNodesPerSecond)});
+  t.rows.push_back({format("hemisphere R 1, %d x %d", side, side), format("%.0f", nodes),
+                    format("%.0f", *sec * 1e6), format("%.2f", nodes / *sec * 1e-6),
+                    format("%.0f", nodes / *sec / kKinDrapeNodesPerSecond)});
   return t;
 }
 

@@ -9,8 +9,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <unistd.h>
-
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -36,32 +34,31 @@ nlohmann::json read_json(const std::string& path) {
 Table optimize_bench_table(bool* available, OptimizeFigures* figures) {
   Table t;
   const unsigned cores = machine_cores();
-  t.caption =
-      fmt("`plyfit optimize SCENE -j N -o DIR` (defaults: vary start and angle, objective energy, "
-          "200 drapes) on the paper's sphere-octant cases (spacing R/20). Time: the whole run, "
-          "process start and STEP import included, median of %d runs, with -j1 and -j%u (the "
-          "machine's cores) in the same invocation; cores used: CPU time of the all-cores run "
-          "(median) over its wall time (other processes on the machine share its cores). Energy: "
-          "sum cos^2 gamma; the best drape covers "
-          "the face as fully as the scene (README, plyfit optimize). KinDrapeMAX's genetic "
-          "algorithm takes %.0f-%.0f s (the literature's figure, not measured here).",
-          kMinRuns, cores, kKinDrapeMaxSeconds[0], kKinDrapeMaxSeconds[1]);
+  t.caption = format(
+      "`plyfit optimize SCENE -j N -o DIR` (defaults: vary start and angle, objective energy, "
+      "200 drapes) on the paper's sphere-octant cases (spacing R/20). Time: the whole run, "
+      "process start and STEP import included, median of %d runs, with -j1 and -j%u (the "
+      "machine's cores) in the same invocation; cores used: CPU time of the all-cores run "
+      "(median) over its wall time (other processes on the machine share its cores). Energy: "
+      "sum cos^2 gamma; the best drape covers "
+      "the face as fully as the scene (README, plyfit optimize). KinDrapeMAX's genetic "
+      "algorithm takes %.0f-%.0f s (the literature's figure, not measured here).",
+      kMinRuns, cores, kKinDrapeMaxSeconds[0], kKinDrapeMaxSeconds[1]);
   t.header = {"scene",
               "scene energy",
               "best energy",
               "drapes",
               "time -j1 (s)",
-              fmt("time -j%u (s)", cores),
+              format("time -j%u (s)", cores),
               "speed-up",
-              fmt("cores used (-j%u)", cores),
+              format("cores used (-j%u)", cores),
               "ms per drape (-j1)"};
   t.right = {false, true, true, true, true, true, true, true, true};
   if (figures) *figures = OptimizeFigures{};
-  const std::string bin = plyfit_binary();
-  const bool there = command_available(t, bin, "optimize");
-  if (available) *available = there;
-  if (!there) return t;
-  const fs::path dir = fs::temp_directory_path() / fmt("plyfit-bench-optimize-%d", ::getpid());
+  const std::optional<std::string> plyfit = plyfit_with_command(t, "optimize", available);
+  if (!plyfit) return t;
+  const std::string& bin = *plyfit;
+  const fs::path dir = scratch_path("optimize");
   double worst = 0.0;
   for (const char* c : {"a", "b", "c"}) {
     const std::string scene =
@@ -70,15 +67,15 @@ Table optimize_bench_table(bool* available, OptimizeFigures* figures) {
     nlohmann::json result;
     for (int k = 0; k < 2; ++k) {
       const unsigned jobs = k == 0 ? 1u : cores;
-      const fs::path out = dir / fmt("%s-j%u", c, jobs);
-      run[k] = time_command(fmt("'%s' optimize '%s' -j %u -o '%s' --quiet", bin.c_str(),
-                                scene.c_str(), jobs, out.string().c_str()),
+      const fs::path out = dir / format("%s-j%u", c, jobs);
+      run[k] = time_command(format("'%s' optimize '%s' -j %u -o '%s' --quiet", bin.c_str(),
+                                   scene.c_str(), jobs, out.string().c_str()),
                             [&] { fs::remove_all(out); });
       result = read_json((out / "optimize.json").string());
     }
     const bool ok = run[0].ok && run[1].ok;
     const double sec[2] = {run[0].wall, run[1].wall};
-    const std::string name = fmt("sphere-octant-%s", c);
+    const std::string name = format("sphere-octant-%s", c);
     if (!ok || result.is_discarded() || !result["best"]["energy"].is_object()) {
       t.add({name, "failed", "-", "-", "-", "-", "-", "-", "-"});
       if (figures) figures->ok = false;
@@ -87,9 +84,9 @@ Table optimize_bench_table(bool* available, OptimizeFigures* figures) {
     const double scene_e = result["scene_drape"]["energy"].get<double>();
     const double best_e = result["best"]["energy"]["energy"].get<double>();
     const int drapes = result["drapes"].get<int>();
-    t.add({name, fmt("%.3f", scene_e), fmt("%.3f", best_e), fmt("%d", drapes), fmt("%.2f", sec[0]),
-           fmt("%.2f", sec[1]), fmt("%.2fx", sec[0] / sec[1]), fmt("%.2f", run[1].cpu / sec[1]),
-           fmt("%.2f", 1e3 * sec[0] / drapes)});
+    t.add({name, format("%.3f", scene_e), format("%.3f", best_e), format("%d", drapes),
+           format("%.2f", sec[0]), format("%.2f", sec[1]), format("%.2fx", sec[0] / sec[1]),
+           format("%.2f", run[1].cpu / sec[1]), format("%.2f", 1e3 * sec[0] / drapes)});
     std::fprintf(stderr, "optimize: %s: %.2f s (-j1), %.2f s (-j%u)\n", name.c_str(), sec[0],
                  sec[1], cores);
     worst = std::max(worst, sec[1]);

@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdlib>
@@ -46,11 +47,20 @@ int run_quiet(const std::string& cmd) {
   return (rc != -1 && WIFEXITED(rc)) ? WEXITSTATUS(rc) : -1;
 }
 
-bool command_available(Table& t, const std::string& bin, const std::string& command) {
-  if (run_quiet("'" + bin + "' " + command + " --help") == 0) return true;
-  t.caption +=
-      fmt(" Not measured: `%s %s` is not available in this build.", bin.c_str(), command.c_str());
-  return false;
+std::optional<std::string> plyfit_with_command(Table& t, const std::string& command,
+                                               bool* available) {
+  const std::string bin = plyfit_binary();
+  const bool there = run_quiet("'" + bin + "' " + command + " --help") == 0;
+  if (available) *available = there;
+  if (there) return bin;
+  t.caption += format(" Not measured: `%s %s` is not available in this build.", bin.c_str(),
+                      command.c_str());
+  return std::nullopt;
+}
+
+std::filesystem::path scratch_path(const std::string& name) {
+  return std::filesystem::temp_directory_path() /
+         ("plyfit-bench-" + name + "-" + std::to_string(::getpid()));
 }
 
 CommandTimes time_command(const std::string& cmd, const std::function<void()>& before) {

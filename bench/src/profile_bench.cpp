@@ -69,27 +69,26 @@ std::string category(const std::string& sym) {
 
 Table profile_table(bool* available) {
   Table t;
-  t.caption =
-      fmt("Where the time of a drape goes: `perf record -F %d` over %d drapes of the bicubic face "
-          "at about %d^2 nodes (`plyfit-bench profile-drape`), self time of each function summed "
-          "by part (inlined functions count in their callers).",
-          kPerfFrequency, kProfileDrapes, kProfileSize);
+  t.caption = format(
+      "Where the time of a drape goes: `perf record -F %d` over %d drapes of the bicubic face "
+      "at about %d^2 nodes (`plyfit-bench profile-drape`), self time of each function summed "
+      "by part (inlined functions count in their callers).",
+      kPerfFrequency, kProfileDrapes, kProfileSize);
   t.header = {"part", "share of samples", "main functions"};
   t.right = {false, true, false};
   char self[4096] = {};
   const ssize_t n = readlink("/proc/self/exe", self, sizeof(self) - 1);
-  const std::string data =
-      (std::filesystem::temp_directory_path() / fmt("plyfit-bench-perf-%d.data", ::getpid()))
-          .string();
-  if (n <= 0 || std::system(fmt("perf record -q -F %d -o '%s' '%s' profile-drape >/dev/null 2>&1",
-                                kPerfFrequency, data.c_str(), self)
-                                .c_str()) != 0) {
+  const std::string data = scratch_path("perf").string() + ".data";
+  if (n <= 0 ||
+      std::system(format("perf record -q -F %d -o '%s' '%s' profile-drape >/dev/null 2>&1",
+                         kPerfFrequency, data.c_str(), self)
+                      .c_str()) != 0) {
     if (available) *available = false;
     t.caption += " Not measured: perf record failed here.";
     return t;
   }
-  const std::string rep = capture(
-      fmt("perf report -i '%s' --stdio --no-children --sort dso,symbol 2>/dev/null", data.c_str()));
+  const std::string rep = capture(format(
+      "perf report -i '%s' --stdio --no-children --sort dso,symbol 2>/dev/null", data.c_str()));
   std::filesystem::remove(data);
   std::map<std::string, double> share;
   std::map<std::string, std::vector<std::pair<double, std::string>>> top;
@@ -129,8 +128,8 @@ Table profile_table(bool* available) {
     std::sort(v.rbegin(), v.rend());
     std::string names;
     for (std::size_t k = 0; k < std::min<std::size_t>(3, v.size()); ++k)
-      names += fmt("%s%s %.1f%%", k ? ", " : "", v[k].second.c_str(), v[k].first);
-    t.add({c, fmt("%.1f%%", 100.0 * s / total), names});
+      names += format("%s%s %.1f%%", k ? ", " : "", v[k].second.c_str(), v[k].first);
+    t.add({c, format("%.1f%%", 100.0 * s / total), names});
   }
   return t;
 }

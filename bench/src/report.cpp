@@ -72,7 +72,7 @@ std::string loadavg() {
 
 std::string machine_text() {
   const std::string os = capture("sh -c '. /etc/os-release 2>/dev/null && echo $PRETTY_NAME'");
-  return fmt(
+  return format(
       "CPU \"%s\" (family %s, model %s, %s MHz as /proc/cpuinfo says), %d logical "
       "processors (std::thread::hardware_concurrency %u); %s, %s, kernel %s; compiler "
       "%s, build type %s (flags \"%s\"); OpenCASCADE %s",
@@ -176,45 +176,46 @@ int run_report(const std::vector<std::string>& args) {
     const bool rate_ok = !th.bicubic_nodes_per_s.empty() && worst_rate >= kTargetNodesPerSecond;
     const bool link_ok = th.bicubic_link_rel <= kTargetLinkRel;
     const bool mem_ok = !th.peak_bytes_per_node.empty() && worst_mem <= kTargetBytesPerNode;
-    targets += fmt("| target | measured (table 1) | met |\n|---|---|---|\n");
-    targets +=
-        fmt("| >= 1,000,000 mapped nodes/s on one core, bicubic face, default tolerance (%.0e) | "
-            "slowest size: %.2f M nodes/s | %s |\n",
-            default_tol, worst_rate * 1e-6, rate_ok ? "yes" : "**no**");
-    targets += fmt("| link-length error <= 1e-10 d (bicubic face, all sizes) | %.1e d | %s |\n",
-                   th.bicubic_link_rel, link_ok ? "yes" : "**no**");
-    targets +=
-        fmt("| peak memory <= 200 bytes per mapped node (all faces and sizes) | largest: %.0f "
-            "B/node | %s |\n",
-            worst_mem, mem_ok ? "yes" : "**no**");
+    targets += format("| target | measured (table 1) | met |\n|---|---|---|\n");
+    targets += format(
+        "| >= 1,000,000 mapped nodes/s on one core, bicubic face, default tolerance (%.0e) | "
+        "slowest size: %.2f M nodes/s | %s |\n",
+        default_tol, worst_rate * 1e-6, rate_ok ? "yes" : "**no**");
+    targets += format("| link-length error <= 1e-10 d (bicubic face, all sizes) | %.1e d | %s |\n",
+                      th.bicubic_link_rel, link_ok ? "yes" : "**no**");
+    targets += format(
+        "| peak memory <= 200 bytes per mapped node (all faces and sizes) | largest: %.0f "
+        "B/node | %s |\n",
+        worst_mem, mem_ok ? "yes" : "**no**");
     const unsigned cores = machine_cores();
     const bool grows = batch_available && batch_speedup >= kTargetBatchGrowth;
-    targets += fmt(
-        "| batch throughput grows with -j up to the cores (%u here) | %s | %s |\n", cores,
-        batch_available ? fmt("-j%u against -j1: %.2fx (batch table)", cores, batch_speedup).c_str()
-                        : "plyfit batch not available",
-        batch_available ? (grows ? "yes" : "**no**") : "not measured");
+    targets +=
+        format("| batch throughput grows with -j up to the cores (%u here) | %s | %s |\n", cores,
+               batch_available
+                   ? format("-j%u against -j1: %.2fx (batch table)", cores, batch_speedup).c_str()
+                   : "plyfit batch not available",
+               batch_available ? (grows ? "yes" : "**no**") : "not measured");
     const bool opt_ok = optimize_available && opt.ok && opt.found_worst < opt.paper_best &&
                         opt.seconds < kTargetOptimizeSeconds;
+    targets += format(
+        "| plyfit optimize: from each of the paper's sphere-octant cases, a lower energy than "
+        "the best of them, in under %.0f s on %u cores | %s | %s |\n",
+        kTargetOptimizeSeconds, cores,
+        optimize_available && opt.ok
+            ? format("highest best found %.3f against %.3f; slowest run %.2f s (optimize table)",
+                     opt.found_worst, opt.paper_best, opt.seconds)
+                  .c_str()
+            : "not measured",
+        optimize_available ? (opt_ok ? "yes" : "**no**") : "not measured");
     targets +=
-        fmt("| plyfit optimize: from each of the paper's sphere-octant cases, a lower energy than "
-            "the best of them, in under %.0f s on %u cores | %s | %s |\n",
-            kTargetOptimizeSeconds, cores,
-            optimize_available && opt.ok
-                ? fmt("highest best found %.3f against %.3f; slowest run %.2f s (optimize table)",
-                      opt.found_worst, opt.paper_best, opt.seconds)
-                      .c_str()
-                : "not measured",
-            optimize_available ? (opt_ok ? "yes" : "**no**") : "not measured");
-    targets +=
-        fmt("| `plyfit info` on any file <= %.0f s (import table) | longest: %.2f s | %s |\n",
-            kTargetInfoSeconds, imports.max_info_s,
-            imports.max_info_s <= kTargetInfoSeconds ? "yes" : "**no**");
-    targets +=
-        fmt("| import of one face <= %.0fx OpenCASCADE's own read of the file (import table) | "
-            "largest ratio: %.2f | %s |\n",
-            kTargetImportRatio, imports.max_ratio,
-            imports.max_ratio <= kTargetImportRatio ? "yes" : "**no** (see the import section)");
+        format("| `plyfit info` on any file <= %.0f s (import table) | longest: %.2f s | %s |\n",
+               kTargetInfoSeconds, imports.max_info_s,
+               imports.max_info_s <= kTargetInfoSeconds ? "yes" : "**no**");
+    targets += format(
+        "| import of one face <= %.0fx OpenCASCADE's own read of the file (import table) | "
+        "largest ratio: %.2f | %s |\n",
+        kTargetImportRatio, imports.max_ratio,
+        imports.max_ratio <= kTargetImportRatio ? "yes" : "**no** (see the import section)");
   }
 
   const double minutes =
@@ -226,9 +227,9 @@ int run_report(const std::vector<std::string>& args) {
       {"commit", measured_on},
       {"date", date},
       {"machine", machine_text()},
-      {"load", fmt("Load average (1, 5, 15 min) %s before, %s after", load_before.c_str(),
-                   load_after.c_str())},
-      {"duration", fmt("%.1f minutes", minutes)},
+      {"load", format("Load average (1, 5, 15 min) %s before, %s after", load_before.c_str(),
+                      load_after.c_str())},
+      {"duration", format("%.1f minutes", minutes)},
       {"command", "./build/bin/plyfit-bench report" +
                       [&] {
                         std::string a;
@@ -236,7 +237,7 @@ int run_report(const std::vector<std::string>& args) {
                         return a;
                       }()},
       {"targets", targets},
-      {"default_tol", fmt("%.0e", default_tol)},
+      {"default_tol", format("%.0e", default_tol)},
       {"tolerance_summary", tolerance_summary(tol.points, default_tol)},
       {"table:throughput", th.table.markdown()},
       {"table:throughput_fit", th.fit.markdown()},

@@ -64,7 +64,7 @@ std::vector<ShellCase> shell_cases() {
     // The full cylinder R = 10, H = 20 as one face (seam) against `parts` faces; threads at
     // about 29 degrees to the axis.
     ShellCase c;
-    c.name = fmt("cylinder R = 10: 1 face / cylinder-split (%d faces)", parts);
+    c.name = format("cylinder R = 10: 1 face / cylinder-split (%d faces)", parts);
     c.one = face_of(builtin_mold("cylinder", {{"R", 10}, {"H", 20}, {"angle", 360}}));
     c.many = shell_of("cylinder-split", {{"angle", 360}, {"parts", parts}});
     c.problem =
@@ -141,9 +141,9 @@ Table shell_drape_table(int runs, double* worst_ratio, bool* ok) {
     const double a = median(t1) / n1 * 1e9, b = median(tn) / nn * 1e9;
     const NetDifference diff = net_difference(*r1, *rn);
     worst = std::max(worst, b / a);
-    t.add({c.name, std::to_string(rn->metrics.nodes.mapped), fmt("%.0f", a), fmt("%.0f", b),
-           fmt("%.2f", b / a), fmt("%zu", diff.status),
-           fmt("%.1e", diff.distance / c.problem.ply.d_weft)});
+    t.add({c.name, std::to_string(rn->metrics.nodes.mapped), format("%.0f", a), format("%.0f", b),
+           format("%.2f", b / a), format("%zu", diff.status),
+           format("%.1e", diff.distance / c.problem.ply.d_weft)});
   }
   if (worst_ratio) *worst_ratio = worst;
   return t;

@@ -129,10 +129,11 @@ Table make_table(const std::vector<Row>& rows) {
       "<1e-12",         ">=1e-12"};
   t.right = {false, false, true, true, true, true, true, true, true, true, true, true, true, true};
   for (const auto& r : rows)
-    t.add({r.surface, r.solver, fmt("%d/%d", r.converged, r.solves), fmt("%.2f", r.mean_it),
-           fmt("%.2f", r.mean_eval), fmt("%.0f", r.ns), fmt("%.1e", r.r50), fmt("%.1e", r.r99),
-           fmt("%.1e", r.rmax), fmt("%d", r.hist[0]), fmt("%d", r.hist[1]), fmt("%d", r.hist[2]),
-           fmt("%d", r.hist[3]), fmt("%d", r.hist[4])});
+    t.add({r.surface, r.solver, format("%d/%d", r.converged, r.solves), format("%.2f", r.mean_it),
+           format("%.2f", r.mean_eval), format("%.0f", r.ns), format("%.1e", r.r50),
+           format("%.1e", r.r99), format("%.1e", r.rmax), format("%d", r.hist[0]),
+           format("%d", r.hist[1]), format("%d", r.hist[2]), format("%d", r.hist[3]),
+           format("%d", r.hist[4])});
   return t;
 }
 

@@ -128,8 +128,9 @@ Table splice_table(int runs, bool* ok) {
     });
     const auto [base, with, splice] = *m;
     if (last.pieces != 3) *ok = false;
-    t.add({c.name, std::to_string(last.mapped), fmt("%zu", last.pieces), fmt("%.1f", base * 1e3),
-           fmt("%.1f", with * 1e3), fmt("%.1f", splice * 1e3), fmt("%.3f", splice / base)});
+    t.add({c.name, std::to_string(last.mapped), format("%zu", last.pieces),
+           format("%.1f", base * 1e3), format("%.1f", with * 1e3), format("%.1f", splice * 1e3),
+           format("%.3f", splice / base)});
   }
   return t;
 }

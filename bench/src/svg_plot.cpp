@@ -1,6 +1,8 @@
 // The time-against-error plot of the report: drape time per node against the measured
 // link-length error, one polyline per face, each point labelled with its Newton tolerance.
 
+#include <plyfit/exporters/svg_chart.hpp>
+
 #include "tables.hpp"
 
 #include <algorithm>
@@ -46,76 +48,74 @@ std::string time_error_svg(const std::vector<TolerancePoint>& points, double def
   const double pw = kWidth - kLeft - kRight, ph = kHeight - kTop - kBottom;
   auto X = [&](double e) { return kLeft + pw * (std::log10(std::max(e, 1e-17)) - x0) / (x1 - x0); };
   auto Y = [&](double t) { return kTop + ph * (1.0 - (t - y0) / (y1 - y0)); };
-  std::string s =
-      fmt("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
-          "viewBox=\"0 0 %.0f %.0f\" font-family=\"sans-serif\" font-size=\"12\">\n",
-          kWidth, kHeight, kWidth, kHeight);
-  s += fmt("<rect width=\"%.0f\" height=\"%.0f\" fill=\"white\"/>\n", kWidth, kHeight);
-  s +=
-      fmt("<text x=\"%.0f\" y=\"22\" font-size=\"15\">Drape time against link-length error "
-          "(Newton tolerance 1e-3 .. 1e-14 x d)</text>\n",
-          kLeft);
+  std::string s = exporters::svg_chart_open(kWidth, kHeight);
+  s += format(
+      "<text x=\"%.0f\" y=\"22\" font-size=\"15\">Drape time against link-length error "
+      "(Newton tolerance 1e-3 .. 1e-14 x d)</text>\n",
+      kLeft);
   // Grid and ticks.
   for (int e = static_cast<int>(x0); e <= static_cast<int>(x1); ++e) {
     const double x = X(std::pow(10.0, e));
-    s += fmt("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", x, kTop,
-             x, kTop + ph);
-    s += fmt("<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">1e%d</text>\n", x, kTop + ph + 18,
-             e);
+    s += format("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", x,
+                kTop, x, kTop + ph);
+    s += format("<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">1e%d</text>\n", x,
+                kTop + ph + 18, e);
   }
   const int ny = static_cast<int>(std::round((y1 - y0) / 0.1));
   const int ystep = std::max(1, ny / 8);
   for (int k = 0; k <= ny; k += ystep) {
     const double t = y0 + 0.1 * k, y = Y(t);
-    s += fmt("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", kLeft, y,
-             kLeft + pw, y);
-    s += fmt("<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%.1f</text>\n", kLeft - 6, y + 4, t);
+    s += format("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#ddd\"/>\n", kLeft,
+                y, kLeft + pw, y);
+    s += format("<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%.1f</text>\n", kLeft - 6, y + 4,
+                t);
   }
-  s +=
-      fmt("<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"none\" "
-          "stroke=\"black\"/>\n",
-          kLeft, kTop, pw, ph);
-  s +=
-      fmt("<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">max link-length error / d "
-          "(measured from the nodes)</text>\n",
-          kLeft + pw / 2, kHeight - 15);
-  s +=
-      fmt("<text transform=\"translate(18 %.1f) rotate(-90)\" text-anchor=\"middle\">drape "
-          "time / time at the default tolerance</text>\n",
-          kTop + ph / 2);
+  s += format(
+      "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"none\" "
+      "stroke=\"black\"/>\n",
+      kLeft, kTop, pw, ph);
+  s += format(
+      "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">max link-length error / d "
+      "(measured from the nodes)</text>\n",
+      kLeft + pw / 2, kHeight - 15);
+  s += format(
+      "<text transform=\"translate(18 %.1f) rotate(-90)\" text-anchor=\"middle\">drape "
+      "time / time at the default tolerance</text>\n",
+      kTop + ph / 2);
   // Series.
   for (std::size_t k = 0; k < order.size(); ++k) {
     const char* col = kColours[k % 4];
     auto pts = series[order[k]];
     std::string poly;
-    for (const auto* p : pts) poly += fmt("%.1f,%.1f ", X(p->link_rel), Y(rel_time(*p)));
-    s += fmt("<polyline points=\"%s\" fill=\"none\" stroke=\"%s\" stroke-width=\"1.5\"/>\n",
-             poly.c_str(), col);
+    for (const auto* p : pts) poly += format("%.1f,%.1f ", X(p->link_rel), Y(rel_time(*p)));
+    s += format("<polyline points=\"%s\" fill=\"none\" stroke=\"%s\" stroke-width=\"1.5\"/>\n",
+                poly.c_str(), col);
     for (std::size_t q = 0; q < pts.size(); ++q) {
       const TolerancePoint* p = pts[q];
       const double x = X(p->link_rel), y = Y(rel_time(*p));
       const bool def = p->tol == default_tol;
-      s +=
-          fmt("<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%s\" fill=\"%s\"%s/>\n", x, y, def ? "6" : "3.5",
-              def ? "none" : col, def ? fmt(" stroke=\"%s\" stroke-width=\"2\"", col).c_str() : "");
+      s += format("<circle cx=\"%.1f\" cy=\"%.1f\" r=\"%s\" fill=\"%s\"%s/>\n", x, y,
+                  def ? "6" : "3.5", def ? "none" : col,
+                  def ? format(" stroke=\"%s\" stroke-width=\"2\"", col).c_str() : "");
       // Tolerances below the rounding floor give the same net (same error): one label.
       if (q > 0 && pts[q - 1]->link_rel == p->link_rel) continue;
       std::size_t last = q;
       while (last + 1 < pts.size() && pts[last + 1]->link_rel == p->link_rel) ++last;
       const std::string label =
-          last > q ? fmt("%.0e .. %.0e", p->tol, pts[last]->tol) : fmt("%.0e", p->tol);
-      s += fmt("<text x=\"%.1f\" y=\"%.1f\" font-size=\"10\" fill=\"%s\">%s</text>\n", x + 5,
-               y - 6 - 10.0 * k, col, label.c_str());
+          last > q ? format("%.0e .. %.0e", p->tol, pts[last]->tol) : format("%.0e", p->tol);
+      s += format("<text x=\"%.1f\" y=\"%.1f\" font-size=\"10\" fill=\"%s\">%s</text>\n", x + 5,
+                  y - 6 - 10.0 * k, col, label.c_str());
     }
     const double ly = kTop + 20 + 20.0 * k;
-    s +=
-        fmt("<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" "
-            "stroke-width=\"2\"/>\n",
-            kLeft + pw + 12, ly, kLeft + pw + 32, ly, col);
-    s += fmt("<text x=\"%.1f\" y=\"%.1f\">%s</text>\n", kLeft + pw + 36, ly + 4, order[k].c_str());
+    s += format(
+        "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"%s\" "
+        "stroke-width=\"2\"/>\n",
+        kLeft + pw + 12, ly, kLeft + pw + 32, ly, col);
+    s += format("<text x=\"%.1f\" y=\"%.1f\">%s</text>\n", kLeft + pw + 36, ly + 4,
+                order[k].c_str());
   }
-  s += fmt("<text x=\"%.1f\" y=\"%.1f\" font-size=\"11\">open circle: the default</text>\n",
-           kLeft + pw + 12, kTop + 30 + 20.0 * static_cast<double>(order.size()));
+  s += format("<text x=\"%.1f\" y=\"%.1f\" font-size=\"11\">open circle: the default</text>\n",
+              kLeft + pw + 12, kTop + 30 + 20.0 * static_cast<double>(order.size()));
   s += "</svg>\n";
   return s;
 }

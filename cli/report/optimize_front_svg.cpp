@@ -2,6 +2,8 @@
 // - flat area), each with its grid, the feasible drapes, the Pareto front, the lowest energy
 // and the scene as given, then a legend.
 
+#include <plyfit/exporters/svg_chart.hpp>
+
 #include "report/optimize_report.hpp"
 #include "report/text_format.hpp"
 
@@ -166,11 +168,7 @@ std::string optimize_svg(const DrapeJob& scene, const OptimizeResult& r) {
   std::vector<const Evaluation*> shown;
   for (const auto& e : r.evaluations)
     if (e.feasible || e.index == 0) shown.push_back(&e);
-  std::string s = format(
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
-      "viewBox=\"0 0 %.0f %.0f\" font-family=\"sans-serif\" font-size=\"12\">\n",
-      width, height, width, height);
-  s += format("<rect width=\"%.0f\" height=\"%.0f\" fill=\"white\"/>\n", width, height);
+  std::string s = exporters::svg_chart_open(width, height);
   s += format(
       "<text x=\"%.0f\" y=\"24\" font-size=\"15\">%s: %d feasible drapes, Pareto front "
       "of %d</text>\n",

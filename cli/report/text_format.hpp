@@ -1,6 +1,8 @@
 #pragma once
 // Number and column formatting shared by the tables plyfit prints.
 
+#include <plyfit/exporters/format.hpp>
+
 #include <algorithm>
 #include <cstdio>
 #include <ostream>
@@ -39,14 +41,7 @@ inline void print_columns(const std::vector<std::vector<std::string>>& rows, std
   }
 }
 
-/// printf-style formatting into a string.
-template <typename... Args>
-std::string format(const char* spec, Args... args) {
-  const int n = std::snprintf(nullptr, 0, spec, args...);
-  std::string s(static_cast<std::size_t>(std::max(n, 0)) + 1, '\0');
-  std::snprintf(s.data(), s.size(), spec, args...);
-  s.resize(static_cast<std::size_t>(std::max(n, 0)));
-  return s;
-}
+/// printf-style formatting into a string (shared with plyfit-bench).
+using exporters::format;
 
 }  // namespace plyfit::cli

@@ -104,6 +104,9 @@ class Checker {
   void surface(const Handle(Geom_Surface) & s, int depth = 0);
   void curve(const Handle(Geom_Curve) & c, int depth = 0);
   void curve2d(const Handle(Geom2d_Curve) & c, int depth = 0);
+  // A curve of either space (Curves3d, Curves2d below): its kind's values, then what it wraps.
+  template <typename Space>
+  void any_curve(const Handle(typename Space::Curve) & c, int depth);
 
  private:
   // The first problem: `code`, with the part of the face (context_) and `what` its values.
@@ -203,66 +206,89 @@ void Checker::surface(const Handle(Geom_Surface) & s, int depth) {
   }
 }
 
-void Checker::curve(const Handle(Geom_Curve) & c, int depth) {
+// OpenCASCADE's 3D and 2D curves: the same kinds with the same accessors, but no common base.
+// A 3D curve's points are placed and measured from the origin, its sizes are lengths; a trim
+// curve lies in the surface's (u, v), so its coordinates and sizes are parameters.
+template <typename C, typename Tr, typename BS, typename Bz, typename L, typename Co, typename Ci,
+          typename E, typename O>
+struct CurveKinds {
+  using Curve = C;
+  using Trimmed = Tr;
+  using BSpline = BS;
+  using Bezier = Bz;
+  using Line = L;
+  using Conic = Co;
+  using Circle = Ci;
+  using Ellipse = E;
+  using Offset = O;
+};
+
+struct Curves3d : CurveKinds<Geom_Curve, Geom_TrimmedCurve, Geom_BSplineCurve, Geom_BezierCurve,
+                             Geom_Line, Geom_Conic, Geom_Circle, Geom_Ellipse, Geom_OffsetCurve> {
+  static void point(Checker& c, const gp_Pnt& p, const std::string& what) { c.point(p, what); }
+  static void size(Checker& c, double x, const std::string& what) { c.length(x, what); }
+  static void direction(Checker& c, const gp_Dir& d, const std::string& what) {
+    c.direction(d.XYZ(), what);
+  }
+  static void axis(Checker& c, const Conic& k) { direction(c, k.Position().Direction(), "axis"); }
+  static void offset_direction(Checker& c, const Offset& o) {
+    direction(c, o.Direction(), "direction");
+  }
+};
+
+struct Curves2d
+    : CurveKinds<Geom2d_Curve, Geom2d_TrimmedCurve, Geom2d_BSplineCurve, Geom2d_BezierCurve,
+                 Geom2d_Line, Geom2d_Conic, Geom2d_Circle, Geom2d_Ellipse, Geom2d_OffsetCurve> {
+  static void point(Checker& c, const gp_Pnt2d& p, const std::string& what) {
+    c.parameter(p.X(), what);
+    c.parameter(p.Y(), what);
+  }
+  static void size(Checker& c, double x, const std::string& what) { c.parameter(x, what); }
+  static void direction(Checker& c, const gp_Dir2d& d, const std::string& what) {
+    c.parameter(d.X(), what);
+    c.parameter(d.Y(), what);
+  }
+  static void axis(Checker&, const Conic&) {}
+  static void offset_direction(Checker&, const Offset&) {}
+};
+
+template <typename Space>
+void Checker::any_curve(const Handle(typename Space::Curve) & c, int depth) {
   if (c.IsNull() || !ok() || depth > kMaxWrapping) return;
-  auto at = [this](const gp_Pnt& p, const std::string& what) { point(p, what); };
-  if (const auto t = Handle(Geom_TrimmedCurve)::DownCast(c); !t.IsNull()) {
+  auto at = [this](const auto& p, const std::string& what) { Space::point(*this, p, what); };
+  if (const auto t = Handle(typename Space::Trimmed)::DownCast(c); !t.IsNull()) {
     bound_value(t->FirstParameter(), "trim bound");
     bound_value(t->LastParameter(), "trim bound");
-    curve(t->BasisCurve(), depth + 1);
-  } else if (const auto b = Handle(Geom_BSplineCurve)::DownCast(c); !b.IsNull()) {
+    any_curve<Space>(t->BasisCurve(), depth + 1);
+  } else if (const auto b = Handle(typename Space::BSpline)::DownCast(c); !b.IsNull()) {
     poles_and_knots(b, at);
-  } else if (const auto z = Handle(Geom_BezierCurve)::DownCast(c); !z.IsNull()) {
+  } else if (const auto z = Handle(typename Space::Bezier)::DownCast(c); !z.IsNull()) {
     poles_and_knots(z, at);
-  } else if (const auto l = Handle(Geom_Line)::DownCast(c); !l.IsNull()) {
-    point(l->Position().Location(), "origin");
-    direction(l->Position().Direction().XYZ(), "direction");
-  } else if (const auto k = Handle(Geom_Conic)::DownCast(c); !k.IsNull()) {
-    point(k->Position().Location(), "centre");
-    direction(k->Position().Direction().XYZ(), "axis");
-    if (const auto r = Handle(Geom_Circle)::DownCast(c); !r.IsNull()) length(r->Radius(), "radius");
-    if (const auto e = Handle(Geom_Ellipse)::DownCast(c); !e.IsNull()) {
-      length(e->MajorRadius(), "major radius");
-      length(e->MinorRadius(), "minor radius");
+  } else if (const auto l = Handle(typename Space::Line)::DownCast(c); !l.IsNull()) {
+    at(l->Position().Location(), "origin");
+    Space::direction(*this, l->Position().Direction(), "direction");
+  } else if (const auto k = Handle(typename Space::Conic)::DownCast(c); !k.IsNull()) {
+    at(k->Location(), "centre");
+    Space::axis(*this, *k);
+    if (const auto r = Handle(typename Space::Circle)::DownCast(c); !r.IsNull())
+      Space::size(*this, r->Radius(), "radius");
+    if (const auto e = Handle(typename Space::Ellipse)::DownCast(c); !e.IsNull()) {
+      Space::size(*this, e->MajorRadius(), "major radius");
+      Space::size(*this, e->MinorRadius(), "minor radius");
     }
-  } else if (const auto o = Handle(Geom_OffsetCurve)::DownCast(c); !o.IsNull()) {
-    length(o->Offset(), "offset");
-    direction(o->Direction().XYZ(), "direction");
-    curve(o->BasisCurve(), depth + 1);
+  } else if (const auto o = Handle(typename Space::Offset)::DownCast(c); !o.IsNull()) {
+    Space::size(*this, o->Offset(), "offset");
+    Space::offset_direction(*this, *o);
+    any_curve<Space>(o->BasisCurve(), depth + 1);
   }
 }
 
-// A trim curve lies in the surface's (u, v): its coordinates are parameters.
+void Checker::curve(const Handle(Geom_Curve) & c, int depth) {
+  any_curve<Curves3d>(c, depth);
+}
+
 void Checker::curve2d(const Handle(Geom2d_Curve) & c, int depth) {
-  if (c.IsNull() || !ok() || depth > kMaxWrapping) return;
-  auto uv = [this](const gp_Pnt2d& p, const std::string& what) {
-    parameter(p.X(), what);
-    parameter(p.Y(), what);
-  };
-  if (const auto t = Handle(Geom2d_TrimmedCurve)::DownCast(c); !t.IsNull()) {
-    bound_value(t->FirstParameter(), "trim bound");
-    bound_value(t->LastParameter(), "trim bound");
-    curve2d(t->BasisCurve(), depth + 1);
-  } else if (const auto b = Handle(Geom2d_BSplineCurve)::DownCast(c); !b.IsNull()) {
-    poles_and_knots(b, uv);
-  } else if (const auto z = Handle(Geom2d_BezierCurve)::DownCast(c); !z.IsNull()) {
-    poles_and_knots(z, uv);
-  } else if (const auto l = Handle(Geom2d_Line)::DownCast(c); !l.IsNull()) {
-    uv(l->Location(), "origin");
-    parameter(l->Direction().X(), "direction");
-    parameter(l->Direction().Y(), "direction");
-  } else if (const auto k = Handle(Geom2d_Conic)::DownCast(c); !k.IsNull()) {
-    uv(k->Location(), "centre");
-    if (const auto r = Handle(Geom2d_Circle)::DownCast(c); !r.IsNull())
-      parameter(r->Radius(), "radius");
-    if (const auto e = Handle(Geom2d_Ellipse)::DownCast(c); !e.IsNull()) {
-      parameter(e->MajorRadius(), "major radius");
-      parameter(e->MinorRadius(), "minor radius");
-    }
-  } else if (const auto o = Handle(Geom2d_OffsetCurve)::DownCast(c); !o.IsNull()) {
-    parameter(o->Offset(), "offset");
-    curve2d(o->BasisCurve(), depth + 1);
-  }
+  any_curve<Curves2d>(c, depth);
 }
 
 // Edge k of `face`: its 3D curve and range, its trim curve on the face and range, its vertices.

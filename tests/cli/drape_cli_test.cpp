@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include "cli/cli_util.hpp"
+#include "cli/rejected.hpp"
 
 #include <filesystem>
 #include <sstream>
@@ -43,42 +44,28 @@ std::pair<CliRun, nlohmann::json> drape_report(const std::string& args, const Sc
 
 TEST_CASE("cli: bad drape input is one line with its code, a non-zero exit and no output") {
   Scratch s("drape_bad");
-  // The exit code (2: a bad command line; 1: the job failed), the error's code printed, and
-  // what the line names (the option, the file). Errors of other modules not yet given a code of
-  // their own (printed as "text") have none here: their words are checked instead.
-  struct Bad {
-    std::string args;
-    int exit;
-    std::string code, names;
-  };
-  const std::vector<Bad> cases = {
-      {with("spacing", "0"), 2, "spacing_not_positive", "--spacing"},
-      {with("spacing", "-1"), 2, "spacing_not_positive", "--spacing"},
-      {with("spacing", "nan"), 2, "not_finite", "--spacing"},
-      {with("spacing", "one"), 2, "not_a_number", "--spacing"},
-      {with("start2d", "0,abc"), 2, "not_a_number", "--start2d"},
-      {with("start3d", "0,0"), 2, "vector_size", "--start3d"},
-      {with("sweep2d", "1,0"), 2, "sweep_along_path", "--sweep2d"},
-      {with("base-normal", "0,0,1"), 1, "base_normal_tangent", "--base-normal"},
-      {with("mold", "builtin:spere"), 1, "", "unknown built-in mold"},
-      {with("mold", "builtin:sphere-octant:Q=3"), 1, "", "no parameter 'Q'"},
-      {with("mold", "builtin:sphere-octant:R=abc"), 1, "", "malformed value"},
-      {with("sweep3d", "1,0,0"), 1, "sweep3d_along_path", "--sweep3d"},
-      {with("lock-angle", "120"), 2, "lock_angle_range", "--lock-angle"},
-      {with("outputs", "json,pdf"), 2, "unknown_value", "--outputs"},
-      {with("frobnicate", "3"), 2, "unknown_option", "--frobnicate"},
-      {"--mold builtin:sphere-octant --spacing 1", 2, "missing_option", "--start2d"},
-      {with("mold", "'" + s.file("missing.step") + "'"), 1, "", s.file("missing.step")},
-  };
-  for (const auto& c : cases) {
-    const std::string out = s.file("out");
-    const CliRun r = plyfit_run("drape " + c.args + " -o '" + out + "'", s);
-    INFO(c.args << "\n-> exit " << r.code << ": " << r.err);
-    CHECK(r.code == c.exit);
-    CHECK((c.code.empty() ? !error_code(r).empty() : error_code(r) == c.code));
-    CHECK(r.err.find(c.names) != std::string::npos);
-    CHECK_FALSE(std::filesystem::exists(out));
-  }
+  check_rejected(
+      "drape",
+      {
+          {with("spacing", "0"), 2, "spacing_not_positive", "--spacing"},
+          {with("spacing", "-1"), 2, "spacing_not_positive", "--spacing"},
+          {with("spacing", "nan"), 2, "not_finite", "--spacing"},
+          {with("spacing", "one"), 2, "not_a_number", "--spacing"},
+          {with("start2d", "0,abc"), 2, "not_a_number", "--start2d"},
+          {with("start3d", "0,0"), 2, "vector_size", "--start3d"},
+          {with("sweep2d", "1,0"), 2, "sweep_along_path", "--sweep2d"},
+          {with("base-normal", "0,0,1"), 1, "base_normal_tangent", "--base-normal"},
+          {with("mold", "builtin:spere"), 1, "", "unknown built-in mold"},
+          {with("mold", "builtin:sphere-octant:Q=3"), 1, "", "no parameter 'Q'"},
+          {with("mold", "builtin:sphere-octant:R=abc"), 1, "", "malformed value"},
+          {with("sweep3d", "1,0,0"), 1, "sweep3d_along_path", "--sweep3d"},
+          {with("lock-angle", "120"), 2, "lock_angle_range", "--lock-angle"},
+          {with("outputs", "json,pdf"), 2, "unknown_value", "--outputs"},
+          {with("frobnicate", "3"), 2, "unknown_option", "--frobnicate"},
+          {"--mold builtin:sphere-octant --spacing 1", 2, "missing_option", "--start2d"},
+          {with("mold", "'" + s.file("missing.step") + "'"), 1, "", s.file("missing.step")},
+      },
+      s);
 }
 
 TEST_CASE("cli: a drape's input checked against the mold names the option; nonsense is partial") {

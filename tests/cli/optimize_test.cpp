@@ -14,6 +14,7 @@
 #include <catch2/catch.hpp>
 
 #include "cli/cli_util.hpp"
+#include "cli/rejected.hpp"
 
 #include <cmath>
 #include <optional>
@@ -368,40 +369,28 @@ TEST_CASE(
   const std::string oct = "'" + sample("sphere-octant-a.ini") + "'";
   const std::string bad_key = s.file("bad.ini");
   spit(bad_key, "[ply]\nspacing = one\n");
-  struct Case {
-    std::string args;
-    int exit;
-    std::string code, names;
-  };
-  const std::vector<Case> cases = {
-      {"", 2, "missing_argument", "plyfit optimize SCENE"},
-      {oct + " " + oct, 2, "unexpected_argument", "sphere-octant-a.ini"},
-      {oct + " --vary seed", 2, "unknown_value", "--vary: "},
-      {oct + " --objective weight", 2, "unknown_value", "--objective: "},
-      {oct + " --evaluations 0", 2, "not_an_integer", "--evaluations: "},
-      {oct + " --evaluations 2.5", 2, "not_an_integer", "--evaluations: "},
-      {oct + " --evaluations many", 2, "not_a_number", "--evaluations: "},
-      {oct + " --min-coverage 120", 2, "out_of_range", "--min-coverage: "},
-      {oct + " --radius -1", 2, "out_of_range", "--radius: "},
-      {oct + " --vary angle --radius 3", 2, "option_needs_vary", "--radius: "},
-      {oct + " --angle-range 0", 2, "out_of_range", "--angle-range: "},
-      {oct + " --vary start --angle-range 5", 2, "option_needs_vary", "--angle-range: "},
-      {oct + " --path-range 10", 2, "option_needs_vary", "--path-range: "},
-      {oct + " -j 0", 2, "not_an_integer", "--jobs: "},
-      {oct + " --colour red", 2, "unknown_option", "--colour"},
-      {"'" + s.file("none.ini") + "'", 1, "scene_cannot_open", s.file("none.ini") + ": "},
-      {"'" + bad_key + "'", 1, "missing_option", bad_key + ": "},
-  };
-  for (const auto& c : cases) {
-    INFO("plyfit optimize " << c.args);
-    const std::string out = s.file("out");
-    const CliRun r = plyfit_run("optimize " + c.args + " -o '" + out + "'", s);
-    INFO(r.err);
-    CHECK(r.code == c.exit);
-    CHECK(error_code(r) == c.code);
-    CHECK(r.err.find(c.names) != std::string::npos);
-    CHECK(!std::filesystem::exists(out));
-  }
+  check_rejected(
+      "optimize",
+      {
+          {"", 2, "missing_argument", "plyfit optimize SCENE"},
+          {oct + " " + oct, 2, "unexpected_argument", "sphere-octant-a.ini"},
+          {oct + " --vary seed", 2, "unknown_value", "--vary: "},
+          {oct + " --objective weight", 2, "unknown_value", "--objective: "},
+          {oct + " --evaluations 0", 2, "not_an_integer", "--evaluations: "},
+          {oct + " --evaluations 2.5", 2, "not_an_integer", "--evaluations: "},
+          {oct + " --evaluations many", 2, "not_a_number", "--evaluations: "},
+          {oct + " --min-coverage 120", 2, "out_of_range", "--min-coverage: "},
+          {oct + " --radius -1", 2, "out_of_range", "--radius: "},
+          {oct + " --vary angle --radius 3", 2, "option_needs_vary", "--radius: "},
+          {oct + " --angle-range 0", 2, "out_of_range", "--angle-range: "},
+          {oct + " --vary start --angle-range 5", 2, "option_needs_vary", "--angle-range: "},
+          {oct + " --path-range 10", 2, "option_needs_vary", "--path-range: "},
+          {oct + " -j 0", 2, "not_an_integer", "--jobs: "},
+          {oct + " --colour red", 2, "unknown_option", "--colour"},
+          {"'" + s.file("none.ini") + "'", 1, "scene_cannot_open", s.file("none.ini") + ": "},
+          {"'" + bad_key + "'", 1, "missing_option", bad_key + ": "},
+      },
+      s);
 }
 
 TEST_CASE("optimize: an interrupted search writes nothing and exits 130") {

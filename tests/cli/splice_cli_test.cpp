@@ -9,6 +9,7 @@
 #include <catch2/catch.hpp>
 
 #include "cli/cli_util.hpp"
+#include "cli/rejected.hpp"
 
 #include <cmath>
 #include <set>
@@ -137,26 +138,18 @@ TEST_CASE("cli splices: a ply narrower than the roll is one piece, its outputs u
 
 TEST_CASE("cli splices: bad values are errors naming the option") {
   Scratch s("splices_bad");
-  struct Case {
-    std::string flags, code, names;
-  };
-  for (const Case& c : std::vector<Case>{
-           {"--roll-width 0.39", "roll_narrower_than_cells", "--roll-width"},
-           {"--roll-width 6 --splice-overlap -1", "splice_overlap_negative", "--splice-overlap"},
-           {"--roll-width 6 --splice-overlap 6", "splice_overlap_too_wide", "--splice-overlap"},
-           {"--roll-width 6 --splice-overlap 5.9", "splice_overlap_too_wide", "--splice-overlap"},
-           {"--roll-width x", "not_a_number", "--roll-width"},
-           {"--roll-width nan", "", "--roll-width"},
-           {"--roll-width 6 --splice-overlap inf", "", "--splice-overlap"},
-       }) {
-    INFO(c.flags);
-    const CliRun r =
-        plyfit_run("drape " + kCylinder + " " + c.flags + " -o '" + s.file("out") + "'", s);
-    CHECK(r.code != 0);
-    if (!c.code.empty()) CHECK(error_code(r) == c.code);
-    CHECK(r.err.find(c.names) != std::string::npos);
-    CHECK_FALSE(fs::exists(s.file("out")));
-  }
+  check_rejected(
+      "drape " + kCylinder,
+      {
+          {"--roll-width 0.39", 2, "roll_narrower_than_cells", "--roll-width"},
+          {"--roll-width 6 --splice-overlap -1", 2, "splice_overlap_negative", "--splice-overlap"},
+          {"--roll-width 6 --splice-overlap 6", 2, "splice_overlap_too_wide", "--splice-overlap"},
+          {"--roll-width 6 --splice-overlap 5.9", 2, "splice_overlap_too_wide", "--splice-overlap"},
+          {"--roll-width x", 2, "not_a_number", "--roll-width"},
+          {"--roll-width nan", 2, "not_finite", "--roll-width"},
+          {"--roll-width 6 --splice-overlap inf", 2, "not_finite", "--splice-overlap"},
+      },
+      s);
   // In a scene file the error names the file's key.
   spit(s.file("scene.ini"), "[material]\nroll-width = 0.1\n");
   const CliRun r = plyfit_run(

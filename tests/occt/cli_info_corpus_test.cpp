@@ -12,11 +12,11 @@ using namespace plyfit::test;
 
 TEST_CASE("importers: plyfit info lists the faces of a real file") {
   TempDir dir("cli_info_corpus");
-  const std::string path = shared_cad("occ22470.igs");
-  const Run r = check_info_table(path, dir, 18);
-  CHECK(r.out.find("summary: 18 faces (bspline 18), 14 rational, 18 trimmed") != std::string::npos);
-  CHECK(r.out.find("unit: millimetre") != std::string::npos);
-  CHECK(r.out.find("schema: IGES 5.3") != std::string::npos);
+  check_info_listings({{shared_cad("occ22470.igs"),
+                        18,
+                        {"summary: 18 faces (bspline 18), 14 rational, 18 trimmed",
+                         "unit: millimetre", "schema: IGES 5.3"}}},
+                      dir);
   // Reader messages appear summarised after the summary line.
   const Run w = run_plyfit("info '" + shared_cad("trj7_c2-td-203.stp") + "'", dir);
   REQUIRE(w.code == 0);
@@ -33,9 +33,5 @@ TEST_CASE("importers: plyfit info --json on a real file matches the library's li
   CHECK(j["schema"] == "AUTOMOTIVE_DESIGN");
   CHECK(j["format"] == "step");
   // Reader warnings reach the JSON too, by their codes.
-  const Run w = run_plyfit("info --json '" + shared_cad("trj7_c2-td-203.stp") + "'", dir);
-  REQUIRE(w.code == 0);
-  const auto warnings = nlohmann::json::parse(w.out)["warnings"];
-  REQUIRE_FALSE(warnings.empty());
-  CHECK(warnings[0]["code"] == "reader_messages");
+  check_info_json_warns(shared_cad("trj7_c2-td-203.stp"), dir, "reader_messages");
 }

@@ -17,17 +17,14 @@ using namespace plyfit::test;
 
 TEST_CASE("importers: plyfit info lists the faces of a file") {
   TempDir dir("cli_info");
-  const std::string path = sample_mold("tube-window.step");
-  const Run r = check_info_table(path, dir, 1);
-  CHECK(r.out.find("summary: 1 faces (bspline 1), 1 rational, 1 trimmed (1 with holes)") !=
-        std::string::npos);
-  CHECK(r.out.find("'tube-window'") != std::string::npos);
-  CHECK(r.out.find("unit: millimetre") != std::string::npos);
-  CHECK(r.out.find("schema: AUTOMOTIVE_DESIGN") != std::string::npos);
-  // Reader messages appear summarised after the summary line: OpenCASCADE's STEP reader makes
-  // the closed B-spline of the tube periodic, and says so (in its own words).
-  CHECK(r.out.find("\nwarning: ") != std::string::npos);
-  CHECK(r.out.find("'Surface forced to be periodic'") != std::string::npos);
+  // OpenCASCADE's STEP reader makes the closed B-spline of the tube periodic, and says so:
+  // reader messages appear summarised after the summary line.
+  check_info_listings({{sample_mold("tube-window.step"),
+                        1,
+                        {"summary: 1 faces (bspline 1), 1 rational, 1 trimmed (1 with holes)",
+                         "'tube-window'", "unit: millimetre", "schema: AUTOMOTIVE_DESIGN",
+                         "\nwarning: transfer: 1 warning (1x 'Surface forced to be periodic')"}}},
+                      dir);
 }
 
 TEST_CASE("importers: plyfit info --json parses and matches the library's listing") {
@@ -43,14 +40,9 @@ TEST_CASE("importers: plyfit info --json parses and matches the library's listin
     CHECK(j["schema"].get<std::string>().rfind(is_iges(name) ? "IGES 5.3" : "AUTOMOTIVE_DESIGN",
                                                0) == 0);
   }
-  // Reader warnings reach the JSON too, by their codes.
-  const Run w = run_plyfit("info --json '" + sample_mold("tube-window.step") + "'", dir);
-  REQUIRE(w.code == 0);
-  const auto warnings = nlohmann::json::parse(w.out)["warnings"];
-  REQUIRE(warnings.size() == 1);
-  CHECK(warnings[0]["code"] == "reader_messages");
-  CHECK(warnings[0]["text"].get<std::string>().find("Surface forced to be periodic") !=
-        std::string::npos);
+  // Reader warnings reach the JSON too, by their codes (OpenCASCADE's text as data).
+  check_info_json_warns(sample_mold("tube-window.step"), dir, "reader_messages",
+                        "Surface forced to be periodic");
 }
 
 TEST_CASE("importers: plyfit info exit codes: 1 for a bad file, 2 for a bad command line") {

@@ -138,6 +138,22 @@ inline void check_corrupted(const std::string& step, const std::string& iges, co
   }
 }
 
+/// A STEP and an IGES file, and the seed of their corrupted copies (the IGES file's is seed + 1).
+struct FilePair {
+  std::string step;
+  std::string iges;
+  uint64_t seed;
+};
+
+/// check_renamed() and check_corrupted() on each pair of files.
+inline void check_damaged_copies(const std::vector<FilePair>& pairs, const TempDir& dir) {
+  for (const FilePair& p : pairs) {
+    INFO(p.step << ", " << p.iges);
+    check_renamed(p.step, p.iges, dir);
+    check_corrupted(p.step, p.iges, dir, p.seed);
+  }
+}
+
 /// Face indices outside 0..faces-1 are errors naming the file, and so is a time limit that is
 /// already past.
 inline void check_bad_index_and_time_limit(const std::string& path, int faces) {

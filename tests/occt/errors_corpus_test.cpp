@@ -10,14 +10,10 @@
 using namespace plyfit;
 using namespace plyfit::test;
 
-TEST_CASE("importers: a real IGES file renamed .step (and STEP renamed .igs) is rejected clearly") {
-  TempDir dir("renamed_corpus");
-  check_renamed(shared_cad("trj8_c2-db-214.stp"), shared_cad("PRO20359-L1.igs"), dir);
-}
-
-TEST_CASE("importers: truncated and corrupted copies of real files give errors, not crashes") {
+TEST_CASE("importers: renamed, truncated and corrupted copies of real files give clear errors") {
   TempDir dir("corrupt_corpus");
-  check_corrupted(shared_cad("trj8_c2-db-214.stp"), shared_cad("PRO20359-L1.igs"), dir, 21);
+  check_damaged_copies({{shared_cad("trj8_c2-db-214.stp"), shared_cad("PRO20359-L1.igs"), 21}},
+                       dir);
 }
 
 TEST_CASE("importers: the plyfit binary survives every corrupted copy of real files", "[slow]") {

@@ -8,6 +8,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <string>
+#include <vector>
+
 #include "occt/occt_reference.hpp"
 
 namespace plyfit::test {
@@ -22,6 +25,34 @@ inline Run check_info_table(const std::string& path, const TempDir& dir, int fac
   CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 2 + faces + 2);
   CHECK(r.out.find("***") == std::string::npos);
   return r;
+}
+
+/// A file and what its `plyfit info` table must show: its number of faces and lines of text.
+struct InfoListing {
+  std::string path;
+  int faces;
+  std::vector<std::string> lines;
+};
+
+/// check_info_table() on each file of `cases`, and each of its expected lines in the output.
+inline void check_info_listings(const std::vector<InfoListing>& cases, const TempDir& dir) {
+  for (const InfoListing& c : cases) {
+    INFO(c.path);
+    const Run r = check_info_table(c.path, dir, c.faces);
+    for (const std::string& line : c.lines) CHECK(r.out.find(line) != std::string::npos);
+  }
+}
+
+/// `plyfit info --json PATH` succeeds and its first warning has `code` (and `text` holding
+/// `fragment`, when one is given).
+inline void check_info_json_warns(const std::string& path, const TempDir& dir,
+                                  const std::string& code, const std::string& fragment = "") {
+  const Run r = run_plyfit("info --json '" + path + "'", dir);
+  REQUIRE(r.code == 0);
+  const auto warnings = nlohmann::json::parse(r.out)["warnings"];
+  REQUIRE_FALSE(warnings.empty());
+  CHECK(warnings[0]["code"] == code);
+  CHECK(warnings[0]["text"].get<std::string>().find(fragment) != std::string::npos);
 }
 
 /// Runs `plyfit info --json PATH` and checks that every face entry matches the library's

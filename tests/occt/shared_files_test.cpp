@@ -139,15 +139,14 @@ const std::vector<std::string> kFiles = {
     "surf114.igs",        "example_45_faces.iges", "bug27693_cornetta-step.stp",
     "trj7_c2-td-203.stp", "trj8_c2-db-214.stp",    "bm2_ec_exhaust-A.stp"};
 
-// Converts every face of a file and checks it against OCCT; returns the worst deviation.
-void check_file_surfaces(const std::string& name) {
-  INFO(name);
+// Calls check(face, reference) on every face of a shared file, converted (its trims and
+// orientation as the mold lists them) and as OpenCASCADE reads it.
+template <typename Check>
+void for_each_file_face(const std::string& name, Check&& check) {
   auto file = importers::open_mold(shared_cad(name));
   REQUIRE(file.ok());
   const Reference ref = read_reference(shared_cad(name), is_iges(name));
   REQUIRE(ref.count() == static_cast<int>((*file)->mold().faces.size()));
-  Rng rng(7);
-  double worst = 0.0;
   for (int i = 0; i < ref.count(); ++i) {
     INFO("face " << i);
     auto data = (*file)->convert_face(i);
@@ -156,34 +155,36 @@ void check_file_surfaces(const std::string& name) {
     CHECK(data->reversed == (*file)->mold().faces[i].reversed);
     auto face = Face::create(std::move(data).value());
     REQUIRE(face.ok());
-    worst = std::max(worst, check_surface(*face, ref.face(i), 30, rng));
+    check(*face, ref.face(i));
   }
+}
+
+// Checks every face of a file against OCCT's surface; reports the worst deviation.
+void check_file_surfaces(const std::string& name) {
+  INFO(name);
+  Rng rng(7);
+  double worst = 0.0;
+  for_each_file_face(name, [&](const Face& face, const TopoDS_Face& ref) {
+    worst = std::max(worst, check_surface(face, ref, 30, rng));
+  });
   WARN(name << ": worst surface deviation " << worst << " of the face size");
 }
 
 void check_file_contains(const std::string& name) {
   INFO(name);
-  auto file = importers::open_mold(shared_cad(name));
-  REQUIRE(file.ok());
-  const Reference ref = read_reference(shared_cad(name), is_iges(name));
   Rng rng(11);
   int trimmed = 0;
-  for (int i = 0; i < ref.count(); ++i) {
-    INFO("face " << i);
-    auto data = (*file)->convert_face(i);
-    REQUIRE(data.ok());
-    auto face = Face::create(std::move(data).value());
-    REQUIRE(face.ok());
-    const TopoDS_Face classified = face_in_converted_parameters(ref.face(i));
+  for_each_file_face(name, [&](const Face& face, const TopoDS_Face& ref) {
+    const TopoDS_Face classified = face_in_converted_parameters(ref);
     // Trimmed faces: >= 1000 compared points; untrimmed ones (no loops) a few hundred, which
     // also checks that calling them untrimmed was right.
-    const int n = face->trimmed() ? 1300 : 300;
-    const int compared = check_contains(*face, classified, n, rng);
-    if (face->trimmed()) {
+    const int n = face.trimmed() ? 1300 : 300;
+    const int compared = check_contains(face, classified, n, rng);
+    if (face.trimmed()) {
       ++trimmed;
       CHECK(compared >= 1000);
     }
-  }
+  });
   WARN(name << ": " << trimmed << " trimmed faces compared with the classifier");
 }
 
