@@ -302,7 +302,8 @@ int OutlineBuilder::seam_border(int k, const std::vector<std::int32_t>& node_at)
         if (!n || n->mapped() || n->status == NodeStatus::kOutside ||
             n->status == NodeStatus::kOffPly)
           continue;
-        out = n->status == NodeStatus::kOverlap && out >= 0 ? 1 : -1;
+        const bool seam = n->status == NodeStatus::kOverlap || n->status == NodeStatus::kConflict;
+        out = seam && out >= 0 ? 1 : -1;
       }
   };
   const std::size_t ne = exact_.size();

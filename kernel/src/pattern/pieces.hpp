@@ -30,9 +30,10 @@ struct ClothCorner {
 using ClothCorners = std::function<void(int p, std::vector<ClothCorner>& out)>;
 
 /// What stops the cloth round cloth polygon p: -1 a stop of another kind than the seam (a
-/// shear limit, a failure, a conflict) at one of its node corners' cells, else 1 where the
-/// drape stopped a node there as overlap (cloth there would lie on cloth already laid: the
-/// seam where the cloth meets itself), else 0 (mapped nodes, or the face's edge).
+/// shear limit, a failure) at one of its node corners' cells, else 1 where the drape stopped
+/// a node there as overlap or conflict (cloth there would lie on cloth already laid, or two
+/// fronts meet that cannot be joined: the seam where the cloth meets itself), else 0 (mapped
+/// nodes, or the face's edge).
 using SeamBorder = std::function<int(int p)>;
 
 /// The cloth polygons laid twice. `pieces[k]` lists the polygons (0 .. polygons - 1) of

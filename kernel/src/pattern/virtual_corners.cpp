@@ -61,6 +61,18 @@ void OutlineBuilder::solve_virtual_corners() {
         }
   };
   auto known = [&](std::size_t k) { return virtual_.count(todo[k].key()) > 0; };
+  // Tries the work list's nodes in order until one gains a position by `place`.
+  auto first_placed = [&](std::set<std::size_t>& list, auto place, bool extrapolated) {
+    while (!list.empty()) {
+      const std::size_t k = *list.begin();
+      list.erase(list.begin());
+      if (!known(k) && place(todo[k])) {
+        solved(todo[k], extrapolated);
+        return true;
+      }
+    }
+    return false;
+  };
   std::size_t next = 0;
   for (;;) {  // each round solves a node or ends: at most todo.size() rounds
     while (!queue.empty()) {
@@ -74,22 +86,12 @@ void OutlineBuilder::solve_virtual_corners() {
         solved(todo[next], false);
         progress = true;
       }
-    while (!progress && !retry.empty()) {
-      const std::size_t k = *retry.begin();
-      retry.erase(retry.begin());
-      if (!known(k) && virtual_by_continuation(todo[k], false)) {
-        solved(todo[k], false);
-        progress = true;
-      }
-    }
-    while (!progress && !extrapolate.empty()) {
-      const std::size_t k = *extrapolate.begin();
-      extrapolate.erase(extrapolate.begin());
-      if (!known(k) && virtual_by_extrapolation(todo[k])) {
-        solved(todo[k], true);
-        progress = true;
-      }
-    }
+    progress =
+        progress ||
+        first_placed(
+            retry, [&](const NodeId& id) { return virtual_by_continuation(id, false); }, false) ||
+        first_placed(
+            extrapolate, [&](const NodeId& id) { return virtual_by_extrapolation(id); }, true);
     if (!progress) break;
   }
 }
