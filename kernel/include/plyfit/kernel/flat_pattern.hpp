@@ -46,8 +46,8 @@ struct FlatPattern {
   /// Cloth laid twice, left out of the cut outline before the narrow features are removed:
   /// the cells (or cell parts) of a piece with a node on the cloth of a larger piece, where
   /// the cloth came round onto itself (a closed face or shell) past the drape's overlap
-  /// test, and the pieces the seam cuts off (beyond it). The cut area is the exact one less laid_twice_area and cut_removed_area, plus
-  /// cut_added_area.
+  /// test, and the pieces the seam cuts off (beyond it). The cut area is the exact one less
+  /// laid_twice_area and cut_removed_area, plus cut_added_area.
   int cells_laid_twice = 0;
   double laid_twice_area = 0.0;
 };
