@@ -88,6 +88,14 @@ std::optional<OutlineBuilder::Position> OutlineBuilder::cloth_position(const Vec
   const double dx = ply_.spec().d_weft, dy = ply_.spec().d_warp;
   const auto i0 = static_cast<std::int32_t>(std::floor(q2.x() / dx));
   const auto j0 = static_cast<std::int32_t>(std::floor(q2.y() / dy));
+  // A mapped regular node linked to n along a thread, either way (a base-path node splits
+  // a link: its ply offset is no thread step).
+  auto thread_neighbour = [this](const DrapeNode& n, ThreadDir a, ThreadDir b) {
+    for (const ThreadDir dir : {a, b})
+      if (const DrapeNode* m = r_.linked(n, dir); m && m->mapped() && !m->id.is_path_only())
+        return m;
+    return static_cast<const DrapeNode*>(nullptr);
+  };
   const DrapeNode* best[3] = {nullptr, nullptr, nullptr};
   double best_d = std::numeric_limits<double>::infinity();
   for (std::int32_t a = -kCarryCells; a <= kCarryCells + 1; ++a)
@@ -96,11 +104,9 @@ std::optional<OutlineBuilder::Position> OutlineBuilder::cloth_position(const Vec
       if (!n || !n->mapped()) continue;
       const double dist = (n->ply - q2).norm();
       if (dist >= best_d) continue;
-      const DrapeNode* x = r_.linked(*n, ThreadDir::kPlusX);
-      if (!x || !x->mapped()) x = r_.linked(*n, ThreadDir::kMinusX);
-      const DrapeNode* y = r_.linked(*n, ThreadDir::kPlusY);
-      if (!y || !y->mapped()) y = r_.linked(*n, ThreadDir::kMinusY);
-      if (!x || !y || !x->mapped() || !y->mapped()) continue;
+      const DrapeNode* x = thread_neighbour(*n, ThreadDir::kPlusX, ThreadDir::kMinusX);
+      const DrapeNode* y = thread_neighbour(*n, ThreadDir::kPlusY, ThreadDir::kMinusY);
+      if (!x || !y) continue;
       best[0] = n, best[1] = x, best[2] = y, best_d = dist;
     }
   if (!best[0]) return std::nullopt;
@@ -111,6 +117,7 @@ std::optional<OutlineBuilder::Position> OutlineBuilder::cloth_position(const Vec
   const double s = r.x() / ex.x(), t = r.y() / ey.y();
   const SurfaceLocation from = n.at();
   const Vec2 uv = from.uv + s * s_.delta(from, x.at()) + t * s_.delta(from, y.at());
+  if (!uv.allFinite()) return std::nullopt;
   const SurfaceLocation at = s_.locate(from, uv);
   const SurfaceEval1 e = s_.eval1(at);
   if (!e.ok || !e.p.allFinite()) return std::nullopt;
