@@ -152,23 +152,32 @@ void OutlineBuilder::place_cut_out_nodes() {
   }
 }
 
-// Each dart's V where its cut lines bound cloth cut out (removed_area, the sides overlapping
-// on the part; where they leave a gap on the part, no cloth is missing): the left line out to
-// the tip and the right one back, united.
-Region2 OutlineBuilder::dart_notches() const {
+// Each dart's V in `region` (the outline's loops) where its cut lines bound cloth cut out
+// (removed_area, the sides overlapping on the part; where they leave a gap on the part, no
+// cloth is missing): the left line out to the tip and the right one back, united.
+Region2 OutlineBuilder::dart_notches(const Region2& region) const {
+  const auto in_region = [&](const Vec2& p) {
+    bool in = false;
+    for (const auto& loop : region) in = in != inside_polygon(loop, p);
+    return in;
+  };
   Region2 out;
   for (const DartResult& d : r_.darts) {
     if (!(d.removed_area > d.opening_area) || d.line_left.size() < 2) continue;
     // The lines start where both sides have cloth near the curve, short of the ply's edge
-    // that the curve starts from: each is continued that far along its first segment.
+    // that the curve starts from: each is continued that far along its first segment when
+    // that leaves the outline (a curve that starts inside the cloth is not continued).
     const auto mouth = [&](const std::vector<Vec2>& line) {
       const Vec2 e = (line[0] - line[1]).normalized();
       return e.allFinite() ? Vec2(line[0] + kDartNearRel * ply_.d() * e) : line[0];
     };
-    std::vector<Vec2> v{mouth(d.line_left)};
+    const Vec2 ml = mouth(d.line_left), mr = mouth(d.line_right);
+    const bool open = !in_region(ml) && !in_region(mr);
+    std::vector<Vec2> v;
+    if (open) v.push_back(ml);
     v.insert(v.end(), d.line_left.begin(), d.line_left.end());
     v.insert(v.end(), d.line_right.rbegin(), d.line_right.rend());
-    v.push_back(mouth(d.line_right));
+    if (open) v.push_back(mr);
     out = unite_regions(out, {v});
   }
   return out;
@@ -177,10 +186,11 @@ Region2 OutlineBuilder::dart_notches() const {
 // The loops without the darts' V: the even-odd region of the loops and of their part in the V
 // is the loops less the V.
 void OutlineBuilder::notch_darts(std::vector<OutlineLoop>& loops) const {
-  const Region2 notches = dart_notches();
-  if (notches.empty() || loops.empty()) return;
+  if (r_.darts.empty() || loops.empty()) return;
   Region2 region;
   for (const auto& l : loops) region.push_back(l.points);
+  const Region2 notches = dart_notches(region);
+  if (notches.empty()) return;
   const Region2 inside = intersect_regions(region, notches);
   if (inside.empty()) return;
   Region2 all = region;

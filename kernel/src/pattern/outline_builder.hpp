@@ -245,7 +245,7 @@ class OutlineBuilder {
 
   // ---- Darts (dart_notch.cpp)
   std::optional<Position> cloth_position(const Vec2& q2) const;
-  Region2 dart_notches() const;
+  Region2 dart_notches(const Region2& region) const;
   void notch_darts(std::vector<OutlineLoop>& loops) const;
 
   // ---- Loops (outline_loops.cpp)
