@@ -22,9 +22,6 @@ constexpr int kCarryCells = 4;
 // rounding, about 1e-6 of the region's extent at most: an output point within kNotchSnapRel of
 // the extent of an input point is that point (its exact ply and 3D position kept).
 constexpr double kNotchSnapRel = 1e-5;
-// Where the V's edge runs along the outline's, the boolean's two roundings of it leave loops
-// no wider than that snap: a loop of less area than kNotchSnapRel of the extent times the
-// spacing is such a sliver, and dropped.
 
 // Points with a payload, found by position within a tolerance (sorted by x).
 struct SnapIndex {
@@ -213,6 +210,9 @@ void OutlineBuilder::notch_darts(std::vector<OutlineLoop>& loops) const {
   std::vector<OutlineLoop> out;
   for (const auto& pts : unite_regions(all, {})) {
     OutlineLoop l = notched_loop(pts, kept, cut, snap, place);
+    // Where the V's edge runs along the outline's, the boolean's two roundings of it leave
+    // loops no wider than the snap: one of less area than the snap times the spacing is such
+    // a sliver.
     if (measure_loop(l) && l.area > snap * ply_.d()) out.push_back(std::move(l));
   }
   loops = std::move(out);
