@@ -3,6 +3,7 @@
 
 #include <plyfit/kernel/drape.hpp>
 
+#include <cmath>
 #include <vector>
 
 namespace plyfit::support {
@@ -20,6 +21,26 @@ inline DrapeProblem problem(double d, Vec2 s2, Vec2 b2, std::vector<Vec2> w2, Ve
   pb.base_normal = bn;
   pb.sweeps = std::move(w3);
   return pb;
+}
+
+/// A hemisphere of radius R about the z axis draped from its pole at spacing d: base path on
+/// the plane x = 0, sweeps both ways.
+inline DrapeProblem pole_problem(double R, double d) {
+  return problem(d, Vec2(0, 0), Vec2(0, 1), {Vec2(-1, 0), Vec2(1, 0)}, Vec3(0, 0, R), Vec3(1, 0, 0),
+                 {Vec3(1, 0, 0), Vec3(-1, 0, 0)});
+}
+
+/// On that hemisphere, the meridian at azimuth 45 deg (half-way between the threads through
+/// the pole, where the cloth shears most) from the rim up to 40 deg from the pole, a point per
+/// degree: a dart.
+inline std::vector<Vec3> meridian_dart(double R) {
+  std::vector<Vec3> curve;
+  const double az = 45.0 * kDegToRad;
+  for (double polar = 90.0; polar >= 40.0; polar -= 1.0) {
+    const double t = polar * kDegToRad;
+    curve.push_back(R * Vec3(std::sin(t) * std::cos(az), std::sin(t) * std::sin(az), std::cos(t)));
+  }
+  return curve;
 }
 
 }  // namespace plyfit::support

@@ -44,14 +44,15 @@ bool in_or_on_polygon(const std::vector<Vec2>& poly, const Vec2& p, double slack
 void OutlineBuilder::add_part(const std::vector<NodeId>& part) {
   Polygon poly;
   int nin = 0;
-  bool all_uv = true;
+  bool all_uv = true, cut_out = false;
   for (const NodeId& id : part) {
     const int v = node_vertex(id);
     poly.push_back(v);
     nin += verts_[v].in ? 1 : 0;
     all_uv = all_uv && verts_[v].has_uv;
+    cut_out = cut_out || verts_[v].cut_out;
   }
-  if (nin == static_cast<int>(poly.size())) {
+  if (nin == static_cast<int>(poly.size()) && !cut_out) {
     stair_.push_back(poly);
     // Still clip: the boundary may cross an edge twice between two mapped nodes.
   }

@@ -70,6 +70,7 @@ int OutlineBuilder::node_vertex(const NodeId& id) {
     v.p3 = p->point;
     v.in = p->in;
     v.placed = p->placed > 0;
+    v.cut_out = p->cut_out;
     // A pole is a collapsed edge of the boundary (find_poles): nodes away from those are
     // none (no evaluation).
     SurfaceEval1 e;
@@ -182,6 +183,7 @@ FlatPattern OutlineBuilder::outlines() {
   FlatPattern fp;
   drop_unreached(exact_);
   fp.outline = assemble(exact_, edges_);
+  notch_darts(fp.outline);
   fp.staircase = assemble(stair_, edges_);
   for (const auto& l : fp.outline) {
     fp.area += l.hole ? -l.area : l.area;
@@ -218,6 +220,7 @@ FlatPattern flat_pattern(const DrapeSurface& surface, const DrapeResult& result,
                          const FlatPatternOptions& options) {
   if (!result.ply || result.nodes.empty()) return {};
   detail::OutlineBuilder builder(surface, result);
+  builder.place_cut_out_nodes();
   builder.solve_virtual_corners();
   builder.add_cells();
   FlatPattern fp = builder.outlines();

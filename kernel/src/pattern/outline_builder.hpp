@@ -8,7 +8,10 @@
 ///    edges cross it (edge_crossings.cpp; near poles in tangent planes, poles.cpp) and from
 ///    each exit the boundary is walked to the next entry (boundary_walk.cpp);
 ///  - loops (outline_loops.cpp): the pieces the cloth does not reach are dropped and the union
-///    of the rest is chained into loops, the exact outline and the staircase.
+///    of the rest is chained into loops, the exact outline and the staircase;
+///  - darts (dart_notch.cpp): the ply nodes a dart cuts out are placed through the cloth
+///    beside them, so that their cells count as cloth, and the V between each dart's cut lines
+///    is then taken out of the exact outline: a notch bounded by the two cut lines.
 
 #include "drape/solvers/solvers.hpp"
 #include "pattern/boundary_index.hpp"
@@ -17,6 +20,7 @@
 #include "surface/drape_surface.hpp"
 
 #include <plyfit/kernel/flat_pattern.hpp>
+#include <plyfit/kernel/polygon2d.hpp>
 
 #include <cstdint>
 #include <map>
@@ -38,6 +42,10 @@ inline constexpr double kPolarSpacings = 4.0;
 // Edge k of a cell (from corner k to k + 1, counter-clockwise: (i, j), (i + 1, j),
 // (i + 1, j + 1), (i, j + 1)) borders the cell offset by kCellSide[k].
 inline constexpr int kCellSide[4][2] = {{0, -1}, {1, 0}, {0, 1}, {-1, 0}};
+
+/// Sets the loop's area, perimeter and orientation (hole: clockwise) from its points; false
+/// when it encloses no area.
+bool measure_loop(OutlineLoop& l);
 
 class OutlineBuilder {
  public:
@@ -62,6 +70,10 @@ class OutlineBuilder {
   /// `outline` is the exact outline (outlines()); with one outer loop it is all laid once
   /// and comes back as it is.
   LaidOnce laid_once(const std::vector<OutlineLoop>& outline);
+  /// Positions of the ply nodes the darts cut out (dart_notch.cpp): carried from the nearest
+  /// mapped node's cell, as the cloth beside the V would lie there. Before the virtual
+  /// corners, which may continue from them past the face.
+  void place_cut_out_nodes();
 
  private:
   // A vertex of the outline polygons: a node, an edge crossing or a boundary vertex.
@@ -70,12 +82,13 @@ class OutlineBuilder {
     SurfaceLocation at;      // where it lies on the surface (if has_uv)
     Vec3 p3 = Vec3::Zero();  // its 3D point (if has_uv)
     bool has_uv = false;
-    bool in = false;      // on the surface
-    bool node = false;    // a node of the ply (not a crossing or boundary vertex)
-    bool placed = false;  // a virtual corner placed, not solved: no point of the surface
-    bool pole = false;    // at a degenerate point (a collapsed edge): its free parameter means
-                          // nothing and is taken from its neighbours when interpolating
-    int free = 1;         // at a pole: 0 if u is the free parameter, 1 if v
+    bool in = false;       // on the surface
+    bool node = false;     // a node of the ply (not a crossing or boundary vertex)
+    bool placed = false;   // a virtual corner placed, not solved: no point of the surface
+    bool pole = false;     // at a degenerate point (a collapsed edge): its free parameter means
+                           // nothing and is taken from its neighbours when interpolating
+    bool cut_out = false;  // a ply node a dart cuts out: its cells are cloth, not the staircase's
+    int free = 1;          // at a pole: 0 if u is the free parameter, 1 if v
     int bloop = -1, bseg = -1;  // for a boundary crossing: the boundary segment it lies on
     double bs = 0.0;            // and the parameter along it (0 at its start, 1 at its end)
   };
@@ -87,6 +100,7 @@ class OutlineBuilder {
     // A virtual corner placed, not solved (no point of the surface): how many placed
     // corners it was placed from, plus one; 0 for one solved or mapped.
     int placed = 0;
+    bool cut_out = false;  // a ply node a dart cuts out (place_cut_out_nodes)
   };
   // A known neighbour of a node to be solved.
   struct Nb {
@@ -228,6 +242,11 @@ class OutlineBuilder {
   int walk(const std::vector<Item>& items, std::size_t x, int turn, std::vector<int>& path) const;
   int seam_twin(int l, int v, int dir) const;
   void loop_directions();
+
+  // ---- Darts (dart_notch.cpp)
+  std::optional<Position> cloth_position(const Vec2& q2) const;
+  Region2 dart_notches(const Region2& region) const;
+  void notch_darts(std::vector<OutlineLoop>& loops) const;
 
   // ---- Loops (outline_loops.cpp)
   void drop_unreached(std::vector<Polygon>& polys) const;

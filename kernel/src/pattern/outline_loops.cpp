@@ -154,7 +154,12 @@ std::optional<OutlineLoop> OutlineBuilder::make_loop(const std::vector<int>& ids
     l.points.pop_back();
     l.points3d.pop_back();
   }
-  if (l.points.size() < 3) return std::nullopt;
+  if (!measure_loop(l)) return std::nullopt;
+  return l;
+}
+
+bool measure_loop(OutlineLoop& l) {
+  if (l.points.size() < 3) return false;
   double a = 0.0, per = 0.0;
   for (std::size_t k = 0; k < l.points.size(); ++k) {
     const Vec2& p = l.points[k];
@@ -162,11 +167,11 @@ std::optional<OutlineLoop> OutlineBuilder::make_loop(const std::vector<int>& ids
     a += cross2(p, q);
     per += (q - p).norm();
   }
-  if (a == 0.0) return std::nullopt;
+  if (a == 0.0) return false;
   l.area = std::abs(a) / 2;
   l.hole = a < 0;
   l.perimeter = per;
-  return l;
+  return true;
 }
 
 }  // namespace plyfit::detail

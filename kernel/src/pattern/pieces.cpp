@@ -336,6 +336,7 @@ OutlineBuilder::LaidOnce OutlineBuilder::laid_once(const std::vector<OutlineLoop
   for (std::size_t k = 0; k < ne; ++k)
     if (!twice[k]) kept.push_back(exact_[k]);
   out.loops = assemble(kept, whole_cell_edges(twice));
+  notch_darts(out.loops);
   out.area = net_area(outline) - net_area(out.loops);
   return out;
 }

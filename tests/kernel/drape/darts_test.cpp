@@ -89,16 +89,10 @@ TEST_CASE("darts: a dart on a hemisphere from the rim lowers the shear beside it
   const MoldSurface f = builtin_surface("hemisphere", {{"R", R}});
   // Base path on the plane x = 0 through the pole, sweeps both ways: the most sheared cloth
   // lies on the meridians half-way between the threads through the pole (azimuth 45 deg).
-  DrapeProblem pb = problem(d, Vec2(0, 0), Vec2(0, 1), {Vec2(-1, 0), Vec2(1, 0)}, Vec3(0, 0, R),
-                            Vec3(1, 0, 0), {Vec3(1, 0, 0), Vec3(-1, 0, 0)});
+  DrapeProblem pb = support::pole_problem(R, d);
   const DrapeResult plain = ok(drape(f, pb));
   // The dart: that meridian from the rim up to 40 degrees from the pole.
-  std::vector<Vec3> curve;
-  const double az = 45.0 * kDegToRad;
-  for (double polar = 90.0; polar >= 40.0; polar -= 1.0) {
-    const double t = polar * kDegToRad;
-    curve.push_back(R * Vec3(std::sin(t) * std::cos(az), std::sin(t) * std::sin(az), std::cos(t)));
-  }
+  const std::vector<Vec3> curve = support::meridian_dart(R);
   pb.darts = {curve};
   const DrapeResult r = ok(drape(f, pb));
   REQUIRE(r.darts.size() == 1);
