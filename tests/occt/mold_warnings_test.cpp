@@ -132,8 +132,16 @@ TEST_CASE("messages: the mold's warnings read as plyfit has always printed them"
   CHECK(text_of(W::kUnmeasuredFaces, {std::int64_t{1}, std::int64_t{73}, "#4242", "why"}) ==
         "listing: 1 faces whose area could not be measured (first: face 73 (#4242): area not "
         "measured (why): an invalid face)");
-  CHECK(text_of(W::kListingFailedFaces, {std::int64_t{2}, std::int64_t{5}, "DE 9", "no surface"}) ==
-        "listing: 2 faces could not be described (first: face 5 (DE 9): no surface)");
+  // The first face's failure: an error and its cause, each its code's name, value count, values.
+  CHECK(text_of(W::kListingFailedFaces,
+                {std::int64_t{2}, std::int64_t{5}, "DE 9", "face_not_described", std::int64_t{0},
+                 "occt_failed", std::int64_t{2}, "Standard_DomainError", "no pole"}) ==
+        "listing: 2 faces could not be described (first: face 5 (DE 9): could not be described: "
+        "OpenCASCADE failed (Standard_DomainError: no pole))");
+  CHECK(text_of(W::kListingFailedFaces, {std::int64_t{1}, std::int64_t{0}, "", "face_not_measured",
+                                         std::int64_t{0}, "out_of_memory", std::int64_t{0}}) ==
+        "listing: 1 faces could not be described (first: face 0: could not be measured: out of "
+        "memory)");
   CHECK(text_of(W::kShortAreaFaces, {std::int64_t{2}, std::int64_t{3}, "#12", 1e-6, 2e-6}) ==
         "listing: 2 face areas short of the accuracy asked (first: face 3 (#12): area to 2.0e-06 "
         "relative (estimated), not the 1e-06 asked)");
