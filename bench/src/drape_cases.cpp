@@ -53,7 +53,9 @@ Result<FacePtr> data_face(NurbsSurfaceData surface, std::vector<TrimLoop> loops)
 
 Result<DrapeProblem> middle_problem(const Face& f, double d, bool both_sides) {
   const auto samples = sample_face(f, kMiddleSamples);
-  if (samples.empty()) return Error{"no sample of the face lies inside its trims"};
+  if (samples.empty())
+    return Error{
+        ErrorCode::kInternal, {}, {std::string("no sample of the face lies inside its trims")}};
   Vec2 mean = Vec2::Zero();
   for (const auto& s : samples) mean += s.first;
   mean /= static_cast<double>(samples.size());
@@ -72,7 +74,8 @@ Result<DrapeProblem> middle_problem(const Face& f, double d, bool both_sides) {
   const Vec3 n = f.normal(uv).n;
   const Vec3 t = (e.du - e.du.dot(n) * n).normalized();
   const Vec3 bn = n.cross(t);
-  if (!bn.allFinite() || !(bn.norm() > 0.5)) return Error{"no tangent direction at the middle"};
+  if (!bn.allFinite() || !(bn.norm() > 0.5))
+    return Error{ErrorCode::kInternal, {}, {std::string("no tangent direction at the middle")}};
   if (both_sides)
     return problem(d, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1), Vec2(0, -1)}, e.p, bn, {bn, -bn});
   return problem(d, Vec2(0, 0), Vec2(1, 0), {Vec2(0, 1)}, e.p, bn, {bn});

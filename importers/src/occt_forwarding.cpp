@@ -14,10 +14,10 @@ Result<const OcctImporterApi*> occt_importers() {
   if (!entry) return entry.error();
   const OcctImporterApi* api = reinterpret_cast<OcctImporterEntry>(*entry)();
   if (!api || api->abi != plyfit::occt::kOcctModuleAbi)
-    return Error{std::string("plyfit's OpenCASCADE module ") + plyfit::occt::kOcctModuleFile +
-                 " is from another build of plyfit (interface " +
-                 std::to_string(api ? api->abi : -1) + ", expected " +
-                 std::to_string(plyfit::occt::kOcctModuleAbi) + ")"};
+    return Error{ErrorCode::kOcctModuleOtherBuild,
+                 {},
+                 {std::string(plyfit::occt::kOcctModuleFile), std::int64_t{api ? api->abi : -1},
+                  std::int64_t{plyfit::occt::kOcctModuleAbi}}};
   return api;
 }
 
@@ -29,13 +29,13 @@ Importer occt_importer(std::string key, std::vector<std::string> extensions,
   imp.open = [key](const std::string& path,
                    const ImportOptions& options) -> Result<std::unique_ptr<MoldFile>> {
     auto api = occt_importers();
-    if (!api) return Error{path}.because(api.error());
+    if (!api) return Error(api.error()).in(path);
     return (*api)->open(key, path, options);
   };
   imp.curves = [key](const std::string& path,
                      const ImportOptions& options) -> Result<std::vector<FileCurve>> {
     auto api = occt_importers();
-    if (!api) return Error{path}.because(api.error());
+    if (!api) return Error(api.error()).in(path);
     return (*api)->curves(key, path, options);
   };
   return imp;

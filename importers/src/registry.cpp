@@ -80,7 +80,7 @@ Result<MoldSurface> load_face(const std::string& path, int index, const ImportOp
   auto data = (*file)->convert_face(index);
   if (!data) return data.error();
   auto face = MoldSurface::from_face(std::move(data).value(), options.tolerances);
-  if (!face) return Error{path + ": face " + std::to_string(index)}.because(face.error());
+  if (!face) return Error(face.error()).at_face(index).in(path);
   return face;
 }
 

@@ -72,12 +72,12 @@ std::string edge_name(const TopoDS_Shape& edge,
   return {};
 }
 
-// One edge as a polyline within `chord` mm of it, in the edge's direction.
-Result<FileCurve> discretise(const TopoDS_Edge& edge, double chord) {
+// Edge `index` as a polyline within `chord` mm of it, in the edge's direction.
+Result<FileCurve> discretise(const TopoDS_Edge& edge, int index, double chord) {
   const BRepAdaptor_Curve curve(edge);
   GCPnts_QuasiUniformDeflection sampler(curve, chord);
   if (!sampler.IsDone() || sampler.NbPoints() < 2)
-    return Error{"an edge does not discretise (OpenCASCADE's deflection sampler failed)"};
+    return Error{ErrorCode::kCurveNotDiscretised, {}, {std::int64_t{index}}};
   FileCurve out;
   out.kind = kind_name(curve.GetType());
   out.length = GCPnts_AbscissaPoint::Length(curve);
@@ -99,7 +99,7 @@ Result<std::vector<FileCurve>> curves_with(const std::string& path, const std::s
                                            const ImportOptions& options, const ReadFunction& read) {
   auto ro = read_guarded(path, format_key, options, read);
   if (!ro) return ro.error();
-  return guarded(path, [&]() -> Result<std::vector<FileCurve>> {
+  return guarded({path, -1, {}}, [&]() -> Result<std::vector<FileCurve>> {
     const TopTools_IndexedMapOfShape edges = curve_edges(ro->shape);
     std::vector<FileCurve> out;
     if (edges.IsEmpty()) return out;
@@ -107,10 +107,10 @@ Result<std::vector<FileCurve>> curves_with(const std::string& path, const std::s
     for (int i = 1; i <= edges.Extent(); ++i) BRepBndLib::Add(edges(i), box);
     const double size = box.IsVoid() ? 0.0 : std::sqrt(box.SquareExtent());
     const double chord = options.tolerances.curve_chord_rel * size;
-    if (!(chord > 0.0)) return Error{path + ": the file's curves have no extent"};
+    if (!(chord > 0.0)) return Error{ErrorCode::kCurvesNoExtent};
     for (int i = 1; i <= edges.Extent(); ++i) {
-      auto c = discretise(TopoDS::Edge(edges(i)), chord);
-      if (!c) return Error{path + ": curve " + std::to_string(i - 1)}.because(c.error());
+      auto c = discretise(TopoDS::Edge(edges(i)), i - 1, chord);
+      if (!c) return c.error();
       c->index = i - 1;
       c->name = edge_name(edges(i), ro->shape_names);
       out.push_back(std::move(c).value());

@@ -169,7 +169,7 @@ Result<occt::ReadOutput> read_iges(const std::string& path, occt::Deadline& dead
   if (auto st = occt::read_file(reader, path, "IGES"); !st) return st.error();
   occt::ReadOutput out;
   const Handle(IGESData_IGESModel) model = reader.IGESModel();
-  if (model.IsNull()) return Error{"not a readable IGES file (no model)"};
+  if (model.IsNull()) return Error{ErrorCode::kIgesNoModel};
   const IGESData_GlobalSection& g = model->GlobalSection();
   out.schema = "IGES " + version_name(g.IGESVersion());
   const std::string system = occt::text(g.SystemId()), product = occt::text(g.SendName()),

@@ -18,7 +18,7 @@ std::atomic<bool> g_loaded{false};
 
 struct Module {
   void* handle = nullptr;
-  std::string error;
+  Error error;  // why it is not loaded
 };
 
 // The folder of the running executable ("" if unknown).
@@ -39,14 +39,16 @@ Module load() {
     m.handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!m.handle) {
       const char* e = dlerror();
-      m.error = "plyfit's OpenCASCADE module " + path.string() + " could not be loaded (" +
-                (e ? e : "unknown error") + ")";
+      m.error = Error{ErrorCode::kOcctModuleNotLoaded,
+                      {},
+                      {path.string(), std::string(e ? e : "unknown error")}};
     }
     return m;
   }
-  m.error = std::string("STEP and IGES files need plyfit's OpenCASCADE module ") + kOcctModuleFile +
-            ", which is neither next to the plyfit executable in " + dir.string() + " nor in " +
-            (dir.parent_path() / "lib").string();
+  m.error =
+      Error{ErrorCode::kOcctModuleMissing,
+            {},
+            {std::string(kOcctModuleFile), dir.string(), (dir.parent_path() / "lib").string()}};
   return m;
 }
 
@@ -63,13 +65,13 @@ const Module& module() {
 
 Result<void*> occt_module_symbol(const char* name) {
   const Module& m = module();
-  if (!m.handle) return Error{m.error};
+  if (!m.handle) return m.error;
   dlerror();
   void* p = dlsym(m.handle, name);
   if (!p) {
     const char* e = dlerror();
-    return Error{std::string("plyfit's OpenCASCADE module lacks the entry point ") + name + " (" +
-                 (e ? e : "null") + ")"};
+    return Error{
+        ErrorCode::kOcctModuleNoEntry, {}, {std::string(name), std::string(e ? e : "null")}};
   }
   return p;
 }

@@ -26,7 +26,7 @@ constexpr Reader kReaders[] = {
 Result<const Reader*> reader(const std::string& key, const std::string& path) {
   for (const Reader& r : kReaders)
     if (key == r.key) return &r;
-  return Error{path + ": plyfit's OpenCASCADE module has no reader '" + key + "'"};
+  return Error{ErrorCode::kOcctNoReader, path, {key}};
 }
 
 Result<std::unique_ptr<MoldFile>> open(const std::string& key, const std::string& path,

@@ -78,6 +78,10 @@ constexpr int kSeamSamples = 9;
 // Interior fractions of a polyline segment where the chord error is measured.
 constexpr double kChordFractions[3] = {0.25, 0.5, 0.75};
 
+Error point_budget_exceeded() {
+  return Error{ErrorCode::kTrimPointBudget, {}, {static_cast<std::int64_t>(kMaxLoopPoints)}};
+}
+
 Vec3 vec(const gp_Pnt& p) {
   return Vec3(p.X(), p.Y(), p.Z());
 }
@@ -292,7 +296,7 @@ class EdgeSampler {
   Status sample(const TopoDS_Edge& e, const TopoDS_Face& f, std::vector<Vec2>& out) {
     double a = 0, b = 0;
     const Handle(Geom2d_Curve) c = BRep_Tool::CurveOnSurface(e, f, a, b);
-    if (c.IsNull()) return Error{"an edge has no curve on the face"};
+    if (c.IsNull()) return Error{ErrorCode::kEdgeNoPcurve};
     c_ = c;
     Geom2dAdaptor_Curve ad(c, a, b);
     std::vector<double> ts;
@@ -310,8 +314,7 @@ class EdgeSampler {
     for (size_t k = 0; k + 1 < ts.size(); ++k) {
       if (!(ts[k + 1] > ts[k])) continue;
       refine(ts[k], pts.back(), ts[k + 1], uv(ts[k + 1]), 0, pts);
-      if (points_ + pts.size() > kMaxLoopPoints)
-        return Error{"trim polylines exceed the point budget"};
+      if (points_ + pts.size() > kMaxLoopPoints) return point_budget_exceeded();
     }
     points_ += pts.size();
     if (e.Orientation() == TopAbs_REVERSED) std::reverse(pts.begin(), pts.end());
@@ -410,10 +413,10 @@ Result<std::vector<TrimLoop>> trim_loops(const TopoDS_Face& f,
       for (size_t k = 0; k < ends.size(); ++k) loop.edges[k] = ends[(k + 1) % ends.size()];
     }
     total += loop.points.size();
-    if (total > kMaxLoopPoints) return Error{"trim polylines exceed the point budget"};
+    if (total > kMaxLoopPoints) return point_budget_exceeded();
     if (loop.points.size() >= 3) loops.push_back(std::move(loop));
   }
-  if (loops.empty()) return Error{"the face has no usable trim loop"};
+  if (loops.empty()) return Error{ErrorCode::kFaceNoTrimLoop};
   return loops;
 }
 
@@ -449,17 +452,17 @@ bool seam_closes(const Handle(Geom_BSplineSurface) & s, bool along_u, double tol
 Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const Tolerances& tol,
                          const EdgeTag* tag) {
   Handle(Geom_Surface) s = BRep_Tool::Surface(face);
-  if (s.IsNull()) return Error{"the face has no surface"};
+  if (s.IsNull()) return Error{ErrorCode::kFaceNoSurface};
   TopoDS_Face work = face;
   // Tags of the converted face's edges: those of the edges of `face` they were made from.
   TopTools_DataMapOfShapeShape original_edge;
   EdgeTag work_tag;
   if (!is_nurbs_type(s)) {
     BRepBuilderAPI_NurbsConvert nc(face, Standard_True);
-    if (!nc.IsDone()) return Error{"conversion of the " + info.kind + " surface to NURBS failed"};
+    if (!nc.IsDone()) return Error{ErrorCode::kNurbsConversionFailed, {}, {info.kind}};
     const TopoDS_Shape converted = nc.ModifiedShape(face);
     if (converted.IsNull() || converted.ShapeType() != TopAbs_FACE)
-      return Error{"conversion of the " + info.kind + " surface to NURBS gave no face"};
+      return Error{ErrorCode::kNurbsConversionNoFace, {}, {info.kind}};
     work = TopoDS::Face(converted);
     s = BRep_Tool::Surface(work);
     if (tag) {
@@ -478,8 +481,8 @@ Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const To
   else if (s->DynamicType() == STANDARD_TYPE(Geom_BezierSurface))
     bs = GeomConvert::SurfaceToBSplineSurface(s);
   if (bs.IsNull())
-    return Error{"conversion of the " + info.kind + " surface to NURBS gave a " +
-                 s->DynamicType()->Name()};
+    return Error{
+        ErrorCode::kNurbsConversionType, {}, {info.kind, std::string(s->DynamicType()->Name())}};
 
   const double size = info.bbox.diagonal();
   if (!(size > 0.0)) return Error{ErrorCode::kFaceZeroSize};
@@ -511,7 +514,7 @@ Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const To
   // A face of a shell always has its loops: their segments carry the edges' tags.
   if (info.trimmed || tag) {
     auto surf = NurbsSurface::create(d, tol);
-    if (!surf) return Error{"invalid NURBS surface"}.because(surf.error());
+    if (!surf) return Error{ErrorCode::kFaceSurfaceInvalid}.because(surf.error());
     const Vec2 speeds(surf->speed_u(), surf->speed_v());
     auto loops = trim_loops(work, bs, tol3d, speeds, tol.param_rel * (dom.u1 - dom.u0),
                             tol.param_rel * (dom.v1 - dom.v0), tag);
@@ -521,11 +524,17 @@ Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const To
   return fd;
 }
 
-// "face 3 (#120)": face i and the entity of the file that made it, when known.
-std::string face_name(int i, const std::vector<std::string>& entities) {
-  const size_t k = static_cast<size_t>(i);
-  return "face " + std::to_string(i) +
-         (k < entities.size() && !entities[k].empty() ? " (" + entities[k] + ")" : "");
+// The data of WarningCode::kListingFailedFaces for face i (its entity) and why it failed: the
+// face, the entity, then for `why` and each of its causes its code's name, its value count and
+// its values (the exporters render the chain: message_text.hpp's error_chain_text()).
+std::vector<MessageValue> failure_data(int i, const std::string& entity, const Error& why) {
+  std::vector<MessageValue> out{std::int64_t{i}, entity};
+  for (const Error* e = &why; e; e = e->cause.get()) {
+    out.emplace_back(std::string(to_string(e->code)));
+    out.emplace_back(static_cast<std::int64_t>(e->values.size()));
+    out.insert(out.end(), e->values.begin(), e->values.end());
+  }
+  return out;
 }
 
 // An opened file. Reading and transferring happen at open; each face's entry (kind, degrees,
@@ -559,9 +568,7 @@ class OcctMoldFile final : public MoldFile {
 
   Result<FaceInfo> describe(int index) const override {
     if (auto st = check_index(index); !st) return st.error();
-    if (!describe_once(index, true))
-      return Error{mold_.source + ": " + face_name(index, entities_) + ": " +
-                   failure_[static_cast<size_t>(index)]};
+    if (!describe_once(index, true)) return blamed(failure_[static_cast<size_t>(index)], at(index));
     return mold_.faces[static_cast<size_t>(index)];
   }
 
@@ -569,21 +576,14 @@ class OcctMoldFile final : public MoldFile {
 
   Result<FaceData> convert_face(int index) override {
     if (auto st = check_index(index); !st) return st.error();
-    const std::string what = mold_.source + ": " + face_name(index, entities_);
-    if (!describe_once(index, true))
-      return Error{what + ": " + failure_[static_cast<size_t>(index)]};
-    if (!mold_.faces[static_cast<size_t>(index)].area_measured) {
-      Error e{ErrorCode::kFaceAreaNotMeasured, mold_.source, {why_not_measured(index)}};
-      e.face = index;
-      e.where = entities_[static_cast<size_t>(index)];
-      return e;
-    }
-    auto r = guarded(what, [&]() -> Result<FaceData> {
+    if (!describe_once(index, true)) return blamed(failure_[static_cast<size_t>(index)], at(index));
+    if (!mold_.faces[static_cast<size_t>(index)].area_measured)
+      return blamed(Error{ErrorCode::kFaceAreaNotMeasured, {}, {why_not_measured(index)}},
+                    at(index));
+    return guarded(at(index), [&]() -> Result<FaceData> {
       return convert(TopoDS::Face(faces_(index + 1)), mold_.faces[static_cast<size_t>(index)],
                      options_.tolerances, nullptr);
     });
-    if (!r && legacy_text(r.error()).rfind(what, 0) != 0) return Error{what}.because(r.error());
-    return r;
   }
 
   Result<ShellData> convert_shell(const std::vector<int>& indices) override {
@@ -595,6 +595,9 @@ class OcctMoldFile final : public MoldFile {
  private:
   // kListed: area to kAreaRelListing; kPrecise: to kAreaRelPrecise.
   enum class State { kPending, kListed, kPrecise, kFailed };
+
+  // Face `index` of the file and the entity that made it.
+  Blame at(int index) const { return {mold_.source, index, entities_[static_cast<size_t>(index)]}; }
 
   Status check_index(int index) const {
     const int n = faces_.Extent();
@@ -609,7 +612,7 @@ class OcctMoldFile final : public MoldFile {
     const size_t k = static_cast<size_t>(i);
     const TopoDS_Face& f = TopoDS::Face(faces_(i + 1));
     if (state_[k] == State::kPending) {
-      auto info = guarded("could not be described", [&]() -> Result<FaceInfo> {
+      auto info = guarded({}, [&]() -> Result<FaceInfo> {
         return describe_face(f, i, entities_[k], precise ? kAreaRelPrecise : kAreaRelListing,
                              note_[k]);
       });
@@ -618,15 +621,14 @@ class OcctMoldFile final : public MoldFile {
         mold_.faces[k] = std::move(info).value();
         state_[k] = precise ? State::kPrecise : State::kListed;
       } else {
-        failure_[k] = legacy_text(info.error());
+        failure_[k] = Error{ErrorCode::kFaceNotDescribed}.because(info.error());
         state_[k] = State::kFailed;
       }
     } else if (state_[k] == State::kListed && precise) {
-      auto m = guarded("could not be measured", [&]() -> Result<FaceMeasure> {
-        return measure_face(f, kAreaRelPrecise, false);
-      });
+      auto m = guarded(
+          {}, [&]() -> Result<FaceMeasure> { return measure_face(f, kAreaRelPrecise, false); });
       if (!m) {
-        failure_[k] = legacy_text(m.error());
+        failure_[k] = Error{ErrorCode::kFaceNotMeasured}.because(m.error());
         state_[k] = State::kFailed;
         return false;
       }
@@ -655,7 +657,7 @@ class OcctMoldFile final : public MoldFile {
     for (int i = 0; i < faces_.Extent(); ++i) {
       const size_t k = static_cast<size_t>(i);
       if (!describe_once(i, false))
-        first(failed, n_failed, {std::int64_t{i}, entities_[k], failure_[k]});
+        first(failed, n_failed, failure_data(i, entities_[k], failure_[k]));
       else if (!mold_.faces[k].area_measured)
         first(unmeasured, n_unmeasured, note_[k] ? note_[k]->values : std::vector<MessageValue>{});
       else if (note_[k] && state_[k] == State::kListed)
@@ -683,7 +685,7 @@ class OcctMoldFile final : public MoldFile {
   ImportOptions options_;
   double precision_;
   mutable std::vector<State> state_;
-  mutable std::vector<std::string> failure_;
+  mutable std::vector<Error> failure_;  // why a face in State::kFailed failed
   // The face's area warning: its accuracy when short of the asked, why it was not measured.
   mutable std::vector<std::optional<Warning>> note_;
   mutable bool listed_ = false;
@@ -694,15 +696,9 @@ class OcctMoldFile final : public MoldFile {
 Status check_geometry(const std::string& path, const TopTools_IndexedMapOfShape& faces,
                       const std::vector<std::string>& entities) {
   for (int i = 0; i < faces.Extent(); ++i) {
-    const std::string what = path + ": " + face_name(i, entities);
-    auto st = guarded(what, [&] { return check_face_geometry(TopoDS::Face(faces(i + 1))); });
-    if (!st && st.error().code == ErrorCode::kText) return st.error();  // OpenCASCADE failed
-    if (!st) {
-      Error e = st.error();
-      e.face = i;
-      e.where = entities[static_cast<size_t>(i)];
-      return std::move(e).in(path);
-    }
+    const Blame at{path, i, entities[static_cast<size_t>(i)]};
+    auto st = guarded(at, [&] { return check_face_geometry(TopoDS::Face(faces(i + 1))); });
+    if (!st) return st.error();
   }
   return ok_status();
 }
@@ -724,11 +720,9 @@ Result<ReadOutput> read_guarded(const std::string& path, const std::string& form
 
   prepare_occt();
   Handle(Deadline) deadline = new Deadline(options.time_limit_s);
-  auto out = guarded(path, [&]() -> Result<ReadOutput> {
+  auto out = guarded({path, -1, {}}, [&]() -> Result<ReadOutput> {
     debug_reader_fault();
-    auto r = read(path, *deadline);
-    if (!r) return Error{path}.because(r.error());
-    return r;
+    return read(path, *deadline);
   });
   if (!out) return out.error();
   if (deadline->expired())

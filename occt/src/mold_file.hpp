@@ -10,6 +10,7 @@
 #include <plyfit/importers/importers.hpp>
 
 #include "face_measure.hpp"
+#include "occt_failure.hpp"
 
 #include <Interface_CheckIterator.hxx>
 #include <Message_ProgressIndicator.hxx>
@@ -175,36 +176,40 @@ std::vector<std::pair<TopoDS_Shape, std::string>> shape_names(
 /// A string of OpenCASCADE, trimmed of blanks; empty for a null handle.
 std::string text(const Handle(TCollection_HAsciiString) & s);
 
-/// Runs `f` (which returns a Result) so that an OpenCASCADE exception, a fault turned into an
-/// exception (OCC_CATCH_SIGNALS) or a C++ exception becomes an Error "`what`: ...".
+/// What an error of the module blames: the file, the face (-1: none) and the file's entity or
+/// the step it happened in ("#12", "sewing faces 0-3").
+struct Blame {
+  std::string input;
+  int face = -1;
+  std::string where;
+};
+
+/// `e`, blaming `at` for what it does not name already (the innermost knows best).
+inline Error blamed(Error e, const Blame& at) {
+  if (e.input.empty()) e.input = at.input;
+  if (e.face < 0) e.face = at.face;
+  if (e.where.empty()) e.where = at.where;
+  return e;
+}
+
+/// Runs `f` (which returns a Result) so that an OpenCASCADE exception (ErrorCode::kOcctFailed),
+/// a fault turned into an exception (OCC_CATCH_SIGNALS), running out of memory or another C++
+/// exception becomes an Error; every error blames `at` (blamed()).
 template <typename F>
-auto guarded(const std::string& what, F&& f) -> decltype(f()) {
+auto guarded(const Blame& at, F&& f) -> decltype(f()) {
   const SignalScope signals;
   try {
     OCC_CATCH_SIGNALS
-    return f();
+    auto r = f();
+    if (!r) return blamed(r.error(), at);
+    return r;
   } catch (const Standard_Failure& e) {
-    std::string msg = e.GetMessageString() ? e.GetMessageString() : "";
-    for (auto& c : msg)
-      if (c == '\n' || c == '\r') c = ' ';
-    return Error{what + ": OpenCASCADE failed (" + e.DynamicType()->Name() +
-                 (msg.empty() ? std::string() : ": " + msg) + ")"};
+    return blamed(Error{ErrorCode::kOcctFailed, {}, plyfit::occt::failure_values(e)}, at);
   } catch (const std::bad_alloc&) {
-    return Error{what + ": out of memory"};
+    return blamed(Error{ErrorCode::kOutOfMemory}, at);
   } catch (const std::exception& e) {
-    return Error{what + ": " + e.what()};
+    return blamed(Error{ErrorCode::kUnexpectedException, {}, {std::string(e.what())}}, at);
   }
-}
-
-/// The sentence of an error not yet given a code (ErrorCode::kText), its causes' after it;
-/// empty for a coded one. Transitional, while the module's errors are given codes.
-inline std::string legacy_text(const Error& e) {
-  const auto* s = e.code == ErrorCode::kText && !e.values.empty()
-                      ? std::get_if<std::string>(&e.values[0])
-                      : nullptr;
-  std::string out = s ? *s : std::string();
-  if (e.cause) out += ": " + legacy_text(*e.cause);
-  return out;
 }
 
 }  // namespace plyfit::importers::occt

@@ -12,6 +12,7 @@
 
 #include <plyfit/occt/mold_writer_api.hpp>
 #include "nurbs_conversion.hpp"
+#include "occt_failure.hpp"
 
 #include <APIHeaderSection_MakeHeader.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
@@ -140,10 +141,10 @@ Result<TopoDS_Wire> make_wire(const std::vector<NurbsCurveData2>& curves,
       mw.Add(e);
     } else {
       BRepBuilderAPI_MakeEdge me(c2, surface, t0, t1);
-      if (!me.IsDone()) return Error{"could not build an edge on a trim curve"};
+      if (!me.IsDone()) return Error{ErrorCode::kWriterEdgeNotBuilt};
       mw.Add(me.Edge());
     }
-    if (!mw.IsDone()) return Error{"the trim curves of a loop do not join end to end"};
+    if (!mw.IsDone()) return Error{ErrorCode::kWriterLoopNotJoined};
   }
   TopoDS_Wire w = mw.Wire();
   if ((signed_area(polyline) > 0.0) != ccw) w.Reverse();
@@ -157,14 +158,14 @@ Result<TopoDS_Face> make_face(const BuiltinFace& b, const ParamDomain& dom) {
   size_t first_hole = 0;
   if (b.exact_loops.empty() || b.natural_outer) {
     BRepBuilderAPI_MakeFace make(bs, dom.u0, dom.u1, dom.v0, dom.v1, Precision::Confusion());
-    if (!make.IsDone()) return Error{"could not build a face on the surface"};
+    if (!make.IsDone()) return Error{ErrorCode::kWriterFaceNotBuilt};
     f = make.Face();
     first_hole = 1;
   } else {
     auto outer = make_wire(b.exact_loops[0], b.face.loops[0].points, bs, true);
     if (!outer) return outer.error();
     BRepBuilderAPI_MakeFace make(bs, *outer, Standard_True);
-    if (!make.IsDone()) return Error{"could not build a face inside the outer trim"};
+    if (!make.IsDone()) return Error{ErrorCode::kWriterFaceNotInsideTrim};
     f = make.Face();
     first_hole = 1;
   }
@@ -175,7 +176,7 @@ Result<TopoDS_Face> make_face(const BuiltinFace& b, const ParamDomain& dom) {
       if (!hole) return hole.error();
       make.Add(*hole);
     }
-    if (!make.IsDone()) return Error{"could not add the holes to the face"};
+    if (!make.IsDone()) return Error{ErrorCode::kWriterHolesNotAdded};
     f = make.Face();
   }
   if (!b.exact_loops.empty()) {
@@ -186,7 +187,7 @@ Result<TopoDS_Face> make_face(const BuiltinFace& b, const ParamDomain& dom) {
       double t0 = 0, t1 = 0;
       if (BRep_Tool::Degenerated(e) || !BRep_Tool::Curve(e, t0, t1).IsNull()) continue;
       if (!BRepLib::BuildCurve3d(e, kEdgeCurveTolerance))
-        return Error{"could not build the 3D curve of a trim"};
+        return Error{ErrorCode::kWriterTrimCurve3d};
     }
     BRepLib::SameParameter(f, kEdgeCurveTolerance);
     BRepLib::UpdateTolerances(f);
@@ -229,7 +230,7 @@ Status write_step(const TopoDS_Shape& shape, const std::vector<NamedFace>& faces
   Interface_Static::SetCVal("write.step.product.name", o.name.empty() ? "mold" : o.name.c_str());
   STEPControl_Writer writer;
   if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone)
-    return Error{path + ": the STEP writer could not transfer the shape"};
+    return Error{ErrorCode::kWriterNotTransferred, path, {std::string("STEP")}};
   const Handle(StepData_StepModel) model = writer.Model();
   // The translator numbers its products per process ("mold 1", "mold 2", ...): name it.
   const std::string product = o.name.empty() ? "mold" : o.name;
@@ -248,7 +249,7 @@ Status write_step(const TopoDS_Shape& shape, const std::vector<NamedFace>& faces
         Handle(StepShape_AdvancedFace)::DownCast(entity_of(fp, face));
     for (int i = 1; f.IsNull() && faces.size() == 1 && i <= model->NbEntities(); ++i)
       f = Handle(StepShape_AdvancedFace)::DownCast(model->Value(i));
-    if (f.IsNull()) return Error{path + ": the STEP writer made no face of '" + name + "'"};
+    if (f.IsNull()) return Error{ErrorCode::kWriterNoFace, path, {std::string("STEP"), name}};
     f->SetName(hstr(name));
     if (const auto s = Handle(StepGeom_BSplineSurface)::DownCast(f->FaceGeometry()); !s.IsNull())
       s->SetName(hstr(name));
@@ -261,11 +262,11 @@ Status write_step(const TopoDS_Shape& shape, const std::vector<NamedFace>& faces
   header.SetOriginatingSystem(hstr("plyfit"));
   header.SetAuthorisation(hstr(""));
   const auto protocol = Handle(StepData_Protocol)::DownCast(writer.WS()->Protocol());
-  if (protocol.IsNull()) return Error{path + ": no STEP protocol"};
+  if (protocol.IsNull()) return Error{ErrorCode::kWriterNoProtocol, path};
   StepData_StepWriter sw(model);
   sw.FloatWriter().SetFormat(kRealFormat);
   sw.SendModel(protocol);
-  if (!sw.Print(out)) return Error{path + ": the STEP writer failed"};
+  if (!sw.Print(out)) return Error{ErrorCode::kWriterFailed, path, {std::string("STEP")}};
   return ok_status();
 }
 
@@ -276,7 +277,7 @@ Status write_iges(const TopoDS_Shape& shape, const std::vector<NamedFace>& faces
   // mode), which keeps the edges the faces share.
   IGESControl_Writer writer("MM", faces.size() > 1 ? 1 : 0);
   if (!writer.AddShape(shape))
-    return Error{path + ": the IGES writer could not transfer the shape"};
+    return Error{ErrorCode::kWriterNotTransferred, path, {std::string("IGES")}};
   const Handle(IGESData_IGESModel) model = writer.Model();
   // Each face's surface (a 128, bare or inside the face's 144) carries its name (406 form 15).
   for (const auto& [face, name] : faces) {
@@ -290,7 +291,7 @@ Status write_iges(const TopoDS_Shape& shape, const std::vector<NamedFace>& faces
       s = Handle(IGESGeom_BSplineSurface)::DownCast(t->Surface());
     if (const auto f = Handle(IGESSolid_Face)::DownCast(e); !f.IsNull())
       s = Handle(IGESGeom_BSplineSurface)::DownCast(f->Surface());
-    if (s.IsNull()) return Error{path + ": the IGES writer made no surface of '" + name + "'"};
+    if (s.IsNull()) return Error{ErrorCode::kWriterNoFace, path, {std::string("IGES"), name}};
     Handle(IGESBasic_Name) prop = new IGESBasic_Name;
     prop->Init(1, hstr(name));
     s->AddProperty(prop);
@@ -309,7 +310,7 @@ Status write_iges(const TopoDS_Shape& shape, const std::vector<NamedFace>& faces
   IGESData_IGESWriter iw(model);
   iw.FloatWriter().SetFormat(kRealFormat);
   iw.SendModel(IGESSelect_WorkLibrary::DefineProtocol());
-  if (!iw.Print(out)) return Error{path + ": the IGES writer failed"};
+  if (!iw.Print(out)) return Error{ErrorCode::kWriterFailed, path, {std::string("IGES")}};
   return ok_status();
 }
 
@@ -323,45 +324,45 @@ Result<std::string> format_of(const std::string& path, const MoldWriteOptions& o
                    [](unsigned char c) { return std::tolower(c); });
     if (ext == "step" || ext == "stp") format = "step";
     if (ext == "iges" || ext == "igs") format = "iges";
-    if (format.empty())
-      return Error{path + ": unknown mold format '" + ext +
-                   "' (supported extensions: step, stp, iges, igs)"};
+    if (format.empty()) return Error{ErrorCode::kUnknownMoldFormat, path, {ext}};
   }
   if (format != "step" && format != "iges")
-    return Error{path + ": unknown mold format '" + format + "' (supported: step, iges)"};
+    return Error{ErrorCode::kUnknownMoldFormat, path, {format}};
   return format;
 }
 
 // Validates a face with the kernel's own rules (OpenCASCADE throws on bad data) and clears
-// magnitudes too small to write; returns the surface's domain. Errors start with `what`.
-Result<ParamDomain> checked(BuiltinFace& b, const std::string& what) {
+// magnitudes too small to write; returns the surface's domain. Errors blame nothing: the
+// caller names the file and the face.
+Result<ParamDomain> checked(BuiltinFace& b) {
   NurbsSurfaceData& data = b.face.surface;
   bool all_fit = fits(data.poles, data.weights, data.knots_u);
   for (double& x : data.knots_v) all_fit = fits(x) && all_fit;
   for (auto& loop : b.exact_loops)
     for (auto& c : loop) all_fit = fits(c.poles, c.weights, c.knots) && all_fit;
-  if (!all_fit) return Error{what + ": a pole, weight or knot is 1e99 or larger: not written"};
+  if (!all_fit) return Error{ErrorCode::kWriterValueTooLarge, {}, {kLargestWritten}};
   auto surface = NurbsSurface::create(data);
-  if (!surface) return Error{what + ": invalid surface"}.because(surface.error());
+  if (!surface) return Error{ErrorCode::kWriterSurfaceInvalid}.because(surface.error());
   const ParamDomain dom = surface->domain();
   if (b.exact_loops.size() != b.face.loops.size())
-    return Error{what + ": " + std::to_string(b.exact_loops.size()) + " exact trim loops for " +
-                 std::to_string(b.face.loops.size()) + " trim polylines"};
+    return Error{ErrorCode::kWriterLoopCount,
+                 {},
+                 {static_cast<std::int64_t>(b.exact_loops.size()),
+                  static_cast<std::int64_t>(b.face.loops.size())}};
   // The domain, widened by the parameter tolerance: trims on its border are kept.
   const double mu = Tolerances{}.param_rel * dom.width_u();
   const double mv = Tolerances{}.param_rel * dom.width_v();
   for (size_t k = 0; k < b.exact_loops.size(); ++k) {
     if (b.exact_loops[k].empty() || b.face.loops[k].points.size() < 3)
-      return Error{what + ": trim loop " + std::to_string(k) + " has fewer than three points"};
+      return Error{ErrorCode::kWriterLoopTooFewPoints, {}, {static_cast<std::int64_t>(k)}};
     for (const auto& c : b.exact_loops[k])
       if (auto cv = NurbsCurve2::create(c); !cv)
-        return Error{what + ": invalid trim curve in loop " + std::to_string(k)}.because(
-            cv.error());
+        return Error{ErrorCode::kWriterTrimCurveInvalid, {}, {static_cast<std::int64_t>(k)}}
+            .because(cv.error());
     for (const Vec2& p : b.face.loops[k].points)
       if (!(p.x() >= dom.u0 - mu && p.x() <= dom.u1 + mu && p.y() >= dom.v0 - mv &&
             p.y() <= dom.v1 + mv))
-        return Error{what + ": trim loop " + std::to_string(k) +
-                     " leaves the surface's parameter domain"};
+        return Error{ErrorCode::kWriterLoopOffDomain, {}, {static_cast<std::int64_t>(k)}};
   }
   return dom;
 }
@@ -437,14 +438,14 @@ Status write_builtin(const BuiltinFace& face, const std::string& path,
   auto format = format_of(path, options);
   if (!format) return format.error();
   BuiltinFace b = face;
-  auto dom = checked(b, path);
-  if (!dom) return dom.error();
+  auto dom = checked(b);
+  if (!dom) return Error(dom.error()).in(path);
   const std::lock_guard<std::mutex> lock(occt_mutex());
   static std::once_flag quiet;
   std::call_once(quiet, [] { Message::DefaultMessenger()->ChangePrinters().Clear(); });
   try {
     auto f = make_face(b, *dom);
-    if (!f) return Error{path}.because(f.error());
+    if (!f) return Error(f.error()).in(path);
     AtomicFile file(path, true);
     if (!file.ok()) return Error{ErrorCode::kFileNotCreated, path};
     const std::vector<NamedFace> names = {{*f, options.name}};
@@ -453,9 +454,14 @@ Status write_builtin(const BuiltinFace& face, const std::string& path,
     if (!st) return st;
     return file.commit();
   } catch (const Standard_Failure& e) {
-    return Error{path + ": OpenCASCADE failed writing the mold: " +
-                 std::string(e.GetMessageString() ? e.GetMessageString() : "unknown error")};
+    return Error{ErrorCode::kWriterOcctFailed, path, occt::failure_values(e)};
   }
+}
+
+// `e`, naming the file `path` and its face `i` (of a shell).
+Error on_face(Error e, const std::string& path, size_t i) {
+  e.face = static_cast<int>(i);
+  return std::move(e).in(path);
 }
 
 Status write_face(const FaceData& face, const std::string& path, const MoldWriteOptions& options) {
@@ -474,15 +480,17 @@ Status write_faces(const ShellData& shell, const std::string& path,
     const FaceData& fd = shell.faces[i];
     for (const auto& loop : fd.loops)
       if (!loop.edges.empty() && loop.edges.size() != loop.points.size())
-        return Error{path + ": face " + std::to_string(i) + ": a loop has " +
-                     std::to_string(loop.edges.size()) + " edge tags for " +
-                     std::to_string(loop.points.size()) + " segments"};
+        return on_face(Error{ErrorCode::kWriterEdgeTags,
+                             {},
+                             {static_cast<std::int64_t>(loop.edges.size()),
+                              static_cast<std::int64_t>(loop.points.size())}},
+                       path, i);
     BuiltinFace b = with_polyline_trims(fd);
     if (b.face.name.empty()) b.face.name = "face " + std::to_string(i);
-    auto dom = checked(b, path + ": face " + std::to_string(i));
-    if (!dom) return dom.error();
+    auto dom = checked(b);
+    if (!dom) return on_face(dom.error(), path, i);
     auto f = MoldSurface::from_face(b.face);
-    if (!f) return Error{path + ": face " + std::to_string(i)}.because(f.error());
+    if (!f) return on_face(f.error(), path, i);
     largest = std::max(largest, f->size());
     faces.push_back(std::move(b));
     domains.push_back(*dom);
@@ -497,7 +505,7 @@ Status write_faces(const ShellData& shell, const std::string& path,
     std::vector<NamedFace> named;
     for (size_t i = 0; i < faces.size(); ++i) {
       auto f = make_face(faces[i], domains[i]);
-      if (!f) return Error{path + ": face " + std::to_string(i)}.because(f.error());
+      if (!f) return on_face(f.error(), path, i);
       named.push_back({*f, faces[i].face.name});
     }
     TopoDS_Shape shape = named.front().face;
@@ -506,7 +514,7 @@ Status write_faces(const ShellData& shell, const std::string& path,
       for (const auto& n : named) sew.Add(n.face);
       sew.Perform();
       shape = sew.SewedShape();
-      if (shape.IsNull()) return Error{path + ": sewing the faces gave no shape"};
+      if (shape.IsNull()) return Error{ErrorCode::kSewingNoShape, path};
       for (auto& n : named)
         if (sew.IsModified(n.face)) n.face = TopoDS::Face(sew.Modified(n.face));
     }
@@ -517,8 +525,7 @@ Status write_faces(const ShellData& shell, const std::string& path,
     if (!st) return st;
     return file.commit();
   } catch (const Standard_Failure& e) {
-    return Error{path + ": OpenCASCADE failed writing the shell: " +
-                 std::string(e.GetMessageString() ? e.GetMessageString() : "unknown error")};
+    return Error{ErrorCode::kWriterOcctFailed, path, occt::failure_values(e)};
   }
 }
 

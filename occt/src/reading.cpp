@@ -187,8 +187,9 @@ Status read_file(XSControl_Reader& reader, const std::string& path,
   Interface_Static::SetCVal("xstep.cascade.unit", "MM");
   const IFSelect_ReturnStatus status = reader.ReadFile(path.c_str());
   if (status != IFSelect_RetDone)
-    return Error{"not a readable " + format_name + " file (the " + format_name + " parser failed" +
-                 std::string(status == IFSelect_RetVoid ? ": nothing to read" : "") + ")"};
+    return Error{ErrorCode::kFileNotParsed,
+                 {},
+                 {format_name, std::int64_t{status == IFSelect_RetVoid ? 1 : 0}}};
   return ok_status();
 }
 

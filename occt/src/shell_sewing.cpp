@@ -25,7 +25,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numeric>
 #include <set>
 
@@ -66,13 +65,6 @@ std::string face_list(const std::vector<int>& faces) {
   }
   if (k < faces.size()) s += ", ...";
   return s;
-}
-
-// A length in millimetres for messages, to 3 significant digits.
-std::string mm(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g mm", x);
-  return buf;
 }
 
 // Connected parts of the shell (faces joined by shared edges), by union-find.
@@ -186,8 +178,7 @@ double sewing_tolerance(const ShellInput& in, const std::vector<int>& indices, d
 }
 
 // Sews the faces (OpenCASCADE calls: run guarded).
-Status sew(const ShellInput& in, const std::vector<int>& indices, double size,
-           const std::string& what, Sewn& out) {
+Status sew(const ShellInput& in, const std::vector<int>& indices, double size, Sewn& out) {
   const size_t n = indices.size();
   const double tol = sewing_tolerance(in, indices, size);
   BRepBuilderAPI_Sewing sew(tol, Standard_True, Standard_True, Standard_True, Standard_False);
@@ -196,10 +187,10 @@ Status sew(const ShellInput& in, const std::vector<int>& indices, double size,
   Handle(Deadline) deadline = new Deadline(in.options.time_limit_s);
   sew.Perform(deadline->Start());
   if (deadline->expired())
-    return Error{what + ": sewing took longer than the time limit (" +
-                 std::to_string(static_cast<int>(in.options.time_limit_s)) + " s)"};
+    return Error{
+        ErrorCode::kSewingTimeLimit, {}, {std::int64_t{static_cast<int>(in.options.time_limit_s)}}};
   const TopoDS_Shape& shape = sew.SewedShape();
-  if (shape.IsNull()) return Error{what + ": the sewing gave no shape"};
+  if (shape.IsNull()) return Error{ErrorCode::kSewingNoShape};
   // The faces as the sewn shape holds them: TopExp_Explorer gives each with the orientation
   // the sewing chose for it within its shell.
   TopTools_IndexedMapOfShape oriented;
@@ -208,9 +199,11 @@ Status sew(const ShellInput& in, const std::vector<int>& indices, double size,
     const TopoDS_Shape& f = in.faces(indices[k] + 1);
     const TopoDS_Shape g = sew.IsModifiedSubShape(f) ? sew.ModifiedSubShape(f) : f;
     const int found = g.IsNull() ? 0 : oriented.FindIndex(g);
-    if (found == 0 || g.ShapeType() != TopAbs_FACE)
-      return Error{in.source + ": face " + std::to_string(indices[k]) +
-                   ": the sewing removed it (smaller than the sewing tolerance, " + mm(tol) + "?)"};
+    if (found == 0 || g.ShapeType() != TopAbs_FACE) {
+      Error e{ErrorCode::kSewingRemovedFace, in.source, {tol}};
+      e.face = indices[k];
+      return e;
+    }
     out.faces[k] = TopoDS::Face(oriented(found));
   }
   TopExp::MapShapesAndAncestors(shape, TopAbs_EDGE, TopAbs_FACE, out.edge_faces);
@@ -324,14 +317,10 @@ Status convert_faces(const ShellInput& in, const Selection& sel,
     return t ? *t : TrimLoop::kFreeEdge;
   };
   for (size_t k = 0; k < sewn.size(); ++k) {
-    const std::string face_what = in.source + ": face " + std::to_string(sel.indices[k]);
-    auto fd = guarded(face_what, [&]() -> Result<FaceData> {
+    auto fd = guarded({in.source, sel.indices[k], {}}, [&]() -> Result<FaceData> {
       return convert_face(sewn[k], sel.infos[k], in.options.tolerances, &tag);
     });
-    if (!fd) {
-      if (legacy_text(fd.error()).rfind(face_what, 0) == 0) return fd.error();
-      return Error{face_what}.because(fd.error());
-    }
+    if (!fd) return fd.error();
     shell.faces.push_back(std::move(fd).value());
   }
   return ok_status();
@@ -392,18 +381,16 @@ Result<ShellData> sew_faces(const ShellInput& in, const std::vector<int>& given,
   const Selection& sel = selected.value();
   const std::vector<int>& indices = sel.indices;
   const size_t n = indices.size();
-  const std::string what = in.source + ": sewing " + face_list(indices);
+  const Blame what{in.source, -1, "sewing " + face_list(indices)};
   const double size = sel.box.diagonal();
-  if (!(size > 0.0)) return Error{what + ": the faces have zero size"};
-  if (!(in.options.sewing_tolerance >= 0.0) || !std::isfinite(in.options.sewing_tolerance)) {
-    Error e{ErrorCode::kSewingToleranceInvalid, in.source, {in.options.sewing_tolerance}};
-    e.where = "sewing " + face_list(indices);
-    return e;
-  }
+  if (!(size > 0.0)) return blamed(Error{ErrorCode::kSewingZeroSize}, what);
+  if (!(in.options.sewing_tolerance >= 0.0) || !std::isfinite(in.options.sewing_tolerance))
+    return blamed(Error{ErrorCode::kSewingToleranceInvalid, {}, {in.options.sewing_tolerance}},
+                  what);
 
   Sewn sewn;
   sewn.faces.resize(n);
-  auto sewing = guarded(what, [&]() -> Status { return sew(in, indices, size, what, sewn); });
+  auto sewing = guarded(what, [&]() -> Status { return sew(in, indices, size, sewn); });
   if (!sewing) return sewing.error();
 
   Parts parts(n);

@@ -7,8 +7,12 @@
 
 #include "cli/cli_util.hpp"
 
+#include <dlfcn.h>
+#include <link.h>
+
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -45,6 +49,17 @@ std::string joined(const std::vector<std::string>& libs) {
   std::string s;
   for (const auto& l : libs) s += l + "\n";
   return s;
+}
+
+// The file of the shared object `soname` as the dynamic loader finds it.
+std::string shared_object_path(const char* soname) {
+  void* handle = dlopen(soname, RTLD_NOW | RTLD_LOCAL);
+  REQUIRE(handle);
+  link_map* map = nullptr;
+  REQUIRE(dlinfo(handle, RTLD_DI_LINKMAP, &map) == 0);
+  const std::string path = map->l_name;
+  dlclose(handle);
+  return path;
 }
 
 }  // namespace
@@ -107,10 +122,43 @@ TEST_CASE(
   CHECK(info.code == 1);
   CHECK(lines(info.err) == 1);
   CHECK(info.err.rfind("plyfit: error: " + mold + ": ", 0) == 0);
+  CHECK(error_code(info) == "occt_module_missing");
   CHECK(info.err.find("plyfit-occt.so") != std::string::npos);
   const CliRun sample = run_copy("sample hemisphere -o '" + s.file("h.igs") + "'");
   CHECK(sample.code == 1);
   CHECK(lines(sample.err) == 1);
-  CHECK(sample.err.find("plyfit-occt.so") != std::string::npos);
+  CHECK(error_code(sample) == "occt_module_missing");
   CHECK_FALSE(fs::exists(s.path / "h.igs"));
+}
+
+TEST_CASE("cli: a module that does not load, or lacks its entry point, is a one-line error") {
+  Scratch s("lazy_occt_broken");
+  const fs::path bin = s.path / "bin" / "plyfit";
+  fs::create_directories(bin.parent_path());
+  fs::copy_file(PLYFIT_BIN, bin);
+  const std::string mold = std::string(PLYFIT_SOURCE_DIR) + "/samples/molds/hemisphere.igs";
+  const fs::path module = bin.parent_path() / "plyfit-occt.so";
+  auto info = [&] {
+    const std::string cmd = "'" + bin.string() + "' info '" + mold + "' > /dev/null 2> '" +
+                            s.file("e.txt") + "' < /dev/null";
+    const int status = std::system(cmd.c_str());
+    CliRun r;
+    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.err = slurp(s.file("e.txt"));
+    return r;
+  };
+  // Not a shared object at all: dlopen fails.
+  { std::ofstream(module) << "not an ELF file\n"; }
+  CliRun r = info();
+  INFO(r.err);
+  CHECK(r.code == 1);
+  CHECK(error_code(r) == "occt_module_not_loaded");
+  CHECK(r.err.find(module.string()) != std::string::npos);
+  // A shared object that loads but is not plyfit's module (the C math library).
+  fs::remove(module);
+  fs::copy_file(shared_object_path("libm.so.6"), module);
+  r = info();
+  INFO(r.err);
+  CHECK(r.code == 1);
+  CHECK(error_code(r) == "occt_module_no_entry");
 }

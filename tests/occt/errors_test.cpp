@@ -109,6 +109,22 @@ TEST_CASE("importers: a file without faces, a bad face index and a time limit ar
     check_bad_index_and_time_limit(sample_mold(name), 1);
 }
 
+TEST_CASE("importers: a STEP file its parser cannot read is file_not_parsed, naming the file") {
+  TempDir dir("not_parsed");
+  // The frame of a STEP file, which the checks before the reader pass, with an empty header.
+  const std::string path = dir.file("empty.step");
+  write_bytes(path, "ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\nENDSEC;\nEND-ISO-10303-21;\n");
+  auto r = importers::open_mold(path);
+  REQUIRE_FALSE(r.ok());
+  CHECK(r.error().code == ErrorCode::kFileNotParsed);
+  CHECK(r.error().input == path);
+  CHECK(r.error().values == std::vector<MessageValue>{std::string("STEP"), std::int64_t{0}});
+  auto curves = importers::read_curves(path);
+  REQUIRE_FALSE(curves.ok());
+  CHECK(curves.error().code == ErrorCode::kFileNotParsed);
+  CHECK(curves.error().input == path);
+}
+
 TEST_CASE("importers: a fault inside the reader is a one-line error naming the file") {
   TempDir dir("reader_fault");
   const std::string path = sample_mold("dish.step");
@@ -120,5 +136,6 @@ TEST_CASE("importers: a fault inside the reader is a one-line error naming the f
     CHECK(r.err.rfind("plyfit: error: ", 0) == 0);
     CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
     CHECK(r.err.find(path) != std::string::npos);
+    CHECK(r.err.find(" [occt_failed]\n") != std::string::npos);
   }
 }

@@ -132,8 +132,16 @@ TEST_CASE("messages: the mold's warnings read as plyfit has always printed them"
   CHECK(text_of(W::kUnmeasuredFaces, {std::int64_t{1}, std::int64_t{73}, "#4242", "why"}) ==
         "listing: 1 faces whose area could not be measured (first: face 73 (#4242): area not "
         "measured (why): an invalid face)");
-  CHECK(text_of(W::kListingFailedFaces, {std::int64_t{2}, std::int64_t{5}, "DE 9", "no surface"}) ==
-        "listing: 2 faces could not be described (first: face 5 (DE 9): no surface)");
+  // The first face's failure: an error and its cause, each its code's name, value count, values.
+  CHECK(text_of(W::kListingFailedFaces,
+                {std::int64_t{2}, std::int64_t{5}, "DE 9", "face_not_described", std::int64_t{0},
+                 "occt_failed", std::int64_t{2}, "Standard_DomainError", "no pole"}) ==
+        "listing: 2 faces could not be described (first: face 5 (DE 9): could not be described: "
+        "OpenCASCADE failed (Standard_DomainError: no pole))");
+  CHECK(text_of(W::kListingFailedFaces, {std::int64_t{1}, std::int64_t{0}, "", "face_not_measured",
+                                         std::int64_t{0}, "out_of_memory", std::int64_t{0}}) ==
+        "listing: 1 faces could not be described (first: face 0: could not be measured: out of "
+        "memory)");
   CHECK(text_of(W::kShortAreaFaces, {std::int64_t{2}, std::int64_t{3}, "#12", 1e-6, 2e-6}) ==
         "listing: 2 face areas short of the accuracy asked (first: face 3 (#12): area to 2.0e-06 "
         "relative (estimated), not the 1e-06 asked)");
@@ -146,4 +154,45 @@ TEST_CASE("messages: the mold's warnings read as plyfit has always printed them"
         "no faces (nothing in the file transfers to a surface; load: 1 fail (1x 'F'))");
   CHECK(exporters::message(Error{ErrorCode::kFileNoFaces, "f.igs"}) ==
         "no faces (nothing in the file transfers to a surface)");
+}
+
+TEST_CASE(
+    "messages: the module's errors read as plyfit printed them, OpenCASCADE's words as data") {
+  using E = ErrorCode;
+  const auto text = [](Error e) { return exporters::describe(e); };
+  CHECK(text(Error{E::kOcctFailed, "m.step", {"Standard_DomainError", "no pole"}}) ==
+        "m.step: OpenCASCADE failed (Standard_DomainError: no pole)");
+  CHECK(text(Error{E::kOcctFailed, "m.step", {"OSD_SIGSEGV", ""}}) ==
+        "m.step: OpenCASCADE failed (OSD_SIGSEGV)");
+  CHECK(text(Error{E::kFileNotParsed, "m.igs", {"IGES", std::int64_t{1}}}) ==
+        "m.igs: not a readable IGES file (the IGES parser failed: nothing to read)");
+  CHECK(text(Error{E::kFileNotParsed, "m.step", {"STEP", std::int64_t{0}}}) ==
+        "m.step: not a readable STEP file (the STEP parser failed)");
+  // A face: the file, the face and its entity, then the error and its cause.
+  Error face = Error{E::kFaceNotDescribed}.because(Error{E::kOutOfMemory});
+  face.input = "m.step";
+  face.face = 3;
+  face.where = "#120";
+  CHECK(text(face) == "m.step: face 3: #120: could not be described: out of memory");
+  CHECK(text(Error{E::kNurbsConversionType, {}, {"offset", "Geom_OffsetSurface"}}) ==
+        "conversion of the offset surface to NURBS gave a Geom_OffsetSurface");
+  CHECK(text(Error{E::kTrimPointBudget, {}, {std::int64_t{2'000'000}}}) ==
+        "trim polylines exceed the point budget (2000000 points for a face)");
+  CHECK(text(Error{E::kSewingRemovedFace, {}, {0.0125}}) ==
+        "the sewing removed it (smaller than the sewing tolerance, 0.0125 mm?)");
+  CHECK(text(Error{E::kSewingTimeLimit, {}, {std::int64_t{120}}}) ==
+        "sewing took longer than the time limit (120 s)");
+  CHECK(text(Error{E::kWriterValueTooLarge, "p.step", {1e99}}) ==
+        "p.step: a pole, weight or knot is 1e+99 or larger: not written");
+  CHECK(text(Error{E::kWriterNoFace, "p.igs", {"IGES", "lid"}}) ==
+        "p.igs: the IGES writer made no surface of 'lid'");
+  CHECK(text(Error{E::kWriterNoFace, "p.step", {"STEP", "lid"}}) ==
+        "p.step: the STEP writer made no face of 'lid'");
+  CHECK(text(Error{E::kWriterOcctFailed, "p.step", {"Standard_ConstructionError", ""}}) ==
+        "p.step: OpenCASCADE failed writing the file (Standard_ConstructionError)");
+  CHECK(text(Error{E::kOcctModuleOtherBuild,
+                   "m.step",
+                   {"plyfit-occt.so", std::int64_t{5}, std::int64_t{6}}}) ==
+        "m.step: plyfit's OpenCASCADE module plyfit-occt.so is from another build of plyfit "
+        "(interface 5, expected 6)");
 }

@@ -234,15 +234,18 @@ TEST_CASE("samples: the shell writer refuses bad shells, naming the file and the
   bad.faces[1].loops[0].edges.pop_back();
   st = exporters::write_shell(bad, tmp.file("b.igs"));
   REQUIRE_FALSE(st.ok());
-  CHECK(exporters::describe(st.error())
-            .find("b.igs: face 1: a loop has 3 edge tags for 4 segments") != std::string::npos);
+  CHECK(st.error().code == ErrorCode::kWriterEdgeTags);
+  CHECK(st.error().input == tmp.file("b.igs"));
+  CHECK(st.error().face == 1);
+  CHECK(st.error().values == std::vector<MessageValue>{std::int64_t{3}, std::int64_t{4}});
   bad = cases().front().shell;
   bad.faces[0].loops[0].points[2] = Vec2(70, 60);  // off the left plate's domain
   st = exporters::write_shell(bad, tmp.file("b.step"));
   REQUIRE_FALSE(st.ok());
-  CHECK(exporters::describe(st.error())
-            .find("b.step: face 0: trim loop 0 leaves the surface's parameter "
-                  "domain") != std::string::npos);
+  CHECK(st.error().code == ErrorCode::kWriterLoopOffDomain);
+  CHECK(st.error().input == tmp.file("b.step"));
+  CHECK(st.error().face == 0);
+  CHECK(st.error().values == std::vector<MessageValue>{std::int64_t{0}});
   CHECK_FALSE(std::filesystem::exists(tmp.file("b.step")));
   CHECK_FALSE(std::filesystem::exists(tmp.file("b.igs")));
 }

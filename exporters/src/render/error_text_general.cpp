@@ -7,8 +7,6 @@ PLYFIT_SENTENCE(text_internal, "internal error: {t0}");
 
 PLYFIT_SENTENCE(text_cancelled, "cancelled");
 
-PLYFIT_SENTENCE(text_text, "{t0}");
-
 PLYFIT_SENTENCE(warning_note, "{t0}");
 
 }  // namespace plyfit::exporters::render

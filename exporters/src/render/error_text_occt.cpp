@@ -16,6 +16,16 @@ std::string limit(const Values& x, std::size_t k) {
   return buf;
 }
 
+// "(Standard_DomainError: message)": OpenCASCADE's exception type and message at values[k].
+std::string exception(const Values& x, std::size_t k) {
+  std::string s(1, '(');
+  s.append(x.text(k));
+  const std::string msg = x.text(k + 1);
+  if (!msg.empty()) s.append(": ").append(msg);
+  s.push_back(')');
+  return s;
+}
+
 }  // namespace
 
 PLYFIT_SENTENCE(text_file_missing, "no such file");
@@ -99,5 +109,120 @@ PLYFIT_SENTENCE(text_face_tolerance_invalid, "{t0}: {t1} is not a finite length"
 PLYFIT_SENTENCE(text_face_scale_invalid, "{t0}: {t1}'s scale is not a finite non-zero number");
 
 PLYFIT_SENTENCE(text_face_area_not_measured, "area not measured ({t0}): an invalid face");
+
+// Values: OpenCASCADE's exception: its type and its message (may be empty).
+std::string text_occt_failed(const Values& x) {
+  return "OpenCASCADE failed " + exception(x, 0);
+}
+
+PLYFIT_SENTENCE(text_out_of_memory, "out of memory");
+
+PLYFIT_SENTENCE(text_unexpected_exception, "unexpected exception ({t0})");
+
+PLYFIT_SENTENCE(text_face_not_described, "could not be described");
+
+PLYFIT_SENTENCE(text_face_not_measured, "could not be measured");
+
+// Values: the format ("STEP", "IGES"), 1 when its parser found nothing to read.
+std::string text_file_not_parsed(const Values& x) {
+  return "not a readable " + x.text(0) + " file (the " + x.text(0) + " parser failed" +
+         (x.count(1) == 1 ? ": nothing to read" : "") + ")";
+}
+
+PLYFIT_SENTENCE(text_iges_no_model, "not a readable IGES file (no model)");
+
+PLYFIT_SENTENCE(text_occt_module_missing,
+                "STEP and IGES files need plyfit's OpenCASCADE module {t0}, which is neither next "
+                "to the plyfit executable in {t1} nor in {t2}");
+
+PLYFIT_SENTENCE(text_occt_module_not_loaded,
+                "plyfit's OpenCASCADE module {t0} could not be loaded ({t1})");
+
+PLYFIT_SENTENCE(text_occt_module_no_entry,
+                "plyfit's OpenCASCADE module lacks the entry point {t0} ({t1})");
+
+PLYFIT_SENTENCE(text_occt_module_other_build,
+                "plyfit's OpenCASCADE module {t0} is from another build of plyfit (interface "
+                "{n1}, expected {n2})");
+
+PLYFIT_SENTENCE(text_occt_no_reader, "plyfit's OpenCASCADE module has no reader {q0}");
+
+PLYFIT_SENTENCE(text_curves_no_extent, "the file's curves have no extent");
+
+PLYFIT_SENTENCE(text_curve_not_discretised,
+                "curve {n0}: an edge does not discretise (OpenCASCADE's deflection sampler "
+                "failed)");
+
+PLYFIT_SENTENCE(text_edge_no_pcurve, "an edge has no curve on the face");
+
+PLYFIT_SENTENCE(text_trim_point_budget,
+                "trim polylines exceed the point budget ({n0} points for a face)");
+
+PLYFIT_SENTENCE(text_face_no_trim_loop, "the face has no usable trim loop");
+
+PLYFIT_SENTENCE(text_face_no_surface, "the face has no surface");
+
+PLYFIT_SENTENCE(text_nurbs_conversion_failed, "conversion of the {t0} surface to NURBS failed");
+
+PLYFIT_SENTENCE(text_nurbs_conversion_no_face,
+                "conversion of the {t0} surface to NURBS gave no face");
+
+PLYFIT_SENTENCE(text_nurbs_conversion_type, "conversion of the {t0} surface to NURBS gave a {t1}");
+
+PLYFIT_SENTENCE(text_face_surface_invalid, "invalid NURBS surface");
+
+PLYFIT_SENTENCE(text_sewing_time_limit, "sewing took longer than the time limit ({n0} s)");
+
+PLYFIT_SENTENCE(text_sewing_no_shape, "the sewing gave no shape");
+
+PLYFIT_SENTENCE(text_sewing_removed_face,
+                "the sewing removed it (smaller than the sewing tolerance, {b0} mm?)");
+
+PLYFIT_SENTENCE(text_sewing_zero_size, "the faces have zero size");
+
+std::string text_writer_value_too_large(const Values& x) {
+  return "a pole, weight or knot is " + limit(x, 0) + " or larger: not written";
+}
+
+PLYFIT_SENTENCE(text_writer_surface_invalid, "invalid surface");
+
+PLYFIT_SENTENCE(text_writer_loop_count, "{n0} exact trim loops for {n1} trim polylines");
+
+PLYFIT_SENTENCE(text_writer_loop_too_few_points, "trim loop {n0} has fewer than three points");
+
+PLYFIT_SENTENCE(text_writer_trim_curve_invalid, "invalid trim curve in loop {n0}");
+
+PLYFIT_SENTENCE(text_writer_loop_off_domain,
+                "trim loop {n0} leaves the surface's parameter domain");
+
+PLYFIT_SENTENCE(text_writer_edge_tags, "a loop has {n0} edge tags for {n1} segments");
+
+PLYFIT_SENTENCE(text_writer_edge_not_built, "could not build an edge on a trim curve");
+
+PLYFIT_SENTENCE(text_writer_loop_not_joined, "the trim curves of a loop do not join end to end");
+
+PLYFIT_SENTENCE(text_writer_face_not_built, "could not build a face on the surface");
+
+PLYFIT_SENTENCE(text_writer_face_not_inside_trim, "could not build a face inside the outer trim");
+
+PLYFIT_SENTENCE(text_writer_holes_not_added, "could not add the holes to the face");
+
+PLYFIT_SENTENCE(text_writer_trim_curve_3d, "could not build the 3D curve of a trim");
+
+PLYFIT_SENTENCE(text_writer_not_transferred, "the {t0} writer could not transfer the shape");
+
+// Values: the format ("STEP": a face, "IGES": a surface), the face's name.
+std::string text_writer_no_face(const Values& x) {
+  return "the " + x.text(0) + " writer made no " + (x.text(0) == "IGES" ? "surface" : "face") +
+         " of '" + x.text(1) + "'";
+}
+
+PLYFIT_SENTENCE(text_writer_no_protocol, "no STEP protocol");
+
+PLYFIT_SENTENCE(text_writer_failed, "the {t0} writer failed");
+
+std::string text_writer_occt_failed(const Values& x) {
+  return "OpenCASCADE failed writing the file " + exception(x, 0);
+}
 
 }  // namespace plyfit::exporters::render

@@ -31,6 +31,11 @@ struct Values {
 /// {bK} brief(K), {fK} fixed(K), {qK} text(K) in single quotes (K one digit).
 std::string fill(std::string_view sentence, const Values& x);
 
+/// The text of an error and its causes carried as a warning's values from values[first] on:
+/// for each, its code's name, its value count and its values ("could not be described:
+/// OpenCASCADE failed (...)"); a name that is no code shows as itself.
+std::string error_chain_text(const Values& x, std::size_t first);
+
 /// Defines the text function `name` of a code whose text is one sentence with its values in
 /// place (fill()); used as PLYFIT_SENTENCE(text_code, "sentence");
 #define PLYFIT_SENTENCE(name, sentence) \

@@ -4,6 +4,7 @@
 #include "render/message_text.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <sstream>
 
 namespace plyfit::exporters {
@@ -113,5 +114,31 @@ std::string messages(const std::vector<Warning>& warnings, const std::string& se
     s += (k ? separator : std::string()) + message(warnings[k]);
   return s;
 }
+
+namespace render {
+
+std::string error_chain_text(const Values& x, std::size_t first) {
+  std::string out;
+  for (std::size_t k = first; k + 1 < x.v.size();) {
+    const std::string name = x.text(k);
+    const auto n = static_cast<std::size_t>(std::max<std::int64_t>(x.count(k + 1), 0));
+    const std::size_t end = std::min(k + 2 + n, x.v.size());
+    Error e{ErrorCode::kInternal,
+            {},
+            std::vector<MessageValue>(x.v.begin() + static_cast<std::ptrdiff_t>(k + 2),
+                                      x.v.begin() + static_cast<std::ptrdiff_t>(end))};
+    bool known = false;
+    for (std::size_t c = 0; c < std::size(kErrorTexts) && !known; ++c)
+      if (name == to_string(static_cast<ErrorCode>(c))) {
+        e.code = static_cast<ErrorCode>(c);
+        known = true;
+      }
+    out += (out.empty() ? "" : ": ") + (known ? message(e) : name);
+    k = end;
+  }
+  return out;
+}
+
+}  // namespace render
 
 }  // namespace plyfit::exporters

@@ -93,10 +93,11 @@ std::string warning_face_area_unmeasured(const Values& x) {
   return face_named(x, 0) + ": area not measured (" + x.text(2) + "): an invalid face";
 }
 
-// Values: the count, then the first face, its entity and why it could not be described.
+// Values: the count, then the first face, its entity and why it could not be described (an
+// error and its causes: error_chain_text()).
 std::string warning_listing_failed_faces(const Values& x) {
   return "listing: " + x.n(0) + " faces could not be described (first: " + face_named(x, 1) + ": " +
-         x.text(3) + ")";
+         error_chain_text(x, 3) + ")";
 }
 
 // Values: the count, then the first face's (face_area_unmeasured).

@@ -20,11 +20,9 @@ namespace plyfit {
 /// text is text_name() in exporters/src/render/ (a code without one does not build). Grouped by
 /// the module that raises them.
 #define PLYFIT_ERROR_CODES(X)                                                               \
-  /* general */                                                                             \
+  /* general: a broken invariant (a bug) is internal; a run stopped if asked: cancelled. */ \
   X(Internal, internal)                                                                     \
   X(Cancelled, cancelled)                                                                   \
-  /* not yet given a code of its own: its sentence is values[0] (to go: see Error(text)) */ \
-  X(Text, text)                                                                             \
   /* kernel: drape problem and ply */                                                       \
   X(SweepCountMismatch, sweep_count_mismatch)                                               \
   X(StartNotFinite, start_not_finite)                                                       \
@@ -157,6 +155,50 @@ namespace plyfit {
   X(FaceToleranceInvalid, face_tolerance_invalid)                                           \
   X(FaceScaleInvalid, face_scale_invalid)                                                   \
   X(FaceAreaNotMeasured, face_area_not_measured)                                            \
+  X(OcctFailed, occt_failed)                                                                \
+  X(OutOfMemory, out_of_memory)                                                             \
+  X(UnexpectedException, unexpected_exception)                                              \
+  X(FaceNotDescribed, face_not_described)                                                   \
+  X(FaceNotMeasured, face_not_measured)                                                     \
+  X(FileNotParsed, file_not_parsed)                                                         \
+  X(IgesNoModel, iges_no_model)                                                             \
+  X(OcctModuleMissing, occt_module_missing)                                                 \
+  X(OcctModuleNotLoaded, occt_module_not_loaded)                                            \
+  X(OcctModuleNoEntry, occt_module_no_entry)                                                \
+  X(OcctModuleOtherBuild, occt_module_other_build)                                          \
+  X(OcctNoReader, occt_no_reader)                                                           \
+  X(CurvesNoExtent, curves_no_extent)                                                       \
+  X(CurveNotDiscretised, curve_not_discretised)                                             \
+  X(EdgeNoPcurve, edge_no_pcurve)                                                           \
+  X(TrimPointBudget, trim_point_budget)                                                     \
+  X(FaceNoTrimLoop, face_no_trim_loop)                                                      \
+  X(FaceNoSurface, face_no_surface)                                                         \
+  X(NurbsConversionFailed, nurbs_conversion_failed)                                         \
+  X(NurbsConversionNoFace, nurbs_conversion_no_face)                                        \
+  X(NurbsConversionType, nurbs_conversion_type)                                             \
+  X(FaceSurfaceInvalid, face_surface_invalid)                                               \
+  X(SewingTimeLimit, sewing_time_limit)                                                     \
+  X(SewingNoShape, sewing_no_shape)                                                         \
+  X(SewingRemovedFace, sewing_removed_face)                                                 \
+  X(SewingZeroSize, sewing_zero_size)                                                       \
+  X(WriterValueTooLarge, writer_value_too_large)                                            \
+  X(WriterSurfaceInvalid, writer_surface_invalid)                                           \
+  X(WriterLoopCount, writer_loop_count)                                                     \
+  X(WriterLoopTooFewPoints, writer_loop_too_few_points)                                     \
+  X(WriterTrimCurveInvalid, writer_trim_curve_invalid)                                      \
+  X(WriterLoopOffDomain, writer_loop_off_domain)                                            \
+  X(WriterEdgeTags, writer_edge_tags)                                                       \
+  X(WriterEdgeNotBuilt, writer_edge_not_built)                                              \
+  X(WriterLoopNotJoined, writer_loop_not_joined)                                            \
+  X(WriterFaceNotBuilt, writer_face_not_built)                                              \
+  X(WriterFaceNotInsideTrim, writer_face_not_inside_trim)                                   \
+  X(WriterHolesNotAdded, writer_holes_not_added)                                            \
+  X(WriterTrimCurve3d, writer_trim_curve_3d)                                                \
+  X(WriterNotTransferred, writer_not_transferred)                                           \
+  X(WriterNoFace, writer_no_face)                                                           \
+  X(WriterNoProtocol, writer_no_protocol)                                                   \
+  X(WriterFailed, writer_failed)                                                            \
+  X(WriterOcctFailed, writer_occt_failed)                                                   \
   /* exporters */                                                                           \
   X(FileNotCreated, file_not_created)                                                       \
   X(FileAlreadyClosed, file_already_closed)                                                 \
@@ -277,9 +319,6 @@ struct Error {
   Error() = default;
   Error(ErrorCode c, std::string blamed = {}, std::vector<MessageValue> v = {})
       : code(c), input(std::move(blamed)), values(std::move(v)) {}
-  /// An error not yet given a code of its own (ErrorCode::kText): its sentence as it is.
-  /// Transitional: every raiser is being given codes.
-  explicit Error(std::string sentence) : code(ErrorCode::kText), values{std::move(sentence)} {}
   /// This error, wrapping `inner` (its cause).
   Error&& because(Error inner) && {
     cause = std::make_shared<const Error>(std::move(inner));
