@@ -188,8 +188,8 @@ bool OutlineBuilder::virtual_by_continuation(const NodeId& id, bool drape_only) 
     if (!pb || pb->placed > 0) continue;
     const std::array<std::uint64_t, 3> key{id.key(), a.id.key(), before->id.key()};
     if (failed_continuations_.count(key)) continue;
-    if (accept_virtual(
-            id, solve_plane_sphere(s_, {a.p.point, a.p.at, a.rest, a.p.point - pb->point}, st_)))
+    if (accept_virtual(id, solve_plane_sphere(
+                               s_, {a.p.point, a.p.at, a.rest, a.p.point - pb->point, true}, st_)))
       return true;
     failed_continuations_.insert(key);
   }
