@@ -274,7 +274,7 @@ Vec2 OutlineBuilder::crossing_p2(const Vertex& P, const Vertex& Q, double t,
   const double link = (off.p2 - on.p2).norm();
   if (!(link > 0.0)) return lin;
   auto on_face = [&](double r) {
-    const SolveResult res = solve_plane_sphere(s_, {on.p3, on.at, r, off.p3 - on.p3}, st_);
+    const SolveResult res = solve_plane_sphere(s_, {on.p3, on.at, r, off.p3 - on.p3, true}, st_);
     return res.status == SolveStatus::kConverged;
   };
   double f = 1.0;

@@ -22,9 +22,11 @@
 #include <plyfit/kernel/flat_pattern.hpp>
 #include <plyfit/kernel/polygon2d.hpp>
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <set>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -268,6 +270,11 @@ class OutlineBuilder {
   std::vector<CellIndex> cells_;
   std::unordered_map<std::uint64_t, int> node_vertices_;  // vertex of other nodes (by key)
   std::unordered_map<std::uint64_t, Position> virtual_;
+  // The solves of virtual corners that did not land: (node, weft neighbour, warp neighbour)
+  // for two spheres, (node, neighbour, the node before it) for a continuation. Positions never
+  // change once known, so such a solve, asked again when another neighbour gains a position,
+  // would fail again.
+  std::set<std::array<std::uint64_t, 3>> failed_spheres_, failed_continuations_;
   std::map<std::pair<int, int>, std::vector<int>> crossings_;
   double dmax_ = 1.0;                      // the larger spacing
   std::vector<int> dirs_;                  // per boundary loop: see loop_directions()

@@ -145,6 +145,8 @@ bool OutlineBuilder::virtual_by_spheres(const NodeId& id) {
   for (const Nb& a : nbs)
     for (const Nb& b : nbs) {
       if (!is_weft(a.dir) || is_weft(b.dir)) continue;
+      const std::array<std::uint64_t, 3> key{id.key(), a.id.key(), b.id.key()};
+      if (failed_spheres_.count(key)) continue;
       const double side =
           cross2(ply_.pos(b.id) - ply_.pos(a.id), q2 - ply_.pos(a.id)) > 0 ? 1.0 : -1.0;
       auto solve = [&](double sd) {
@@ -158,10 +160,10 @@ bool OutlineBuilder::virtual_by_spheres(const NodeId& id) {
       if (res.status == SolveStatus::kLeftFace && res.extended &&
           !on_side(a.p.point, b.p.point, res.point, side))
         res = solve(-side);
-      if (res.status == SolveStatus::kLeftFace && res.extended &&
-          !on_side(a.p.point, b.p.point, res.point, side))
-        continue;
-      if (accept_virtual(id, res)) return true;
+      const bool sided = !(res.status == SolveStatus::kLeftFace && res.extended &&
+                           !on_side(a.p.point, b.p.point, res.point, side));
+      if (sided && accept_virtual(id, res)) return true;
+      failed_spheres_.insert(key);
     }
   return false;
 }
@@ -184,9 +186,12 @@ bool OutlineBuilder::virtual_by_continuation(const NodeId& id, bool drape_only) 
     if (drape_only && (virtual_.count(a.id.key()) || virtual_.count(before->id.key()))) continue;
     const auto pb = position(before->id);
     if (!pb || pb->placed > 0) continue;
-    if (accept_virtual(
-            id, solve_plane_sphere(s_, {a.p.point, a.p.at, a.rest, a.p.point - pb->point}, st_)))
+    const std::array<std::uint64_t, 3> key{id.key(), a.id.key(), before->id.key()};
+    if (failed_continuations_.count(key)) continue;
+    if (accept_virtual(id, solve_plane_sphere(
+                               s_, {a.p.point, a.p.at, a.rest, a.p.point - pb->point, true}, st_)))
       return true;
+    failed_continuations_.insert(key);
   }
   return false;
 }

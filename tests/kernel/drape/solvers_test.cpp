@@ -656,3 +656,43 @@ TEST_CASE("solvers: a base plane nearly tangent to a sphere: its small section c
     }
   }
 }
+
+TEST_CASE("solvers: a march-only plane-sphere step keeps the march's verdict, no trace") {
+  // Unit hemisphere z >= 0, from P at latitude 45 degrees along the parallel (y): the plane
+  // through the normal cuts the great circle cos(s) P + sin(s) y, on the face for |s| <= 90
+  // degrees (chord sqrt 2 from P). A step of rho < sqrt 2 lands at the same point either way
+  // (the march solves it, the trace is never asked); one of 1.9 leaves the face either way;
+  // one longer than the circle's diameter has no point: the full solve traces the section
+  // (to where it leaves the face), the march-only one stops unconverged at fewer evaluations.
+  const Face f = make_face(sphere_patch(1.0, 0.0, kPi / 2, -kPi, kPi));
+  const double c45 = std::cos(kPi / 4);
+  const Vec3 p(c45, 0, c45);
+  const Projection at = f.project(p);
+  REQUIRE((at.point - p).norm() < 1e-12);
+  SolverSettings st;
+  st.spacing = 0.1;
+  for (const double rho : {0.3, 1.0, 1.4, 1.9, 2.5}) {
+    INFO("rho " << rho);
+    PlaneSphereStep step{p, at.at, rho, Vec3(0, 1, 0)};
+    const SolveResult full = solve_plane_sphere(f, step, st);
+    step.march_only = true;
+    const SolveResult march = solve_plane_sphere(f, step, st);
+    INFO(to_string(full.status) << " " << full.reason << " / " << to_string(march.status) << " "
+                                << march.reason << "; evaluations " << full.evaluations << " / "
+                                << march.evaluations);
+    if (rho < std::sqrt(2.0)) {
+      REQUIRE(full.status == SolveStatus::kConverged);
+      REQUIRE(march.status == SolveStatus::kConverged);
+      CHECK(march.point == full.point);
+      CHECK(sphere_error(march.point, p, rho) < kConstraintRel);
+      CHECK(std::abs(march.point.norm() - 1) < kConstraintRel);
+    } else if (rho < 2.0) {
+      CHECK(full.status == SolveStatus::kLeftFace);
+      CHECK(march.status == SolveStatus::kLeftFace);
+    } else {
+      CHECK(full.status != SolveStatus::kConverged);
+      CHECK(march.status != SolveStatus::kConverged);
+      CHECK(march.evaluations < full.evaluations);
+    }
+  }
+}

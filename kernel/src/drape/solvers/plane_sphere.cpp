@@ -26,7 +26,7 @@ class PlaneSphere {
  public:
   PlaneSphere(const DrapeSurface& s, const Vec3& x0, const SurfaceLocation& at0,
               const SurfaceEval1& e0, const Vec3& n0, const Vec3& pn, const Vec3& t, double rho,
-              const SolverSettings& st, bool trace)
+              const SolverSettings& st, Unmarched unmarched)
       : s_(s),
         x0_(x0),
         at0_(at0),
@@ -36,7 +36,7 @@ class PlaneSphere {
         t_(t),
         rho_(rho),
         st_(st),
-        trace_(trace),
+        unmarched_(unmarched),
         c_(s, st) {}
 
   // The direct solve from the first-order guess (eqs. 7-8); where it fails and leaving the
@@ -112,11 +112,12 @@ class PlaneSphere {
     return eg.ok && (eg.p - (x0_ + rho_ * t_)).norm() <= kTrustRatio * rho_;
   }
 
-  // With trace_ (the base path, solver 3), the section traced from x0 (trace_section), its
-  // counts added to those of the solve so far; nothing without it or where it has no verdict.
+  // With Unmarched::kTrace (the base path, solver 3), the section traced from x0
+  // (trace_section), its counts added to those of the solve so far; nothing without it or
+  // where it has no verdict.
   std::optional<SolveResult> traced(const SolveResult& so_far) const {
     std::optional<SolveResult> tr;
-    if (trace_) tr = trace_section(s_, x0_, at0_, pn_, t_, rho_, st_);
+    if (unmarched_ == Unmarched::kTrace) tr = trace_section(s_, x0_, at0_, pn_, t_, rho_, st_);
     if (tr) {
       tr->iterations += so_far.iterations;
       tr->evaluations += so_far.evaluations;
@@ -166,11 +167,13 @@ class PlaneSphere {
   // No march solved the step: the first attempt's verdict, unless the traced section (the
   // base path) tells a section that turns back or closes within rho (the path ends) from one
   // that leaves the face (outside), and finds the point where the section turns too tightly
-  // for the march; or unless the section misses the face (outside).
+  // for the march; or unless the section misses the face (outside). With Unmarched::kNothing,
+  // the first attempt's verdict as it is.
   SolveResult unmarched(const SolveResult& first) {
     SolveResult out = first;
     out.iterations = c_.res.iterations;
     out.evaluations = c_.res.evaluations;
+    if (unmarched_ == Unmarched::kNothing) return out;
     if (auto tr = traced(out)) return *tr;
     if (section_misses_face(out.evaluations)) {
       out.status = SolveStatus::kLeftFace;
@@ -213,7 +216,7 @@ class PlaneSphere {
   const Vec3& t_;
   const double rho_;
   const SolverSettings& st_;
-  const bool trace_;
+  const Unmarched unmarched_;
   Ctx c_;
   UvDirection ud_;
   double rad_ = 0.0;  // the sphere's radius: rho, or a march's sub-step
@@ -241,8 +244,8 @@ Vec3 base_path_tangent(const Vec3& n0, const Vec3& pn, const Vec3& fwd) {
 
 SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const SurfaceLocation& at0,
                               const SurfaceEval1& e0, const Vec3& n0, const Vec3& pn, const Vec3& t,
-                              double rho, const SolverSettings& st, bool trace) {
-  return PlaneSphere(s, x0, at0, e0, n0, pn, t, rho, st, trace).run();
+                              double rho, const SolverSettings& st, Unmarched unmarched) {
+  return PlaneSphere(s, x0, at0, e0, n0, pn, t, rho, st, unmarched).run();
 }
 
 namespace {
@@ -252,7 +255,8 @@ namespace {
 // invalid.
 template <class Plane>
 SolveResult from_known_point(const DrapeSurface& s, const Vec3& x0, const SurfaceLocation& at0,
-                             double rho, const SolverSettings& st, Plane&& plane) {
+                             double rho, const SolverSettings& st, Unmarched unmarched,
+                             Plane&& plane) {
   SolveResult bad;
   const SurfaceEval1 e0 = s.eval1(at0);
   if (!e0.ok) {
@@ -265,7 +269,7 @@ SolveResult from_known_point(const DrapeSurface& s, const Vec3& x0, const Surfac
     bad.reason = why;
     return bad;
   }
-  SolveResult r = plane_sphere_core(s, x0, at0, e0, n0, pn, t, rho, st, true);
+  SolveResult r = plane_sphere_core(s, x0, at0, e0, n0, pn, t, rho, st, unmarched);
   ++r.evaluations;
   return r;
 }
@@ -284,6 +288,7 @@ SolveResult solve_base_path(const DrapeSurface& s, const BasePathStep& step,
     return bad;
   }
   return solvers::from_known_point(s, step.from, step.from_at, step.distance, st,
+                                   solvers::Unmarched::kTrace,
                                    [&](const Vec3& n0, Vec3& plane, Vec3& t) -> const char* {
                                      plane = pn;
                                      t = solvers::base_path_tangent(n0, pn, fwd);
@@ -299,15 +304,16 @@ SolveResult solve_plane_sphere(const DrapeSurface& s, const PlaneSphereStep& ste
     return bad;
   }
   // The plane through the normal and the step's direction.
-  return solvers::from_known_point(s, step.center, step.center_at, step.radius, st,
-                                   [&](const Vec3& n, Vec3& plane, Vec3& t) -> const char* {
-                                     t = step.direction - step.direction.dot(n) * n;
-                                     if (!(t.norm() > 0.0))
-                                       return "the step direction is normal to the surface";
-                                     t.normalize();
-                                     plane = n.cross(t);
-                                     return nullptr;
-                                   });
+  return solvers::from_known_point(
+      s, step.center, step.center_at, step.radius, st,
+      step.march_only ? solvers::Unmarched::kNothing : solvers::Unmarched::kTrace,
+      [&](const Vec3& n, Vec3& plane, Vec3& t) -> const char* {
+        t = step.direction - step.direction.dot(n) * n;
+        if (!(t.norm() > 0.0)) return "the step direction is normal to the surface";
+        t.normalize();
+        plane = n.cross(t);
+        return nullptr;
+      });
 }
 
 }  // namespace plyfit

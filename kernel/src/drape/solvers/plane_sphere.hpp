@@ -23,14 +23,18 @@ struct PlaneSphereResidual {
   }
 };
 
+// What a plane-sphere solve does where the direct solve and the march fail: trace the plane's
+// section (trace_section; solvers 1 and 3), test whether the section misses the face (which
+// tells "outside" from a failure), or nothing (the caller asks only whether the step lands).
+enum class Unmarched { kTrace, kMissTest, kNothing };
+
 // Plane through x0 (at at0, where the surface is e0 and its normal n0) with unit normal `pn`,
 // sphere of radius `rho` about x0, surface: the solution going forward along the unit tangent
-// `t` (which lies in the plane). Solvers 1 and 3 are this problem with different planes; with
-// `trace`, where the direct solve and the march fail, the plane's section is traced
-// (trace_section).
+// `t` (which lies in the plane). Solvers 1 and 3 are this problem with different planes.
 SolveResult plane_sphere_core(const DrapeSurface& s, const Vec3& x0, const SurfaceLocation& at0,
                               const SurfaceEval1& e0, const Vec3& n0, const Vec3& pn, const Vec3& t,
-                              double rho, const SolverSettings& st, bool trace = false);
+                              double rho, const SolverSettings& st,
+                              Unmarched unmarched = Unmarched::kMissTest);
 
 // The base plane's section of the surface traced forward from x0 (a known point of it, with
 // the section's unit tangent t there), by arc length: a step h along the tangent, then Newton

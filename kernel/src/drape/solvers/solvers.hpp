@@ -159,6 +159,12 @@ struct PlaneSphereStep {
   SurfaceLocation center_at;
   double radius = 1.0;
   Vec3 direction;  ///< tangent direction of the step (any length; projected on the tangent plane)
+  /// Where the direct solve and the march fail, neither trace the section nor test it for a
+  /// miss of the face: the march's verdict stands. For a caller that takes only a solution
+  /// Newton reached (the flat pattern's outline): the tests only tell "outside" from a
+  /// failure, and the trace finds a point only where the section turns too tightly for the
+  /// march, at many times the cost of the solve.
+  bool march_only = false;
 };
 SolveResult solve_plane_sphere(const DrapeSurface& surface, const PlaneSphereStep& step,
                                const SolverSettings& settings);
