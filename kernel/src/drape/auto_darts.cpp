@@ -1,6 +1,7 @@
 // Automatic darts: where a drape ends in conflict or at the shear limit, darts are proposed
-// from the face's edge into each such zone, and the ply is draped again with them, at most
-// max_drapes drapes in all (docs/decisions/darts.md).
+// from the face's edge into each such zone, and along the lines where fronts of cloth met
+// (seam darts: closed shells), and the ply is draped again with them, at most max_drapes
+// drapes in all (docs/decisions/darts.md).
 #include "drape/darts.hpp"
 #include "drape/drape.hpp"
 #include "drape/scan/solve_memo.hpp"
@@ -78,26 +79,6 @@ Vec3 direction_at(const DrapeResult& r, const DrapeNode& n, const Vec2& u) {
   return e[0] * u.x() + e[1] * u.y();
 }
 
-// A walk on the surface from p along dir, at most `length` long: each step projected, the
-// direction kept along the last step, until the face's edge or a sharp crease stops it. The
-// points are kept with their normals (the dart's curve: not projected again).
-void walk(const DrapeSurface& s, Vec3 p, Vec3 dir, double h, double length, detail::DartCurve& c) {
-  const int steps = static_cast<int>(std::ceil(length / h));
-  for (int k = 0; k < steps; ++k) {
-    const Projection pr = s.project(p + h * dir.normalized());
-    // The face's edge (a step shorter than half its length), or a crease the surface turns
-    // away at (the step lands farther than its length from the surface).
-    if (!pr.ok || pr.distance > h) break;
-    const Vec3 step = pr.point - p;
-    if (step.norm() < 0.5 * h) break;
-    const SurfaceNormal n = s.normal(pr.at);
-    if (!n.ok) break;
-    c.add(pr.point, n.n);
-    dir = step;
-    p = pr.point;
-  }
-}
-
 // The dart for the stop next to mapped node n: along the snapped direction from the start to n,
 // from the face's edge (or the surface's size away) to kTipInsideRel spacings short of n
 // towards the start (its tip, in cloth sheared less). None (no points) when the tip would lie
@@ -112,10 +93,10 @@ detail::DartCurve walk_out(const DrapeSurface& s, const DrapeResult& r, const Dr
   const double h = kWalkStepRel * r.ply->d();
   const double inside = std::min(kTipInsideRel * r.ply->d(), 0.5 * from.norm());
   detail::DartCurve in, out, dart;
-  walk(s, n.point, -dir, h, inside, in);
+  detail::walk_on_surface(s, n.point, -dir, h, inside, in);
   const Vec3 tip = in.points.empty() ? n.point : in.points.back();
   if ((tip - r.start_point).norm() > tip_within) return {};
-  walk(s, n.point, dir, h, s.size(), out);
+  detail::walk_on_surface(s, n.point, dir, h, s.size(), out);
   for (std::size_t k = out.points.size(); k-- > 0;) dart.add(out.points[k], out.normals[k]);
   dart.add(n.point, at_n.n);
   for (std::size_t k = 0; k < in.points.size(); ++k) dart.add(in.points[k], in.normals[k]);
@@ -132,9 +113,9 @@ double distance_to_curve(const std::vector<Vec3>& c, const Vec3& p) {
 // to a stop are taken nearest the start first; each starts a dart unless a dart passes within
 // kDartSpacingRel * d of it: then that dart is walked again from it if the new tip lies nearer
 // the start than the dart's (by a spacing at least), so that darts comb the zone a few cells
-// apart and reach into the cloth that is sheared less.
+// apart and reach into the cloth that is sheared less. Darts marked `kept` are not walked again.
 bool propose_darts(const DrapeSurface& s, const DrapeResult& r,
-                   std::vector<detail::DartCurve>& darts) {
+                   std::vector<detail::DartCurve>& darts, const std::vector<bool>& kept) {
   std::vector<std::uint32_t> fronts = front_nodes(r);
   const Vec2 start = r.ply->spec().start;
   auto from_start = [&](std::uint32_t k) { return (r.nodes[k].ply - start).norm(); };
@@ -143,7 +124,7 @@ bool propose_darts(const DrapeSurface& s, const DrapeResult& r,
   const double d = r.ply->d(), spacing = kDartSpacingRel * d;
   const Vec3& start3 = r.start_point;
   const std::size_t given = darts.size();
-  std::vector<bool> walked(darts.size(), false);
+  std::vector<bool> walked = kept;
   bool changed = false;
   for (std::uint32_t k : fronts) {
     const DrapeNode& tip = r.nodes[k];
@@ -171,6 +152,18 @@ bool propose_darts(const DrapeSurface& s, const DrapeResult& r,
   return changed;
 }
 
+// The darts from the face's edge for the stops, then the seam darts where fronts met (kept as
+// they are: `seam` marks them); false when none is proposed.
+bool propose(const DrapeSurface& s, const DrapeResult& r, std::vector<detail::DartCurve>& darts,
+             std::vector<bool>& seam) {
+  seam.resize(darts.size(), false);
+  const bool edge = propose_darts(s, r, darts, seam);
+  seam.resize(darts.size(), false);
+  const bool seams = detail::propose_seam_darts(s, r, darts) > 0;
+  seam.resize(darts.size(), true);
+  return edge || seams;
+}
+
 bool laid(const DrapeResult& r) {
   return r.metrics.nodes.conflict == 0 && r.metrics.nodes.shear_limit == 0;
 }
@@ -188,7 +181,8 @@ Result<DrapeResult> drape_auto_darts(const DrapeSurface& s, const DrapeProblem& 
   if (!given) return given.error();
   std::vector<detail::DartCurve> darts = given->curves();
   int drapes = 1;
-  while (!laid(*r) && drapes < max_drapes && propose_darts(s, *r, darts)) {
+  std::vector<bool> seam;
+  while (!laid(*r) && drapes < max_drapes && propose(s, *r, darts, seam)) {
     const detail::DartSet set = detail::DartSet::of(darts, r->ply->d());
     detail::SolveMemo& last = memo[(drapes - 1) % 2];
     detail::SolveMemo& next = memo[drapes % 2];

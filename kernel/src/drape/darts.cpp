@@ -64,6 +64,25 @@ void DartCurve::add(const Vec3& p, const Vec3& n) {
   normals.push_back(n);
 }
 
+// Each step projected, the direction kept along the last step.
+void walk_on_surface(const DrapeSurface& s, Vec3 p, Vec3 dir, double h, double length,
+                     DartCurve& c) {
+  const int steps = static_cast<int>(std::ceil(length / h));
+  for (int k = 0; k < steps; ++k) {
+    const Projection pr = s.project(p + h * dir.normalized());
+    // The face's edge (a step shorter than half its length), or a crease the surface turns
+    // away at (the step lands farther than its length from the surface).
+    if (!pr.ok || pr.distance > h) break;
+    const Vec3 step = pr.point - p;
+    if (step.norm() < 0.5 * h) break;
+    const SurfaceNormal n = s.normal(pr.at);
+    if (!n.ok) break;
+    c.add(pr.point, n.n);
+    dir = step;
+    p = pr.point;
+  }
+}
+
 Result<DartSet> DartSet::create(const DrapeSurface& s, const std::vector<std::vector<Vec3>>& darts,
                                 double d, const Tolerances& tol) {
   std::vector<DartCurve> curves;
