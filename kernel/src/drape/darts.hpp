@@ -36,11 +36,14 @@ struct DartCurve {
   void add(const Vec3& p, const Vec3& n);
 };
 
+/// Where a walk on the surface ended: at the face's edge (the free boundary), at a crease the
+/// surface turns away at (or where no normal was found), or after its length.
+enum class WalkEnd : std::uint8_t { kEdge, kCrease, kLength };
 /// Appends to `c` a walk on `s` from p (not added) along dir, steps of h, at most `length`
 /// long, until the face's edge or a sharp crease the surface turns away at stops it. The
 /// points are kept with their normals (a dart's curve: not projected again).
-void walk_on_surface(const DrapeSurface& s, Vec3 p, Vec3 dir, double h, double length,
-                     DartCurve& c);
+WalkEnd walk_on_surface(const DrapeSurface& s, Vec3 p, Vec3 dir, double h, double length,
+                        DartCurve& c);
 
 /// Items by 3D position in cubes of side `cell` (a hash of their integer coordinates).
 template <class T>
