@@ -57,6 +57,8 @@ std::optional<Meeting> meeting_at(const DrapeSurface& s, const DrapeResult& r, c
     if (nb[2 * a] && nb[2 * a + 1] &&
         (nb[2 * a]->point - nb[2 * a + 1]->point).norm() > across.norm())
       across = nb[2 * a]->point - nb[2 * a + 1]->point;
+  // An overlap has a point of its own: its front came to it from its mapped neighbours.
+  if (!(across.norm() > 0.0) && n.status == NodeStatus::kOverlap) across = n.point - sum / count;
   const Vec3 along = normal.n.cross(across);
   if (along.norm() > 0.0) m.along = along.normalized();
   return m;
@@ -103,8 +105,15 @@ DartCurve seam_curve(const DrapeSurface& s, const std::vector<const Meeting*>& c
   const double h = kDartStepRel * d, extend = kSeamExtendRel * d;
   const Meeting& a = *chain.front();
   const Meeting& b = *chain.back();
-  const Vec3 out_a = chain.size() > 1 ? Vec3(a.point - chain[1]->point) : Vec3(-a.along);
-  const Vec3 out_b = chain.size() > 1 ? Vec3(b.point - chain[chain.size() - 2]->point) : b.along;
+  // Outward at each end: from the nearest meeting at another point (meetings of nodes with
+  // the same mapped neighbours coincide), or along the line where its fronts meet.
+  auto outward = [](auto first, auto last, const Vec3& along) -> Vec3 {
+    for (auto m = first; m != last; ++m)
+      if (((*first)->point - (*m)->point).norm() > 0.0) return (*first)->point - (*m)->point;
+    return along;
+  };
+  const Vec3 out_a = outward(chain.begin(), chain.end(), -a.along);
+  const Vec3 out_b = outward(chain.rbegin(), chain.rend(), b.along);
   DartCurve c;
   if (!(out_a.norm() > 0.0) || !(out_b.norm() > 0.0)) return c;
   DartCurve head;
