@@ -14,11 +14,11 @@ namespace plyfit::detail {
 
 namespace {
 
-// Conflict nodes within this many spacings (3D) of each other lie on one meeting line (the
-// nodes of a staircase along a diagonal line lie a cell diagonal apart).
+// Nodes where fronts met within this many spacings (3D) of each other lie on one meeting line
+// (the nodes of a staircase along a diagonal line lie a cell diagonal apart).
 constexpr double kSeamGapRel = 3.0;
-// A seam dart runs on this many spacings beyond the meeting line's last conflict nodes: the
-// fronts meet a little farther than where they first disagree.
+// A seam dart runs on this many spacings beyond the meeting line's last nodes: the fronts
+// meet a little farther than where they first disagree or overlap.
 constexpr double kSeamExtendRel = 3.0;
 // At most this many new seam darts per drape.
 constexpr std::size_t kSeamDartsPerDrape = 64;
