@@ -170,11 +170,11 @@ bool propose_darts(const DrapeSurface& s, const DrapeResult& r,
 // The darts from the face's edge for the stops, then the seam darts where fronts met (kept as
 // they are: `seam` marks them); false when none is proposed.
 bool propose(const DrapeSurface& s, const DrapeResult& r, std::vector<detail::DartCurve>& darts,
-             std::vector<bool>& seam) {
+             std::vector<bool>& seam, bool with_seams) {
   seam.resize(darts.size(), false);
   const bool edge = propose_darts(s, r, darts, seam);
   seam.resize(darts.size(), false);
-  const bool seams = detail::propose_seam_darts(s, r, darts) > 0;
+  const bool seams = with_seams && detail::propose_seam_darts(s, r, darts) > 0;
   seam.resize(darts.size(), true);
   return edge || seams;
 }
@@ -197,7 +197,7 @@ Result<DrapeResult> drape_auto_darts(const DrapeSurface& s, const DrapeProblem& 
   std::vector<detail::DartCurve> darts = given->curves();
   int drapes = 1;
   std::vector<bool> seam;
-  while (!laid(*r) && drapes < max_drapes && propose(s, *r, darts, seam)) {
+  while (!laid(*r) && drapes < max_drapes && propose(s, *r, darts, seam, drapes >= 2)) {
     const detail::DartSet set = detail::DartSet::of(darts, r->ply->d());
     detail::SolveMemo& last = memo[(drapes - 1) % 2];
     detail::SolveMemo& next = memo[drapes % 2];
