@@ -65,7 +65,8 @@ const OptionTable& drape_options() {
        true, "start"},
       {"darts", "auto|none", "none",
        "auto: where the drape ends in conflict or at the shear limit, darts from the face's edge "
-       "into those zones, and the ply draped again with them (at most 3 drapes in all)",
+       "into those zones and along the lines where fronts of cloth met, and the ply draped "
+       "again with them (at most 3 drapes in all)",
        false, "start"},
       {"boundary-offset", "MM", "0",
        "grow (> 0) or shrink (< 0) the boundary's region along the surface (trim allowance)", false,

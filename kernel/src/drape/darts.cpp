@@ -64,6 +64,26 @@ void DartCurve::add(const Vec3& p, const Vec3& n) {
   normals.push_back(n);
 }
 
+// Each step projected, the direction kept along the last step.
+WalkEnd walk_on_surface(const DrapeSurface& s, Vec3 p, Vec3 dir, double h, double length,
+                        DartCurve& c) {
+  const int steps = static_cast<int>(std::ceil(length / h));
+  for (int k = 0; k < steps; ++k) {
+    const Projection pr = s.project(p + h * dir.normalized());
+    // A crease the surface turns away at: the step lands farther than its length from it.
+    if (!pr.ok || pr.distance > h) return WalkEnd::kCrease;
+    // The face's edge: the step, projected, is shorter than half its length.
+    const Vec3 step = pr.point - p;
+    if (step.norm() < 0.5 * h) return WalkEnd::kEdge;
+    const SurfaceNormal n = s.normal(pr.at);
+    if (!n.ok) return WalkEnd::kCrease;
+    c.add(pr.point, n.n);
+    dir = step;
+    p = pr.point;
+  }
+  return WalkEnd::kLength;
+}
+
 Result<DartSet> DartSet::create(const DrapeSurface& s, const std::vector<std::vector<Vec3>>& darts,
                                 double d, const Tolerances& tol) {
   std::vector<DartCurve> curves;

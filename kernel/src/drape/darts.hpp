@@ -36,6 +36,15 @@ struct DartCurve {
   void add(const Vec3& p, const Vec3& n);
 };
 
+/// Where a walk on the surface ended: at the face's edge (the free boundary), at a crease the
+/// surface turns away at (or where no normal was found), or after its length.
+enum class WalkEnd : std::uint8_t { kEdge, kCrease, kLength };
+/// Appends to `c` a walk on `s` from p (not added) along dir, steps of h, at most `length`
+/// long, until the face's edge or a sharp crease the surface turns away at stops it. The
+/// points are kept with their normals (a dart's curve: not projected again).
+WalkEnd walk_on_surface(const DrapeSurface& s, Vec3 p, Vec3 dir, double h, double length,
+                        DartCurve& c);
+
 /// Items by 3D position in cubes of side `cell` (a hash of their integer coordinates).
 template <class T>
 struct CubeGrid {
@@ -108,6 +117,13 @@ class DartSet {
   CubeGrid<Segment> segments_;
   double segment_max_ = 0.0;  // the longest segment
 };
+
+/// Seam darts: where two fronts of cloth met (the drape's conflict nodes, and its overlaps on
+/// laid cloth), a dart along each line where they meet (such nodes in chains, each a few
+/// spacings from the next, the curve through the mean of each one's mapped neighbours, walked
+/// on a few spacings beyond the chain's ends), appended to `darts`. The number added.
+std::size_t propose_seam_darts(const DrapeSurface& s, const DrapeResult& r,
+                               std::vector<DartCurve>& darts);
 
 /// Each dart as the drape laid it (DrapeResult::darts): its cut lines through the cells of each
 /// side, the area between them, the links it cut; `cut_out`: per dart, the ply nodes no side

@@ -199,3 +199,62 @@ TEST_CASE("darts: a drape made again takes the unchanged solves and lays what a 
   CHECK(again.darts[0].removed_area == Approx(fresh.darts[0].removed_area).epsilon(1e-6));
   CHECK(plain.metrics.nodes.mapped > 0);
 }
+
+TEST_CASE("darts: seam darts part the fronts that meet round a closed torus") {
+  // The outer half of a torus, closed round its axis: cloth laid from the outer equator goes
+  // round both ways and its fronts meet behind the axis, where they disagree (conflict nodes).
+  const double R = 30.0, r = 10.0, d = 1.0;
+  const MoldSurface f =
+      builtin_surface("torus", {{"R", R}, {"r", r}, {"t0", -90.0}, {"t1", 90.0}, {"angle", 360.0}});
+  const DrapeProblem pb =
+      problem(d, Vec2(0, 0), Vec2(0, 1), {Vec2(-1, 0), Vec2(1, 0)}, Vec3(R + r, 0, 0),
+              Vec3(0, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)});
+  const DrapeResult plain = ok(drape(f, pb));
+  REQUIRE(plain.metrics.nodes.conflict > 0);
+  std::vector<detail::DartCurve> curves;
+  const std::size_t added = detail::propose_seam_darts(f.impl(), plain, curves);
+  REQUIRE(added == curves.size());
+  REQUIRE(added > 0);
+  // Every point of a seam dart lies on the torus (its distance to the tube's circle is r).
+  const double on_surface = 1e-9 * R;
+  for (const auto& c : curves)
+    for (const Vec3& p : c.points)
+      CHECK(std::abs(std::hypot(std::hypot(p.x(), p.y()) - R, p.z()) - r) <= on_surface);
+  // At every conflict node the two fronts are parted: the path on the surface between some
+  // two of its mapped neighbours (their chord, in pieces of at most half a spacing, projected)
+  // crosses a dart. (The fronts leave gaps of several spacings: the chord itself passes
+  // farther below the surface than the crossing test reaches.)
+  const detail::DartSet set = detail::DartSet::of(curves, d);
+  auto parted_path = [&](const Vec3& a, const Vec3& b) {
+    const int pieces = static_cast<int>(std::ceil((b - a).norm() / (0.5 * d)));
+    Vec3 last = a;
+    for (int k = 1; k <= pieces; ++k) {
+      const Vec3 p = k == pieces ? b : f.project(a + (b - a) * (double(k) / pieces)).point;
+      if (set.crosses(last, p)) return true;
+      last = p;
+    }
+    return false;
+  };
+  std::uint64_t conflicts = 0, parted = 0;
+  for (const auto& n : plain.nodes) {
+    if (n.status != NodeStatus::kConflict) continue;
+    ++conflicts;
+    std::vector<Vec3> nb;
+    for (int k = 0; k < 4; ++k)
+      if (const DrapeNode* m = plain.neighbour(n, static_cast<ThreadDir>(k)); m && m->mapped())
+        nb.push_back(m->point);
+    bool across = false;
+    for (std::size_t a = 0; a < nb.size(); ++a)
+      for (std::size_t b = a + 1; b < nb.size(); ++b) across = across || parted_path(nb[a], nb[b]);
+    parted += across;
+  }
+  INFO(conflicts << " conflict nodes, " << parted << " parted by " << added << " seam darts");
+  CHECK(parted == conflicts);
+  // Draped again with them (and the darts from the face's edge): no conflict left.
+  const DrapeResult cut = ok(drape_auto_darts(f, pb, DrapeOptions{}, 3));
+  INFO("with " << cut.darts.size() << " darts after " << cut.drapes << " drapes: "
+               << cut.metrics.nodes.conflict << " conflict, " << cut.metrics.nodes.mapped
+               << " mapped (" << plain.metrics.nodes.mapped << " without)");
+  CHECK(cut.drapes <= 3);
+  CHECK(cut.metrics.nodes.conflict == 0);
+}
