@@ -128,6 +128,8 @@ BBox3 face_box(const Evaluator& eval, const std::vector<EdgeRef>& edges,
       }
   }
   std::vector<double> xs;
+  double us[kBoxGrid];
+  Vec3 ps[kBoxGrid];
   for (int r = 0; r < kBoxGrid; ++r) {
     const double v = v0 + (r + 0.5) * (v1 - v0) / kBoxGrid;
     xs.clear();
@@ -136,11 +138,14 @@ BBox3 face_box(const Evaluator& eval, const std::vector<EdgeRef>& edges,
         xs.push_back(a.x() + (v - a.y()) / (b.y() - a.y()) * (b.x() - a.x()));
     std::sort(xs.begin(), xs.end());
     size_t left = 0;
+    int inside = 0;
     for (int c = 0; c < kBoxGrid; ++c) {
       const double u = u0 + (c + 0.5) * (u1 - u0) / kBoxGrid;
       while (left < xs.size() && xs[left] < u) ++left;
-      if (left % 2 == 1) box.add(eval.point(u, v));
+      if (left % 2 == 1) us[inside++] = u;
     }
+    eval.points(v, us, inside, ps);  // the row's points inside at once
+    for (int k = 0; k < inside; ++k) box.add(ps[k]);
   }
   return box;
 }

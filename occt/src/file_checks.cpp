@@ -10,8 +10,10 @@
 #include <fstream>
 #include <iterator>
 #include <optional>
+#include <sstream>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace plyfit::importers::occt {
@@ -464,7 +466,9 @@ Status check_iges_field(const std::string& field, bool bounded, const Where& whe
 Status check_file_text(const std::string& path, bool step) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error{ErrorCode::kFileNotReadable, path};
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::ostringstream buffer;  // whole buffers at a time (an istreambuf_iterator goes by chars)
+  buffer << in.rdbuf();
+  const std::string text = std::move(buffer).str();
   return step ? check_step_text(text) : check_iges_text(text);
 }
 
