@@ -391,10 +391,17 @@ std::vector<std::string> iges_fields(const std::string& s, char pd, char rd, siz
   std::vector<std::string> out;
   std::string field;
   size_t i = from;
+  const auto plain = [&](char c) { return c != pd && c != rd && c != 'H' && c != ' '; };
   while (i < s.size()) {
+    // A run of plain characters at once (appending them one by one was most of the check).
+    size_t j = i;
+    while (j < s.size() && plain(s[j])) ++j;
+    field.append(s, i, j - i);
+    if (j == s.size()) break;
+    i = j;
     const char c = s[i];
     if (c == pd || c == rd) {
-      out.push_back(field);
+      out.push_back(std::move(field));
       field.clear();
       if (c == rd) return out;
       ++i;

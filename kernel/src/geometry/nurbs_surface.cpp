@@ -570,6 +570,17 @@ SurfaceEval1 NurbsSurface::eval1(double u, double v) const {
 
 namespace {
 
+// find_span's span of u along u, without its search when it is `last` (a span, or -1): the
+// points of a row come a knot span at a time.
+inline int span_u(const EvalView& s, int last, double u) {
+  if (last >= 0) {
+    const bool from_first = last == s.first_u || s.U[last] <= u;
+    const bool to_last = last == s.last_u || u < s.U[last + 1];
+    if (from_first && to_last) return last;
+  }
+  return detail::find_span(s.U, s.first_u, s.last_u, u);
+}
+
 // eval1 at (us[k], v), k < n, on the Bezier table: the v basis once, the sums along v once per
 // span pair (bezier_columns), then per point the u basis and the sums along u; every step the
 // arithmetic of eval_bezier, hence the same bits.
@@ -585,7 +596,7 @@ void eval1_row_bezier(const EvalView& s, double v, const double* us, std::size_t
   int last_iu = -1;
   for (std::size_t k = 0; k < n; ++k) {
     const double u = us[k];
-    const int iu = detail::find_span(s.U, s.first_u, s.last_u, u) - s.first_u;
+    const int iu = span_u(s, last_iu < 0 ? -1 : s.first_u + last_iu, u) - s.first_u;
     if (iu != last_iu) {
       patch = bezier_patch<P, Q>(s, iu, iv);
       bezier_columns<1, P, Q>(patch, Nv, T);
@@ -615,7 +626,7 @@ void eval1_row_window(const EvalView& s, double v, const double* us, std::size_t
   int last_su = -1;
   for (std::size_t k = 0; k < n; ++k) {
     const double u = us[k];
-    const int su = detail::find_span(s.U, s.first_u, s.last_u, u);
+    const int su = span_u(s, last_su, u);
     if (su != last_su) {
       o = window_origin(s, su, sv, p, q);
       for (int i = 0; i <= p; ++i)
