@@ -53,9 +53,6 @@ namespace {
 // tensor Gauss quadrature agrees to 2e-12 (BENCHMARKS.md, "Face areas").
 constexpr double kAreaRelListing = 1e-6;
 constexpr double kAreaRelPrecise = 1e-9;
-}  // namespace
-
-namespace {
 
 // Points sampled on each edge's pcurve to decide whether a wire is the natural boundary.
 constexpr int kBoundarySamples = 64;
@@ -194,8 +191,8 @@ int count_wires(const TopoDS_Face& f) {
 // True when the face has one wire and every edge of it runs along the border of `r`: each
 // sampled boundary point lies within kNaturalBoundaryRel * `size` (3D) of the surface's image
 // of the nearest border line. The face is then bounded by its surface's natural boundary; a
-// boundary that departs from it by more, however little, makes the face trimmed. `kernel`, the
-// kernel's copy of `s` when there is one (FaceMeasure::surface), evaluates it far faster.
+// boundary that departs from it by more, however little, makes the face trimmed. `kernel`: the
+// kernel's copy of `s` (FaceMeasure::surface) or null, far faster, three points at one v a row.
 bool natural_boundary(const TopoDS_Face& f, const Handle(Geom_Surface) & s, const Rect& r,
                       double size, const NurbsSurface* kernel) {
   if (count_wires(f) != 1) return false;
@@ -203,6 +200,7 @@ bool natural_boundary(const TopoDS_Face& f, const Handle(Geom_Surface) & s, cons
   const auto at = [&](double u, double v) {
     return kernel ? kernel->point(u, v) : vec(s->Value(u, v));
   };
+  SurfaceEval1 row[3];
   for (TopExp_Explorer ex(f, TopAbs_EDGE); ex.More(); ex.Next()) {
     const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
     double a = 0, b = 0;
@@ -210,8 +208,13 @@ bool natural_boundary(const TopoDS_Face& f, const Handle(Geom_Surface) & s, cons
     if (c.IsNull()) return false;
     for (int k = 0; k <= kBoundarySamples; ++k) {
       const gp_Pnt2d q = c->Value(a + (b - a) * k / kBoundarySamples);
-      const Vec3 p = at(q.X(), q.Y());
-      const double d = std::min({(p - at(r.u0, q.Y())).norm(), (p - at(r.u1, q.Y())).norm(),
+      const double us[3] = {q.X(), r.u0, r.u1};
+      if (kernel)
+        kernel->eval1_along_u(q.Y(), us, 3, row);
+      else
+        for (int j = 0; j < 3; ++j) row[j].p = at(us[j], q.Y());
+      const Vec3& p = row[0].p;
+      const double d = std::min({(p - row[1].p).norm(), (p - row[2].p).norm(),
                                  (p - at(q.X(), r.v0)).norm(), (p - at(q.X(), r.v1)).norm()});
       if (!(d <= tol)) return false;
     }
@@ -612,8 +615,7 @@ class OcctMoldFile final : public MoldFile {
     return Error{ErrorCode::kFaceIndexRange, mold_.source, {std::int64_t{index}, std::int64_t{n}}};
   }
 
-  // The surface face `index` was last measured on to kAreaRelPrecise, for its conversion (one
-  // face's at a time: a shell's faces are described one after the other), else null.
+  // Face `index`'s surface measured to kAreaRelPrecise (the last face's only), once, else null.
   std::shared_ptr<const NurbsSurface> take_measured(int index) {
     return index == measured_.first ? std::exchange(measured_, {}).second : nullptr;
   }
