@@ -108,6 +108,15 @@ BBox3 face_box(const Evaluator& eval, const std::vector<EdgeRef>& edges,
                double v0, double v1) {
   BBox3 box;
   std::vector<std::pair<Vec2, Vec2>> poly;
+  std::vector<double> run;  // boundary samples at one v (an isoparametric edge), one row
+  std::vector<Vec3> run_points;
+  double run_v = 0.0;
+  const auto flush = [&] {
+    run_points.resize(run.size());
+    eval.points(run_v, run.data(), static_cast<int>(run.size()), run_points.data());
+    for (const Vec3& p : run_points) box.add(p);
+    run.clear();
+  };
   for (size_t k = 0; k < edges.size(); ++k) {
     const auto [a, b] = ranges[k];
     Geom2dAdaptor_Curve ad(edges[k].curve, a, b);
@@ -121,13 +130,18 @@ BBox3 face_box(const Evaluator& eval, const std::vector<EdgeRef>& edges,
       for (int j = (i == 1 ? 0 : 1); j <= per; ++j) {
         const gp_Pnt2d q = edges[k].curve->Value(iv(i) + (iv(i + 1) - iv(i)) * j / per);
         const Vec2 uv(q.X(), q.Y());
-        box.add(eval.point(uv.x(), uv.y()));
+        if (!run.empty() && uv.y() != run_v) flush();
+        run_v = uv.y();
+        run.push_back(uv.x());
         if (!first) poly.emplace_back(prev, uv);
         prev = uv;
         first = false;
       }
   }
+  if (!run.empty()) flush();
   std::vector<double> xs;
+  double us[kBoxGrid];
+  Vec3 ps[kBoxGrid];
   for (int r = 0; r < kBoxGrid; ++r) {
     const double v = v0 + (r + 0.5) * (v1 - v0) / kBoxGrid;
     xs.clear();
@@ -136,11 +150,14 @@ BBox3 face_box(const Evaluator& eval, const std::vector<EdgeRef>& edges,
         xs.push_back(a.x() + (v - a.y()) / (b.y() - a.y()) * (b.x() - a.x()));
     std::sort(xs.begin(), xs.end());
     size_t left = 0;
+    int inside = 0;
     for (int c = 0; c < kBoxGrid; ++c) {
       const double u = u0 + (c + 0.5) * (u1 - u0) / kBoxGrid;
       while (left < xs.size() && xs[left] < u) ++left;
-      if (left % 2 == 1) box.add(eval.point(u, v));
+      if (left % 2 == 1) us[inside++] = u;
     }
+    eval.points(v, us, inside, ps);  // the row's points inside at once
+    for (int k = 0; k < inside; ++k) box.add(ps[k]);
   }
   return box;
 }

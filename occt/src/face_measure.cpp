@@ -48,24 +48,30 @@ class OcctEvaluator final : public Evaluator {
 // change of span, which the inner integrals make all the time.
 class KernelEvaluator final : public Evaluator {
  public:
-  explicit KernelEvaluator(NurbsSurface s) : s_(std::move(s)) {}
+  explicit KernelEvaluator(std::shared_ptr<const NurbsSurface> s) : s_(std::move(s)) {}
   void d1(double u, double v, Vec3& p, Vec3& du, Vec3& dv) const override {
-    const SurfaceEval1 e = s_.eval1(u, v);
+    const SurfaceEval1 e = s_->eval1(u, v);
     p = e.p;
     du = e.du;
     dv = e.dv;
   }
+  const std::shared_ptr<const NurbsSurface>& surface() const { return s_; }
 
  private:
-  NurbsSurface s_;
+  bool has_rows() const override { return true; }
+  void row_d1(double v, const double* us, int n, SurfaceEval1* out) const override {
+    s_->eval1_along_u(v, us, static_cast<std::size_t>(n), out);
+  }
+  std::shared_ptr<const NurbsSurface> s_;
 };
 
 // The kernel copy of a non-periodic B-spline, or nothing.
-std::unique_ptr<Evaluator> kernel_evaluator(const Handle(Geom_BSplineSurface) & b) {
+std::unique_ptr<KernelEvaluator> kernel_evaluator(const Handle(Geom_BSplineSurface) & b) {
   if (b.IsNull() || b->IsUPeriodic() || b->IsVPeriodic()) return nullptr;
   auto s = NurbsSurface::create(nurbs_data(b));
   if (!s) return nullptr;
-  return std::make_unique<KernelEvaluator>(std::move(s).value());
+  return std::make_unique<KernelEvaluator>(
+      std::make_shared<const NurbsSurface>(std::move(s).value()));
 }
 
 // `box`, or an empty box when a corner is not finite (a point evaluated off a broken face).
@@ -130,7 +136,9 @@ FaceMeasure measure_face(const TopoDS_Face& face, double rel_tol, bool with_box,
   Handle(Geom_BSplineSurface) bspline = Handle(Geom_BSplineSurface)::DownCast(basis);
   if (const auto z = Handle(Geom_BezierSurface)::DownCast(basis); !z.IsNull())
     bspline = GeomConvert::SurfaceToBSplineSurface(z);
-  std::unique_ptr<Evaluator> eval = kernel_evaluator(bspline);
+  std::unique_ptr<KernelEvaluator> kernel = kernel_evaluator(bspline);
+  std::shared_ptr<const NurbsSurface> surface = kernel ? kernel->surface() : nullptr;
+  std::unique_ptr<Evaluator> eval = std::move(kernel);
   if (!eval) eval = std::make_unique<OcctEvaluator>(basis);
   eval->transposed = transposed;
   if (!bspline.IsNull())
@@ -173,6 +181,7 @@ FaceMeasure measure_face(const TopoDS_Face& face, double rel_tol, bool with_box,
     m.failure = e.what;
   }
   m.evaluations = eval->count;
+  m.surface = std::move(surface);
   return m;
 }
 

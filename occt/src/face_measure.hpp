@@ -25,6 +25,7 @@
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Wire.hxx>
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,6 +49,10 @@ struct FaceMeasure {
   /// why.
   bool measured = true;
   std::string failure;
+  /// The kernel's surface the face was measured on (built with the default Tolerances, from
+  /// nurbs_data() of the face's non-periodic B-spline or Bezier surface), else null: the face's
+  /// conversion takes it rather than building it again.
+  std::shared_ptr<const NurbsSurface> surface = {};
 };
 
 /// Work cap of one measure_face(): surface evaluations, kMaxMeasureEvaluations and

@@ -50,13 +50,53 @@ class Evaluator {
     at(u, v, p, a, b);
     return p;
   }
+  // density(us[k], v) and point(us[k], v) for k < n into out[k]: the same values, by the
+  // evaluator's rows where it has them (points along u at one v share work).
+  void densities(double v, const double* us, int n, double* out) const {
+    along_u(v, us, n, [&](int k, const SurfaceEval1& e) { out[k] = e.du.cross(e.dv).norm(); });
+  }
+  void points(double v, const double* us, int n, Vec3* out) const {
+    along_u(v, us, n, [&](int k, const SurfaceEval1& e) { out[k] = e.p; });
+  }
   mutable long count = 0;
   long budget = kMaxMeasureEvaluations;  // evaluations allowed
   bool transposed = false;
 
  private:
+  // Rows of points along the surface's u: out[k] at (us[k], v), k < n <= kRowPoints, as d1
+  // has them.
+  static constexpr int kRowPoints = 16;
+  virtual bool has_rows() const { return false; }
+  virtual void row_d1(double, const double*, int, SurfaceEval1*) const {}
+  // Calls take(k, evaluation at (us[k], v)) for k < n.
+  template <class Take>
+  void along_u(double v, const double* us, int n, const Take& take) const {
+    SurfaceEval1 e[kRowPoints];
+    if (!transposed && has_rows()) {
+      charge(n);
+      for (int k0 = 0; k0 < n; k0 += kRowPoints) {
+        const int m = std::min(n - k0, kRowPoints);
+        row_d1(v, us + k0, m, e);
+        for (int k = 0; k < m; ++k) take(k0 + k, e[k]);
+      }
+      return;
+    }
+    for (int k = 0; k < n; ++k) {
+      at(us[k], v, e[0].p, e[0].du, e[0].dv);
+      take(k, e[0]);
+    }
+  }
+  // Counts n evaluations; past the budget, the count stops one past it (where evaluating
+  // point by point would have stopped) and the measure ends.
+  void charge(long n) const {
+    if (count + n > budget) {
+      count = budget + 1;
+      throw WorkCapReached{"the integration ran out of its work cap"};
+    }
+    count += n;
+  }
   void at(double u, double v, Vec3& p, Vec3& a, Vec3& b) const {
-    if (++count > budget) throw WorkCapReached{"the integration ran out of its work cap"};
+    charge(1);
     if (transposed)
       d1(v, u, p, a, b);
     else

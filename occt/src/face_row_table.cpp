@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 namespace plyfit::importers::occt::measure {
@@ -234,9 +235,15 @@ double RowTable::gauss(double a, double b, double v) const {
   if (a == b) return 0.0;
   const GaussRule& g = *rule_.gauss;
   const double c = 0.5 * (a + b), r = 0.5 * (b - a);
+  constexpr std::size_t kPoints = 2 * std::extent_v<decltype(GaussRule::x)>;
+  double us[kPoints], d[kPoints];
+  for (int j = 0; j < g.half; ++j) {
+    us[2 * j] = c - r * g.x[j];
+    us[2 * j + 1] = c + r * g.x[j];
+  }
+  eval_.densities(v, us, 2 * g.half, d);
   double sum = 0.0;
-  for (int j = 0; j < g.half; ++j)
-    sum += g.w[j] * (eval_.density(c - r * g.x[j], v) + eval_.density(c + r * g.x[j], v));
+  for (int j = 0; j < g.half; ++j) sum += g.w[j] * (d[2 * j] + d[2 * j + 1]);
   return r * sum;
 }
 

@@ -10,8 +10,10 @@
 #include <fstream>
 #include <iterator>
 #include <optional>
+#include <sstream>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace plyfit::importers::occt {
@@ -389,10 +391,17 @@ std::vector<std::string> iges_fields(const std::string& s, char pd, char rd, siz
   std::vector<std::string> out;
   std::string field;
   size_t i = from;
+  const auto plain = [&](char c) { return c != pd && c != rd && c != 'H' && c != ' '; };
   while (i < s.size()) {
+    // A run of plain characters at once (appending them one by one was most of the check).
+    size_t j = i;
+    while (j < s.size() && plain(s[j])) ++j;
+    field.append(s, i, j - i);
+    if (j == s.size()) break;
+    i = j;
     const char c = s[i];
     if (c == pd || c == rd) {
-      out.push_back(field);
+      out.push_back(std::move(field));
       field.clear();
       if (c == rd) return out;
       ++i;
@@ -464,7 +473,9 @@ Status check_iges_field(const std::string& field, bool bounded, const Where& whe
 Status check_file_text(const std::string& path, bool step) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return Error{ErrorCode::kFileNotReadable, path};
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::ostringstream buffer;  // whole buffers at a time (an istreambuf_iterator goes by chars)
+  buffer << in.rdbuf();
+  const std::string text = std::move(buffer).str();
   return step ? check_step_text(text) : check_iges_text(text);
 }
 

@@ -53,9 +53,6 @@ namespace {
 // tensor Gauss quadrature agrees to 2e-12 (BENCHMARKS.md, "Face areas").
 constexpr double kAreaRelListing = 1e-6;
 constexpr double kAreaRelPrecise = 1e-9;
-}  // namespace
-
-namespace {
 
 // Points sampled on each edge's pcurve to decide whether a wire is the natural boundary.
 constexpr int kBoundarySamples = 64;
@@ -198,11 +195,16 @@ int count_wires(const TopoDS_Face& f) {
 // True when the face has one wire and every edge of it runs along the border of `r`: each
 // sampled boundary point lies within kNaturalBoundaryRel * `size` (3D) of the surface's image
 // of the nearest border line. The face is then bounded by its surface's natural boundary; a
-// boundary that departs from it by more, however little, makes the face trimmed.
+// boundary that departs from it by more, however little, makes the face trimmed. `kernel`: the
+// kernel's copy of `s` (FaceMeasure::surface) or null, far faster, three points at one v a row.
 bool natural_boundary(const TopoDS_Face& f, const Handle(Geom_Surface) & s, const Rect& r,
-                      double size) {
+                      double size, const NurbsSurface* kernel) {
   if (count_wires(f) != 1) return false;
   const double tol = kNaturalBoundaryRel * size;
+  const auto at = [&](double u, double v) {
+    return kernel ? kernel->point(u, v) : vec(s->Value(u, v));
+  };
+  SurfaceEval1 row[3];
   for (TopExp_Explorer ex(f, TopAbs_EDGE); ex.More(); ex.Next()) {
     const TopoDS_Edge& e = TopoDS::Edge(ex.Current());
     double a = 0, b = 0;
@@ -210,10 +212,14 @@ bool natural_boundary(const TopoDS_Face& f, const Handle(Geom_Surface) & s, cons
     if (c.IsNull()) return false;
     for (int k = 0; k <= kBoundarySamples; ++k) {
       const gp_Pnt2d q = c->Value(a + (b - a) * k / kBoundarySamples);
-      const gp_Pnt p = s->Value(q.X(), q.Y());
-      const double d =
-          std::min({p.Distance(s->Value(r.u0, q.Y())), p.Distance(s->Value(r.u1, q.Y())),
-                    p.Distance(s->Value(q.X(), r.v0)), p.Distance(s->Value(q.X(), r.v1))});
+      const double us[3] = {q.X(), r.u0, r.u1};
+      if (kernel)
+        kernel->eval1_along_u(q.Y(), us, 3, row);
+      else
+        for (int j = 0; j < 3; ++j) row[j].p = at(us[j], q.Y());
+      const Vec3& p = row[0].p;
+      const double d = std::min({(p - row[1].p).norm(), (p - row[2].p).norm(),
+                                 (p - at(q.X(), r.v0)).norm(), (p - at(q.X(), r.v1)).norm()});
       if (!(d <= tol)) return false;
     }
   }
@@ -255,9 +261,10 @@ void file_neighbours(const TopTools_IndexedMapOfShape& faces, std::vector<FaceIn
 }
 
 // Face `index` of the file (made by its entity `entity`) listed, with its area to `area_rel`;
-// `area_note` is the area's warning when it falls short (area_warning()).
+// `area_note` is the area's warning when it falls short (area_warning()); `surface`: FaceMeasure's.
 FaceInfo describe_face(const TopoDS_Face& f, int index, const std::string& entity, double area_rel,
-                       std::optional<Warning>& area_note) {
+                       std::optional<Warning>& area_note,
+                       std::shared_ptr<const NurbsSurface>& surface) {
   FaceInfo info;
   info.index = index;
   info.reversed = f.Orientation() == TopAbs_REVERSED;
@@ -267,14 +274,15 @@ FaceInfo describe_face(const TopoDS_Face& f, int index, const std::string& entit
     return info;
   }
   describe_surface(s, info);
-  const FaceMeasure m = measure_face(f, area_rel, true);
+  FaceMeasure m = measure_face(f, area_rel, true);
   info.area = m.area;
   info.area_measured = m.measured;
   info.bbox = m.bbox;
   area_note = area_warning(m, area_rel, index, entity);
   const int wires = count_wires(f);
   info.holes = std::max(0, wires - 1);
-  info.trimmed = !natural_boundary(f, s, nurbs_range(f, s), info.bbox.diagonal());
+  info.trimmed = !natural_boundary(f, s, nurbs_range(f, s), info.bbox.diagonal(), m.surface.get());
+  surface = std::move(m.surface);
   return info;
 }
 
@@ -449,8 +457,9 @@ bool seam_closes(const Handle(Geom_BSplineSurface) & s, bool along_u, double tol
   return true;
 }
 
+// `measured` (may be null): the surface the face was measured on, taken if made from its data.
 Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const Tolerances& tol,
-                         const EdgeTag* tag) {
+                         const EdgeTag* tag, std::shared_ptr<const NurbsSurface> measured) {
   Handle(Geom_Surface) s = BRep_Tool::Surface(face);
   if (s.IsNull()) return Error{ErrorCode::kFaceNoSurface};
   TopoDS_Face work = face;
@@ -507,15 +516,19 @@ Result<FaceData> convert(const TopoDS_Face& face, const FaceInfo& info, const To
                 seam_closes(bs, false, tol3d);
   fd.area = info.area;
   fd.name = info.name;
+  if (measured && measured->made_from(d, tol)) fd.built = std::move(measured);
 
   // Whether the face is trimmed was decided on the original face (exact geometry); the
   // conversion maps the face's parameter range onto the NURBS domain, and an approximating
   // conversion (offset surfaces) may move the recomputed pcurves off the border by its error.
   // A face of a shell always has its loops: their segments carry the edges' tags.
   if (info.trimmed || tag) {
-    auto surf = NurbsSurface::create(d, tol);
-    if (!surf) return Error{ErrorCode::kFaceSurfaceInvalid}.because(surf.error());
-    const Vec2 speeds(surf->speed_u(), surf->speed_v());
+    if (!fd.built) {
+      auto surf = NurbsSurface::create(d, tol);
+      if (!surf) return Error{ErrorCode::kFaceSurfaceInvalid}.because(surf.error());
+      fd.built = std::make_shared<const NurbsSurface>(std::move(surf).value());
+    }
+    const Vec2 speeds(fd.built->speed_u(), fd.built->speed_v());
     auto loops = trim_loops(work, bs, tol3d, speeds, tol.param_rel * (dom.u1 - dom.u0),
                             tol.param_rel * (dom.v1 - dom.v0), tag);
     if (!loops) return loops.error();
@@ -582,7 +595,7 @@ class OcctMoldFile final : public MoldFile {
                     at(index));
     return guarded(at(index), [&]() -> Result<FaceData> {
       return convert(TopoDS::Face(faces_(index + 1)), mold_.faces[static_cast<size_t>(index)],
-                     options_.tolerances, nullptr);
+                     options_.tolerances, nullptr, take_measured(index));
     });
   }
 
@@ -605,6 +618,11 @@ class OcctMoldFile final : public MoldFile {
     return Error{ErrorCode::kFaceIndexRange, mold_.source, {std::int64_t{index}, std::int64_t{n}}};
   }
 
+  // Face `index`'s surface measured to kAreaRelPrecise (the last face's only), once, else null.
+  std::shared_ptr<const NurbsSurface> take_measured(int index) {
+    return index == measured_.first ? std::exchange(measured_, {}).second : nullptr;
+  }
+
   // Fills mold_.faces[i], with its area to kAreaRelPrecise when `precise` (a listed face gets
   // its area computed again); false when OpenCASCADE failed on the face. A precise area short
   // of its accuracy is a warning of the file.
@@ -612,10 +630,12 @@ class OcctMoldFile final : public MoldFile {
     const size_t k = static_cast<size_t>(i);
     const TopoDS_Face& f = TopoDS::Face(faces_(i + 1));
     if (state_[k] == State::kPending) {
+      std::shared_ptr<const NurbsSurface> surface;
       auto info = guarded({}, [&]() -> Result<FaceInfo> {
         return describe_face(f, i, entities_[k], precise ? kAreaRelPrecise : kAreaRelListing,
-                             note_[k]);
+                             note_[k], surface);
       });
+      if (precise) measured_ = {i, std::move(surface)};
       if (info) {
         info->name = mold_.faces[k].name;
         mold_.faces[k] = std::move(info).value();
@@ -634,6 +654,7 @@ class OcctMoldFile final : public MoldFile {
       }
       mold_.faces[k].area = m->area;
       mold_.faces[k].area_measured = m->measured;
+      measured_ = {i, std::move(m->surface)};
       note_[k] = area_warning(*m, kAreaRelPrecise, i, entities_[k]);
       state_[k] = State::kPrecise;
     } else {
@@ -689,6 +710,7 @@ class OcctMoldFile final : public MoldFile {
   // The face's area warning: its accuracy when short of the asked, why it was not measured.
   mutable std::vector<std::optional<Warning>> note_;
   mutable bool listed_ = false;
+  mutable std::pair<int, std::shared_ptr<const NurbsSurface>> measured_{-1, nullptr};
 };
 
 // Every face's geometry as read (geometry_checks.hpp); the first problem names the file,
@@ -707,7 +729,7 @@ Status check_geometry(const std::string& path, const TopTools_IndexedMapOfShape&
 
 Result<FaceData> convert_face(const TopoDS_Face& face, const FaceInfo& info, const Tolerances& tol,
                               const EdgeTag* tag) {
-  return convert(face, info, tol, tag);
+  return convert(face, info, tol, tag, nullptr);
 }
 
 Result<ReadOutput> read_guarded(const std::string& path, const std::string& format_key,

@@ -33,6 +33,7 @@
 #include "support/warnings.hpp"
 
 #include <algorithm>
+#include <memory>
 #include "surface/face.hpp"
 
 using namespace plyfit;
@@ -224,4 +225,29 @@ TEST_CASE("importers: a face's area short of its accuracy is a warning with the 
   CHECK(support::value(*w, 0) == 5);
   CHECK(support::text(*w, 1) == "DE 7");
   CHECK(support::text(*w, 2) == m.failure);
+}
+
+TEST_CASE("importers: a described face converts on the surface its area was measured on") {
+  TempDir dir("measured_surface");
+  const std::string path = dir.file("patch.step");
+  write_step(trimmed_affine_patch().shape, path);
+  auto file = importers::open_mold(path);
+  REQUIRE(file.ok());
+  REQUIRE((*file)->describe(0).ok());
+  auto data = (*file)->convert_face(0);
+  REQUIRE(data.ok());
+  REQUIRE(data->built != nullptr);
+  CHECK(data->built->made_from(data->surface, Tolerances{}));
+  // The measured surface is handed over once: a second conversion builds its own (the face is
+  // trimmed: its loops need the surface's speeds), from the same data.
+  auto again = (*file)->convert_face(0);
+  REQUIRE(again.ok());
+  REQUIRE(again->built != nullptr);
+  CHECK(again->built != data->built);
+  CHECK(again->built->made_from(data->surface, Tolerances{}));
+  // Face::create takes it.
+  const std::shared_ptr<const NurbsSurface> built = data->built;
+  auto face = Face::create(std::move(data).value());
+  REQUIRE(face.ok());
+  CHECK(&face->surface() == built.get());
 }

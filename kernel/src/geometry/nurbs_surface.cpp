@@ -57,6 +57,7 @@ Result<NurbsSurface> NurbsSurface::create(NurbsSurfaceData data, const Tolerance
   s.speed_u_ = size / s.domain_.width_u();
   s.speed_v_ = size / s.domain_.width_v();
   s.degenerate_rel_ = tol.degenerate_rel;
+  s.min_weight_rel_ = tol.extension_min_weight_rel;
   s.min_weight_ *= tol.extension_min_weight_rel;
   s.build_bezier();
   s.rounding_ = s.estimate_rounding();
@@ -199,6 +200,60 @@ template <int ND, int P>
   }
 }
 
+using A4 = Eigen::Array4d;
+
+// The sums along v of a span pair's Bezier poles (patch: its Bezier table entry) with the
+// v basis Nv: T[i][l] = sum_j Nv[l][j] H(i, j) for each row i of poles along u. Four-wide sums
+// (Eigen packets: two SSE2 operations each), component by component the same arithmetic as
+// scalar loops.
+template <int ND, int P, int Q>
+[[gnu::always_inline]] inline void bezier_columns(const double* patch,
+                                                  const double Nv[ND + 1][detail::kMaxBasis],
+                                                  A4 T[P + 1][ND + 1]) {
+  for (int i = 0; i <= P; ++i) {
+    for (int l = 0; l <= ND; ++l) T[i][l].setZero();
+    const double* row = patch + 4 + 4 * (Q + 1) * i;
+    for (int j = 0; j <= Q; ++j) {
+      const A4 H = Eigen::Map<const A4>(row + 4 * j);
+      for (int l = 0; l <= ND; ++l) T[i][l] += Nv[l][j] * H;
+    }
+  }
+}
+
+// The homogeneous sums from the sums along v (bezier_columns) and the u basis Nu.
+template <int ND, bool Rational, int P>
+[[gnu::always_inline]] inline void bezier_combine(const double Nu[ND + 1][detail::kMaxBasis],
+                                                  const A4 T[P + 1][ND + 1], double out[][4]) {
+  constexpr int NC = (ND + 1) * (ND + 2) / 2;
+  A4 acc[NC];
+  for (int c = 0; c < NC; ++c) acc[c].setZero();
+  for (int i = 0; i <= P; ++i) {
+    const double a0 = Nu[0][i];
+    acc[0] += a0 * T[i][0];
+    if constexpr (ND >= 1) {
+      acc[1] += Nu[1][i] * T[i][0];
+      acc[2] += a0 * T[i][1];
+    }
+    if constexpr (ND >= 2) {
+      acc[3] += Nu[2][i] * T[i][0];
+      acc[4] += Nu[1][i] * T[i][1];
+      acc[5] += a0 * T[i][2];
+    }
+  }
+  for (int c = 0; c < NC; ++c)
+    for (int k = 0; k < 4; ++k) out[c][k] = acc[c][k];
+  if constexpr (!Rational) {
+    for (int c = 0; c < NC; ++c) out[c][3] = (c == 0) ? 1.0 : 0.0;
+  }
+}
+
+// The Bezier table entry of span pair (iu, iv) (positions from the first spans).
+template <int P, int Q>
+const double* bezier_patch(const EvalView& s, int iu, int iv) {
+  constexpr std::size_t kStride = 4 + 4 * (P + 1) * (Q + 1);
+  return s.bezier + kStride * (static_cast<std::size_t>(iu) * s.bezier_spans_v + iv);
+}
+
 // The fixed-degree kernel on the Bezier table: the same sums as eval_fixed's, over the span
 // pair's Bezier poles (already relative to the origin and weighted) with Bernstein bases.
 template <int ND, bool Rational, int P, int Q>
@@ -208,42 +263,77 @@ void eval_bezier(const EvalView& s, double u, double v, double out[][4], double 
   double Nu[ND + 1][detail::kMaxBasis], Nv[ND + 1][detail::kMaxBasis];
   bernstein<ND, P>((u - s.bu[2 * iu]) * s.bu[2 * iu + 1], s.bu[2 * iu + 1], Nu);
   bernstein<ND, Q>((v - s.bv[2 * iv]) * s.bv[2 * iv + 1], s.bv[2 * iv + 1], Nv);
-  constexpr int NC = (ND + 1) * (ND + 2) / 2;
-  constexpr std::size_t kStride = 4 + 4 * (P + 1) * (Q + 1);
-  const double* patch = s.bezier + kStride * (static_cast<std::size_t>(iu) * s.bezier_spans_v + iv);
+  const double* patch = bezier_patch<P, Q>(s, iu, iv);
   origin[0] = patch[0];
   origin[1] = patch[1];
   origin[2] = patch[2];
-  // Four-wide sums (Eigen packets: two SSE2 operations each), component by component the
-  // same arithmetic as scalar loops.
-  using A4 = Eigen::Array4d;
-  A4 acc[NC];
-  for (int c = 0; c < NC; ++c) acc[c].setZero();
-  for (int i = 0; i <= P; ++i) {
-    A4 T[ND + 1];
-    for (int l = 0; l <= ND; ++l) T[l].setZero();
-    const double* row = patch + 4 + 4 * (Q + 1) * i;
-    for (int j = 0; j <= Q; ++j) {
-      const A4 H = Eigen::Map<const A4>(row + 4 * j);
-      for (int l = 0; l <= ND; ++l) T[l] += Nv[l][j] * H;
+  A4 T[P + 1][ND + 1];
+  bezier_columns<ND, P, Q>(patch, Nv, T);
+  bezier_combine<ND, Rational, P>(Nu, T, out);
+}
+
+// One row i of eval_fixed's sums: T[l] = sum_j Nv[l][j] * H(i, sv - q + j) over the window
+// row `row` (its q + 1 poles), H = (w (P - o), w) with o the window's origin. All four
+// homogeneous components are summed even for a non-rational surface (whose fourth is then
+// unused): four-wide loops vectorise, and x, y, z are the same sums.
+template <int ND, bool Rational, int Q>
+[[gnu::always_inline]] inline void window_row(const double* row, int q, const double* o,
+                                              const double Nv[ND + 1][detail::kMaxBasis],
+                                              double T[ND + 1][4]) {
+  constexpr int W = 4;
+  const double ox = o[0], oy = o[1], oz = o[2];
+  for (int l = 0; l <= ND; ++l)
+    for (int k = 0; k < W; ++k) T[l][k] = 0.0;
+  for (int j = 0; j <= ((Q > 0) ? Q : q); ++j) {
+    const double* Pij = row + 4 * j;
+    double H[4] = {Pij[0] - ox, Pij[1] - oy, Pij[2] - oz, 1.0};
+    if constexpr (Rational) {
+      const double w = Pij[3];
+      H[0] *= w;
+      H[1] *= w;
+      H[2] *= w;
+      H[3] = w;
     }
-    const double a0 = Nu[0][i];
-    acc[0] += a0 * T[0];
-    if constexpr (ND >= 1) {
-      acc[1] += Nu[1][i] * T[0];
-      acc[2] += a0 * T[1];
-    }
-    if constexpr (ND >= 2) {
-      acc[3] += Nu[2][i] * T[0];
-      acc[4] += Nu[1][i] * T[1];
-      acc[5] += a0 * T[2];
+    for (int l = 0; l <= ND; ++l) {
+      const double b = Nv[l][j];
+      for (int k = 0; k < W; ++k) T[l][k] += b * H[k];
     }
   }
+}
+
+// Adds row i's share, Nu[.][i] times its sums T (window_row), to the sums acc.
+template <int ND>
+[[gnu::always_inline]] inline void window_add(const double Nu[ND + 1][detail::kMaxBasis], int i,
+                                              const double T[ND + 1][4], double acc[][4]) {
+  const double a0 = Nu[0][i];
+  for (int k = 0; k < 4; ++k) {
+    acc[0][k] += a0 * T[0][k];
+    if constexpr (ND >= 1) {
+      acc[1][k] += Nu[1][i] * T[0][k];
+      acc[2][k] += a0 * T[1][k];
+    }
+    if constexpr (ND >= 2) {
+      acc[3][k] += Nu[2][i] * T[0][k];
+      acc[4][k] += Nu[1][i] * T[1][k];
+      acc[5][k] += a0 * T[2][k];
+    }
+  }
+}
+
+// Copies the sums to out (the weight and its derivatives 1, 0 for a non-rational surface).
+template <int ND, bool Rational>
+[[gnu::always_inline]] inline void window_out(const double acc[][4], double out[][4]) {
+  constexpr int NC = (ND + 1) * (ND + 2) / 2;
   for (int c = 0; c < NC; ++c)
     for (int k = 0; k < 4; ++k) out[c][k] = acc[c][k];
   if constexpr (!Rational) {
     for (int c = 0; c < NC; ++c) out[c][3] = (c == 0) ? 1.0 : 0.0;
   }
+}
+
+// The first pole of span pair (su, sv)'s window: the origin of its sums.
+inline const double* window_origin(const EvalView& s, int su, int sv, int p, int q) {
+  return s.poles + 4 * (static_cast<size_t>(su - p) * s.count_v + (sv - q));
 }
 
 // out[c] = homogeneous derivative combination c: 0 S, 1 Su, 2 Sv, (ND=2) 3 Suu, 4 Suv, 5 Svv,
@@ -264,57 +354,20 @@ void eval_fixed(const EvalView& s, double u, double v, double out[][4], double o
   double Nu[ND + 1][detail::kMaxBasis], Nv[ND + 1][detail::kMaxBasis];
   detail::ders_basis<ND, P>(s.U, su, p, u, Nu);
   detail::ders_basis<ND, Q>(s.V, sv, q, v, Nv);
-  // All four homogeneous components are summed even for a non-rational surface (whose
-  // fourth is then unused): four-wide loops vectorise, and x, y, z are the same sums.
-  constexpr int W = 4;
   constexpr int NC = (ND + 1) * (ND + 2) / 2;
   // Sums in a local array (kept in registers: `out` may alias the poles for the compiler),
   // copied out at the end (docs/decisions/nurbs-evaluation.md).
   double acc[NC][4] = {};
-  const int cv = s.count_v;
-  const double* o = s.poles + 4 * (static_cast<size_t>(su - p) * cv + (sv - q));
-  const double ox = o[0], oy = o[1], oz = o[2];
-  origin[0] = ox;
-  origin[1] = oy;
-  origin[2] = oz;
+  const double* o = window_origin(s, su, sv, p, q);
+  origin[0] = o[0];
+  origin[1] = o[1];
+  origin[2] = o[2];
   for (int i = 0; i <= p; ++i) {
-    // T[l] = sum_j Nv[l][j] * H(su - p + i, sv - q + j), H = (w (P - origin), w)
-    double T[ND + 1][4] = {};
-    const double* row = s.poles + 4 * (static_cast<size_t>(su - p + i) * cv + (sv - q));
-    for (int j = 0; j <= q; ++j) {
-      const double* Pij = row + 4 * j;
-      double H[4] = {Pij[0] - ox, Pij[1] - oy, Pij[2] - oz, 1.0};
-      if constexpr (Rational) {
-        const double w = Pij[3];
-        H[0] *= w;
-        H[1] *= w;
-        H[2] *= w;
-        H[3] = w;
-      }
-      for (int l = 0; l <= ND; ++l) {
-        const double b = Nv[l][j];
-        for (int k = 0; k < W; ++k) T[l][k] += b * H[k];
-      }
-    }
-    const double a0 = Nu[0][i];
-    for (int k = 0; k < W; ++k) {
-      acc[0][k] += a0 * T[0][k];
-      if constexpr (ND >= 1) {
-        acc[1][k] += Nu[1][i] * T[0][k];
-        acc[2][k] += a0 * T[1][k];
-      }
-      if constexpr (ND >= 2) {
-        acc[3][k] += Nu[2][i] * T[0][k];
-        acc[4][k] += Nu[1][i] * T[1][k];
-        acc[5][k] += a0 * T[2][k];
-      }
-    }
+    double T[ND + 1][4];
+    window_row<ND, Rational, Q>(o + 4 * static_cast<size_t>(i) * s.count_v, q, o, Nv, T);
+    window_add<ND>(Nu, i, T, acc);
   }
-  for (int c = 0; c < NC; ++c)
-    for (int k = 0; k < 4; ++k) out[c][k] = acc[c][k];
-  if constexpr (!Rational) {
-    for (int c = 0; c < NC; ++c) out[c][3] = (c == 0) ? 1.0 : 0.0;
-  }
+  window_out<ND, Rational>(acc, out);
 }
 
 // The kernels by degree key: the fixed-degree one of each key of FixedDegrees, the run-time
@@ -341,8 +394,8 @@ Kernel<ND, Rational> kernel_for(int p, int q) {
 
 }  // namespace
 
-template <int ND, bool Rational>
-void NurbsSurface::eval_homogeneous(double u, double v, double out[][4], double origin[3]) const {
+template <class F>
+void NurbsSurface::with_view(const F& f) const {
   const EvalView s{data_.knots_u.data(),
                    data_.knots_v.data(),
                    hpoles_.data(),
@@ -357,7 +410,12 @@ void NurbsSurface::eval_homogeneous(double u, double v, double out[][4], double 
                    bezier_u_.data(),
                    bezier_v_.data(),
                    bezier_spans_v_};
-  kernel_for<ND, Rational>(s.p, s.q)(s, u, v, out, origin);
+  f(s);
+}
+
+template <int ND, bool Rational>
+void NurbsSurface::eval_homogeneous(double u, double v, double out[][4], double origin[3]) const {
+  with_view([&](const EvalView& s) { kernel_for<ND, Rational>(s.p, s.q)(s, u, v, out, origin); });
 }
 
 void NurbsSurface::build_bezier() {
@@ -508,6 +566,125 @@ SurfaceEval1 NurbsSurface::eval1(double u, double v) const {
   return evaluate<1, SurfaceEval1>(rational(), min_weight_, [&](auto rat, auto h, auto o) {
     eval_homogeneous<1, decltype(rat)::value>(u, v, h, o);
   });
+}
+
+namespace {
+
+// find_span's span of u along u, without its search when it is `last` (a span, or -1): the
+// points of a row come a knot span at a time.
+inline int span_u(const EvalView& s, int last, double u) {
+  if (last >= 0) {
+    const bool from_first = last == s.first_u || s.U[last] <= u;
+    const bool to_last = last == s.last_u || u < s.U[last + 1];
+    if (from_first && to_last) return last;
+  }
+  return detail::find_span(s.U, s.first_u, s.last_u, u);
+}
+
+// eval1 at (us[k], v), k < n, on the Bezier table: the v basis once, the sums along v once per
+// span pair (bezier_columns), then per point the u basis and the sums along u; every step the
+// arithmetic of eval_bezier, hence the same bits.
+template <bool Rational, int P, int Q>
+void eval1_row_bezier(const EvalView& s, double v, const double* us, std::size_t n,
+                      double min_weight, SurfaceEval1* out) {
+  const int iv = detail::find_span(s.V, s.first_v, s.last_v, v) - s.first_v;
+  double Nv[2][detail::kMaxBasis];
+  bernstein<1, Q>((v - s.bv[2 * iv]) * s.bv[2 * iv + 1], s.bv[2 * iv + 1], Nv);
+  A4 T[P + 1][2];
+  for (auto& t : T) t[0] = t[1] = A4::Zero();  // set for the first point's span below
+  const double* patch = nullptr;
+  int last_iu = -1;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double u = us[k];
+    const int iu = span_u(s, last_iu < 0 ? -1 : s.first_u + last_iu, u) - s.first_u;
+    if (iu != last_iu) {
+      patch = bezier_patch<P, Q>(s, iu, iv);
+      bezier_columns<1, P, Q>(patch, Nv, T);
+      last_iu = iu;
+    }
+    double Nu[2][detail::kMaxBasis];
+    bernstein<1, P>((u - s.bu[2 * iu]) * s.bu[2 * iu + 1], s.bu[2 * iu + 1], Nu);
+    double h[3][4];
+    bezier_combine<1, Rational, P>(Nu, T, h);
+    out[k].ok = true;  // as a SurfaceEval1 made by eval1; from_homogeneous sets the rest
+    from_homogeneous<1, Rational>(h, patch, min_weight, out[k]);
+  }
+}
+
+// eval1 at (us[k], v), k < n, summing the B-spline basis (degrees without a Bezier table):
+// the v basis once, the sums along v once per knot span along u (window_row), then per point
+// the u basis and the sums along u; every step eval_fixed's arithmetic, hence the same bits.
+template <bool Rational>
+void eval1_row_window(const EvalView& s, double v, const double* us, std::size_t n,
+                      double min_weight, SurfaceEval1* out) {
+  const int p = s.p, q = s.q;
+  const int sv = detail::find_span(s.V, s.first_v, s.last_v, v);
+  double Nv[2][detail::kMaxBasis];
+  detail::ders_basis<1, 0>(s.V, sv, q, v, Nv);
+  double T[detail::kMaxBasis][2][4];
+  const double* o = nullptr;
+  int last_su = -1;
+  for (std::size_t k = 0; k < n; ++k) {
+    const double u = us[k];
+    const int su = span_u(s, last_su, u);
+    if (su != last_su) {
+      o = window_origin(s, su, sv, p, q);
+      for (int i = 0; i <= p; ++i)
+        window_row<1, Rational, 0>(o + 4 * static_cast<size_t>(i) * s.count_v, q, o, Nv, T[i]);
+      last_su = su;
+    }
+    double Nu[2][detail::kMaxBasis];
+    detail::ders_basis<1, 0>(s.U, su, p, u, Nu);
+    double acc[3][4] = {};
+    for (int i = 0; i <= p; ++i) window_add<1>(Nu, i, T[i], acc);
+    double h[3][4];
+    window_out<1, Rational>(acc, h);
+    out[k].ok = true;  // as a SurfaceEval1 made by eval1; from_homogeneous sets the rest
+    from_homogeneous<1, Rational>(h, o, min_weight, out[k]);
+  }
+}
+
+using RowKernel = void (*)(const EvalView&, double, const double*, std::size_t, double,
+                           SurfaceEval1*);
+
+// The row kernels by degree key (FixedDegrees), null for the other keys.
+template <bool Rational, int... Keys>
+constexpr auto row_kernel_table(std::integer_sequence<int, Keys...>) {
+  constexpr int kLast = std::max({Keys...});
+  std::array<RowKernel, kLast + 1> table{};
+  ((table[Keys] = &eval1_row_bezier<Rational, Keys / kKeyBase, Keys % kKeyBase>), ...);
+  return table;
+}
+
+template <bool Rational>
+RowKernel row_kernel_for(int p, int q) {
+  static constexpr auto kTable = row_kernel_table<Rational>(FixedDegrees{});
+  const int key = degree_key(p, q);
+  return key < static_cast<int>(kTable.size()) ? kTable[static_cast<std::size_t>(key)] : nullptr;
+}
+
+}  // namespace
+
+void NurbsSurface::eval1_along_u(double v, const double* us, std::size_t n,
+                                 SurfaceEval1* out) const {
+  // The Bezier table's kernels where eval1 uses them, else the sums of the B-spline basis.
+  RowKernel row = rational() ? &eval1_row_window<true> : &eval1_row_window<false>;
+  if (!bezier_.empty()) {
+    if (RowKernel b = rational() ? row_kernel_for<true>(data_.degree_u, data_.degree_v)
+                                 : row_kernel_for<false>(data_.degree_u, data_.degree_v))
+      row = b;
+  }
+  with_view([&](const EvalView& s) { row(s, v, us, n, min_weight_, out); });
+}
+
+bool NurbsSurface::made_from(const NurbsSurfaceData& d, const Tolerances& tol) const {
+  const NurbsSurfaceData& m = data_;
+  return degenerate_rel_ == tol.degenerate_rel && min_weight_rel_ == tol.extension_min_weight_rel &&
+         m.degree_u == d.degree_u && m.degree_v == d.degree_v && m.count_u == d.count_u &&
+         m.count_v == d.count_v && m.knots_u == d.knots_u && m.knots_v == d.knots_v &&
+         m.weights == d.weights &&
+         std::equal(m.poles.begin(), m.poles.end(), d.poles.begin(), d.poles.end(),
+                    [](const Vec3& a, const Vec3& b) { return a == b; });
 }
 
 SurfaceEval2 NurbsSurface::eval2(double u, double v) const {

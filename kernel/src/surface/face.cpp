@@ -74,14 +74,23 @@ int largest_loop(const std::vector<TrimLoop>& loops) {
   return outer;
 }
 
+// The face's surface: the one its producer built when it was made from `data` and `tol` (so
+// not built twice), else built here.
+Result<std::shared_ptr<const NurbsSurface>> surface_of(FaceData& data, const Tolerances& tol) {
+  if (data.built && data.built->made_from(data.surface, tol)) return std::move(data.built);
+  auto surf = NurbsSurface::create(std::move(data.surface), tol);
+  if (!surf) return surf.error();
+  return std::make_shared<const NurbsSurface>(std::move(surf).value());
+}
+
 }  // namespace
 
 Result<Face> Face::create(FaceData data, const Tolerances& tol) {
-  auto surf = NurbsSurface::create(std::move(data.surface), tol);
+  auto surf = surface_of(data, tol);
   if (!surf) return surf.error();
   if (auto st = normalise_loops(data.loops); !st) return st.error();
   Face f;
-  f.surface_ = std::make_shared<const NurbsSurface>(std::move(surf).value());
+  f.surface_ = std::move(surf).value();
   f.tol_ = tol;
   f.reversed_ = data.reversed;
   f.closed_u_ = data.closed_u;

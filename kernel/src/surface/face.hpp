@@ -24,7 +24,7 @@ class Face final : public DrapeSurface {
   const std::vector<TrimLoop>& loops() const { return loops_; }
   bool trimmed() const { return !loops_.empty(); }
   const std::string& name() const { return name_; }
-  /// The plain data of the face (its area left to be measured again).
+  /// The plain data of the face (its area left to be measured again; its surface shared).
   FaceData data() const {
     FaceData d;
     d.surface = surface_->data();
@@ -33,6 +33,7 @@ class Face final : public DrapeSurface {
     d.closed_u = closed_u_;
     d.closed_v = closed_v_;
     d.name = name_;
+    d.built = surface_;
     return d;
   }
   /// The same face with its orientation reversed (its normal flipped).

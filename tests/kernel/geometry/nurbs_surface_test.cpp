@@ -8,8 +8,10 @@
 
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace plyfit;
@@ -306,4 +308,70 @@ TEST_CASE("kernel: rounding covers the spacing of the parameters' doubles, and n
   // size.
   CHECK(near->rounding() < 100 * eps * size);
   CHECK(near->rounding() > 0.0);
+}
+
+TEST_CASE("kernel: eval1_along_u gives eval1's values bit for bit, any degree, rational or not") {
+  // Rows of points along u at one v, as the area integration asks: several points per knot
+  // span, spans in any order, points on knots and past the domain. The fixed degrees (with a
+  // Bezier table) share the sums along v; the others evaluate point by point.
+  Rng rng(11);
+  const std::pair<int, int> degrees[] = {{1, 1}, {1, 3}, {2, 2}, {3, 2}, {3, 3},
+                                         {4, 4}, {5, 5}, {4, 2}, {6, 3}, {9, 12}};
+  for (int trial = 0; trial < 40; ++trial) {
+    const auto [p, q] = degrees[trial % std::size(degrees)];
+    NurbsSurfaceData d;
+    d.degree_u = p;
+    d.degree_v = q;
+    d.count_u = p + 1 + rng.integer(0, 6);
+    d.count_v = q + 1 + rng.integer(0, 6);
+    d.knots_u = random_knots(rng, d.count_u, p, trial % 3 != 0);
+    d.knots_v = random_knots(rng, d.count_v, q, trial % 5 != 0);
+    for (int k = 0; k < d.count_u * d.count_v; ++k) {
+      d.poles.emplace_back(rng.uniform(-50, 50), rng.uniform(-50, 50), rng.uniform(-50, 50));
+      if (trial % 2 == 1) d.weights.push_back(rng.uniform(0.3, 3.0));
+    }
+    auto s = NurbsSurface::create(d);
+    REQUIRE(s.ok());
+    const auto& dom = s->domain();
+    std::vector<double> us;
+    for (std::size_t k = 0; k < d.knots_u.size(); ++k) us.push_back(d.knots_u[k]);
+    for (int k = 0; k < 40; ++k)
+      us.push_back(rng.uniform(dom.u0 - 0.05 * dom.width_u(), dom.u1 + 0.05 * dom.width_u()));
+    for (int row = 0; row < 6; ++row) {
+      const double v = row == 0 ? dom.v0 : row == 1 ? dom.v1 : rng.uniform(dom.v0, dom.v1);
+      std::vector<SurfaceEval1> got(us.size());
+      s->eval1_along_u(v, us.data(), us.size(), got.data());
+      for (std::size_t k = 0; k < us.size(); ++k) {
+        const SurfaceEval1 want = s->eval1(us[k], v);
+        INFO("trial " << trial << " degrees " << p << "x" << q << " uv " << us[k] << "," << v);
+        CHECK(got[k].ok == want.ok);
+        CHECK(got[k].p == want.p);
+        CHECK(got[k].du == want.du);
+        CHECK(got[k].dv == want.dv);
+      }
+    }
+  }
+}
+
+TEST_CASE("kernel: made_from is true for the data and tolerances a surface was built from") {
+  NurbsSurfaceData d = plane_patch(Vec3::Zero(), Vec3(10, 0, 0), Vec3(0, 10, 0));
+  const Tolerances tol;
+  auto s = NurbsSurface::create(d, tol);
+  REQUIRE(s.ok());
+  CHECK(s->made_from(d, tol));
+  auto moved = d;
+  moved.poles[1].z() += 1e-9;
+  CHECK_FALSE(s->made_from(moved, tol));
+  auto weighted = d;
+  weighted.weights.assign(weighted.poles.size(), 1.0);  // the same surface, but rational
+  CHECK_FALSE(s->made_from(weighted, tol));
+  auto knots = d;
+  knots.knots_u.back() = 2.0;
+  CHECK_FALSE(s->made_from(knots, tol));
+  Tolerances other = tol;
+  other.degenerate_rel *= 2.0;
+  CHECK_FALSE(s->made_from(d, other));
+  other = tol;
+  other.extension_min_weight_rel *= 2.0;
+  CHECK_FALSE(s->made_from(d, other));
 }

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 using namespace plyfit;
@@ -225,4 +226,34 @@ TEST_CASE("surface: boundary_area is exact across knots where the area element j
       exact += (left ? 1.0 : 4.0) * (low ? 1.0 : 3.0) *
                polygon_area(clip_half(clip_half(loop, 0, 1.0, left), 1, 1.0, low));
   CHECK(boundary_area(*s, {loop}) == Approx(exact).epsilon(1e-12));
+}
+
+TEST_CASE("surface: Face::create takes the producer's surface only when made from its data") {
+  FaceData data;
+  data.surface = plane_patch(Vec3::Zero(), Vec3(10, 0, 0), Vec3(0, 10, 0));
+  const Tolerances tol;
+  auto built = NurbsSurface::create(data.surface, tol);
+  REQUIRE(built.ok());
+  const auto shared = std::make_shared<const NurbsSurface>(std::move(built).value());
+
+  FaceData same = data;
+  same.built = shared;
+  auto a = Face::create(same, tol);
+  REQUIRE(a.ok());
+  CHECK(&a->surface() == shared.get());
+  CHECK(a->data().built.get() == shared.get());  // a face's data hands its surface on
+
+  FaceData changed = data;
+  changed.built = shared;
+  changed.surface.poles[0].z() = 1.0;  // data edited after the surface was built
+  auto b = Face::create(changed, tol);
+  REQUIRE(b.ok());
+  CHECK(&b->surface() != shared.get());
+  CHECK(b->surface().data().poles[0].z() == 1.0);
+
+  Tolerances other = tol;
+  other.degenerate_rel *= 10.0;
+  auto c = Face::create(same, other);
+  REQUIRE(c.ok());
+  CHECK(&c->surface() != shared.get());
 }

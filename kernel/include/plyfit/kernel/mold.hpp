@@ -114,6 +114,10 @@ struct FaceData {
   bool closed_v = false;  ///< likewise in v
   double area = -1.0;     ///< area if known (e.g. from the CAD kernel), else computed
   std::string name;       ///< name or label from the file, may be empty
+  /// The validated surface of `surface` when its producer has built one (an importer that
+  /// measured the face on it): Face::create takes it instead of building it again when it is
+  /// made_from() `surface` and the tolerances, and builds its own otherwise. May be null.
+  std::shared_ptr<const NurbsSurface> built = {};
 };
 
 /// Plain data of a shell, as importers (after sewing) and built-in molds produce it.

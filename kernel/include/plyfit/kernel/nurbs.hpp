@@ -6,6 +6,7 @@
 #include <plyfit/kernel/tolerances.hpp>
 #include <plyfit/kernel/types.hpp>
 
+#include <cstddef>
 #include <vector>
 
 namespace plyfit {
@@ -75,12 +76,18 @@ class NurbsSurface {
   Vec3 point(double u, double v) const;
   /// Point and first derivatives.
   SurfaceEval1 eval1(double u, double v) const;
+  /// eval1(us[k], v) for k < n into out[k], the same values; the sums along v are shared by the
+  /// points of one knot span (a row of quadrature points along u costs about half).
+  void eval1_along_u(double v, const double* us, std::size_t n, SurfaceEval1* out) const;
   /// Point and derivatives up to second order (exact quotient rule for rational surfaces).
   SurfaceEval2 eval2(double u, double v) const;
   /// Unit normal Su x Sv / |Su x Sv|, or its limit at a degenerate point.
   SurfaceNormal normal(double u, double v) const;
   /// True when |Su x Sv| is below the degenerate threshold at (u, v).
   bool is_degenerate(const Vec3& du, const Vec3& dv) const;
+  /// True when this surface is what create(data, tol) makes: built from equal data, with the
+  /// tolerances it depends on (degenerate_rel, extension_min_weight_rel) equal.
+  bool made_from(const NurbsSurfaceData& data, const Tolerances& tol) const;
 
   /// Characteristic parametric speeds |dS/du| and |dS/dv| (control-net extent over domain
   /// width), used to scale parameter-space tolerances.
@@ -100,6 +107,9 @@ class NurbsSurface {
   NurbsSurface() = default;
   template <int ND, bool Rational>
   void eval_homogeneous(double u, double v, double out[][4], double origin[3]) const;
+  // Calls f(view) with the evaluation view of this surface (defined in nurbs_surface.cpp).
+  template <class F>
+  void with_view(const F& f) const;
   void build_bezier();
   double estimate_rounding() const;
 
@@ -112,6 +122,7 @@ class NurbsSurface {
   double min_weight_ = 1.0;
   double rounding_ = 0.0;
   double degenerate_rel_ = 1e-8;
+  double min_weight_rel_ = 1e-3;  // Tolerances::extension_min_weight_rel it was built with
   // Bezier form of every knot-span pair, for the degrees with fixed-degree kernels (1..3 x
   // 1..3, 4 x 4, 5 x 5), built by create() and read-only after (thread-safe): per span pair
   // the first pole of its B-spline window (the origin, padded to 4 doubles) and the

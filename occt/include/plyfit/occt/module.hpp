@@ -18,7 +18,7 @@ constexpr const char* kOcctModuleFile = "plyfit-occt.so";
 
 /// Version of the interface between plyfit and the module (the entry points' tables, MoldFile,
 /// ImportOptions, MoldWriteOptions): raise it whenever one of them changes.
-constexpr int kOcctModuleAbi = 6;  // 6: the module's errors are codes with data
+constexpr int kOcctModuleAbi = 7;  // 6: the module's errors are codes with data; 7: FaceData::built
 
 /// The address of the entry point `name` of the module, which is loaded on the first call.
 /// Errors (one line, without a file name): the module is missing, cannot be loaded (its dlerror,
