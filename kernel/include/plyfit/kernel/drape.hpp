@@ -295,8 +295,11 @@ Result<DrapeResult> drape(const MoldSurface& surface, const DrapeProblem& proble
 /// start (its tip, where the cloth is still laid) outward along the thread or bisector of the
 /// threads nearest the direction from the start, walked on the surface to the face's edge;
 /// then the ply is draped again with them (a zone near a dart lengthens it), until it is laid
-/// with no such stop or `max_drapes` drapes were made. DrapeResult::drapes says how many;
-/// the warning darts_not_enough, when stops remain. Errors as drape()'s.
+/// with no such stop or `max_drapes` drapes were made. From the second proposal on, where the
+/// darts from the edge have not laid the ply, seam darts along the lines where fronts of cloth
+/// met (conflict nodes, overlaps on laid cloth) join them: a closed shell has no edge to walk
+/// to. DrapeResult::drapes says how many; the warning darts_not_enough, when stops remain.
+/// Errors as drape()'s.
 Result<DrapeResult> drape_auto_darts(const MoldSurface& surface, const DrapeProblem& problem,
                                      const DrapeOptions& options = {}, int max_drapes = 3);
 
