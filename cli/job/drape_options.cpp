@@ -64,9 +64,9 @@ const OptionTable& drape_options() {
        "on its two sides drapes independently (repeatable)",
        true, "start"},
       {"darts", "auto|none", "none",
-       "auto: where the drape ends in conflict or at the shear limit, darts from the face's edge "
-       "into those zones and along the lines where fronts of cloth met, and the ply draped "
-       "again with them (at most 3 drapes in all)",
+       "auto: seams cut where fronts of cloth meet and disagree, and where the drape ends at the "
+       "shear limit darts from the face's edge into those zones, the ply draped again with them "
+       "(at most 3 drapes in all)",
        false, "start"},
       {"boundary-offset", "MM", "0",
        "grow (> 0) or shrink (< 0) the boundary's region along the surface (trim allowance)", false,

@@ -314,7 +314,8 @@ nlohmann::json darts_json(const ExportContext& ctx) {
                     {"width_max", d.width_max},
                     {"links_cut", d.links_cut},
                     {"nodes_cut_out", d.nodes_cut_out},
-                    {"cut_line_points", d.line_left.size()}});
+                    {"cut_line_points", d.line_left.size()},
+                    {"seam", d.seam}});
   return {
       {"source", ctx.run.dart_files},
       {"auto", ctx.result.darts_auto},

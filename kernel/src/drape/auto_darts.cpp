@@ -1,7 +1,7 @@
-// Automatic darts: where a drape ends in conflict or at the shear limit, darts are proposed
-// from the face's edge into each such zone, and along the lines where fronts of cloth met
-// (seam darts: closed shells), and the ply is draped again with them, at most max_drapes
-// drapes in all (docs/decisions/darts.md).
+// Automatic darts: every drape cuts seams where fronts of cloth meet and disagree (the scan's
+// seams: a closed shell's cloth that comes round to itself), and where a drape ends at the
+// shear limit darts are proposed from the face's edge into each such zone and the ply is
+// draped again with them, at most max_drapes drapes in all (docs/decisions/darts.md).
 #include "drape/darts.hpp"
 #include "drape/drape.hpp"
 #include "drape/scan/solve_memo.hpp"
@@ -24,42 +24,33 @@ constexpr double kTipInsideRel = 4.0;
 // The walk out of a zone steps this many spacings along the surface.
 constexpr double kWalkStepRel = 0.5;
 
-// Why the cloth stops at a node for want of a dart: two fronts met there and disagree
-// (kConflict), it reached the shear limit or folded onto itself (an overlap by a fold guard:
-// DrapeResult::failures' code).
-enum class Stop : std::uint8_t { kNone, kConflict, kShear };
-
-std::vector<Stop> stopped_nodes(const DrapeResult& r) {
-  std::vector<Stop> out(r.nodes.size(), Stop::kNone);
+// The nodes where the cloth stops for want of a dart: it reached the shear limit or folded
+// onto itself (an overlap by a fold guard: DrapeResult::failures' code). (Fronts that met and
+// disagree are parted by the scan's seams.)
+std::vector<bool> sheared_stops(const DrapeResult& r) {
+  std::vector<bool> out(r.nodes.size(), false);
   for (const auto& [k, why] : r.failures) {
     const NodeStatus s = r.nodes[k].status;
     const std::string_view code = why ? why : "";
-    if (s == NodeStatus::kConflict) out[k] = Stop::kConflict;
     if (s == NodeStatus::kShearLimit ||
         (s == NodeStatus::kOverlap &&
          (code == "fold_angle" || code == "flat_cell" || code == "cell_folds")))
-      out[k] = Stop::kShear;
+      out[k] = true;
   }
   return out;
 }
 
-// A mapped regular node next to a stopped node (stopped_nodes(): those have no point), and
-// whether it is next to conflicts only.
-struct FrontNode {
-  std::uint32_t k;
-  bool conflict_only;
-};
-
-std::vector<FrontNode> front_nodes(const DrapeResult& r) {
-  const std::vector<Stop> stopped = stopped_nodes(r);
-  std::vector<FrontNode> out;
+// The mapped regular nodes next to a stop (sheared_stops(): those have no point).
+std::vector<std::uint32_t> front_nodes(const DrapeResult& r) {
+  const std::vector<bool> stopped = sheared_stops(r);
+  std::vector<std::uint32_t> out;
   for (std::uint32_t k = 0; k < r.nodes.size(); ++k) {
     const DrapeNode& n = r.nodes[k];
     if (!n.mapped() || n.id.is_path_only()) continue;
-    Stop worst = Stop::kNone;
+    bool next_to = false;
     for (int d = 0; d < 4; ++d)
-      if (n.nb[d] >= 0) worst = std::max(worst, stopped[static_cast<std::size_t>(n.nb[d])]);
-    if (worst != Stop::kNone) out.push_back({k, worst == Stop::kConflict});
+      next_to = next_to || (n.nb[d] >= 0 && stopped[static_cast<std::size_t>(n.nb[d])]);
+    if (next_to) out.push_back(k);
   }
   return out;
 }
@@ -92,11 +83,9 @@ Vec3 direction_at(const DrapeResult& r, const DrapeNode& n, const Vec2& u) {
 // The dart for the stop next to mapped node n: along the snapped direction from the start to n,
 // from the face's edge (or the surface's size away) to kTipInsideRel spacings short of n
 // towards the start (its tip, in cloth sheared less). None (no points) when the tip would lie
-// farther than `tip_within` from the start (3D): the tip is walked first; nor, unless
-// `at_crease`, when the walk out stops at a crease (a closed shell's rim, with no edge beyond:
-// there the seam darts part the fronts that met).
+// farther than `tip_within` from the start (3D): the tip is walked first.
 detail::DartCurve walk_out(const DrapeSurface& s, const DrapeResult& r, const DrapeNode& n,
-                           double tip_within, bool at_crease) {
+                           double tip_within) {
   const Vec2 from = n.ply - r.ply->spec().start;
   if (!(from.norm() > 0.0)) return {};
   const Vec3 dir = direction_at(r, n, snapped_direction(from));
@@ -108,8 +97,7 @@ detail::DartCurve walk_out(const DrapeSurface& s, const DrapeResult& r, const Dr
   detail::walk_on_surface(s, n.point, -dir, h, inside, in);
   const Vec3 tip = in.points.empty() ? n.point : in.points.back();
   if ((tip - r.start_point).norm() > tip_within) return {};
-  const detail::WalkEnd end = detail::walk_on_surface(s, n.point, dir, h, s.size(), out);
-  if (!at_crease && end == detail::WalkEnd::kCrease) return {};
+  detail::walk_on_surface(s, n.point, dir, h, s.size(), out);
   for (std::size_t k = out.points.size(); k-- > 0;) dart.add(out.points[k], out.normals[k]);
   dart.add(n.point, at_n.n);
   for (std::size_t k = 0; k < in.points.size(); ++k) dart.add(in.points[k], in.normals[k]);
@@ -123,26 +111,24 @@ double distance_to_curve(const std::vector<Vec3>& c, const Vec3& p) {
 }
 
 // New or lengthened darts for the drape's stops; false when it proposes none. The nodes next
-// to a stop are taken nearest the start first (those next to conflicts only get no dart that
-// stops at a crease); each starts a dart unless a dart passes within
+// to a stop are taken nearest the start first; each starts a dart unless a dart passes within
 // kDartSpacingRel * d of it: then that dart is walked again from it if the new tip lies nearer
 // the start than the dart's (by a spacing at least), so that darts comb the zone a few cells
-// apart and reach into the cloth that is sheared less. Darts marked `kept` are not walked again.
+// apart and reach into the cloth that is sheared less (each dart once per proposal).
 bool propose_darts(const DrapeSurface& s, const DrapeResult& r,
-                   std::vector<detail::DartCurve>& darts, const std::vector<bool>& kept) {
-  std::vector<FrontNode> fronts = front_nodes(r);
+                   std::vector<detail::DartCurve>& darts) {
+  std::vector<std::uint32_t> fronts = front_nodes(r);
   const Vec2 start = r.ply->spec().start;
-  auto from_start = [&](const FrontNode& f) { return (r.nodes[f.k].ply - start).norm(); };
-  std::stable_sort(fronts.begin(), fronts.end(), [&](const FrontNode& a, const FrontNode& b) {
-    return from_start(a) < from_start(b);
-  });
+  auto from_start = [&](std::uint32_t k) { return (r.nodes[k].ply - start).norm(); };
+  std::stable_sort(fronts.begin(), fronts.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return from_start(a) < from_start(b); });
   const double d = r.ply->d(), spacing = kDartSpacingRel * d;
   const Vec3& start3 = r.start_point;
   const std::size_t given = darts.size();
-  std::vector<bool> walked = kept;
+  std::vector<bool> walked(darts.size(), false);
   bool changed = false;
-  for (const FrontNode& f : fronts) {
-    const DrapeNode& tip = r.nodes[f.k];
+  for (std::uint32_t f : fronts) {
+    const DrapeNode& tip = r.nodes[f];
     auto near = std::find_if(darts.begin(), darts.end(), [&](const detail::DartCurve& c) {
       return distance_to_curve(c.points, tip.point) <= spacing;
     });
@@ -152,31 +138,19 @@ bool propose_darts(const DrapeSurface& s, const DrapeResult& r,
       // Walked only when its tip (kTipInsideRel spacings in from the node) can lie nearer.
       const double reach = (tip.point - start3).norm() - kTipInsideRel * d;
       if (i >= walked.size() || walked[i] || reach > tip_now - d) continue;
-      detail::DartCurve dart = walk_out(s, r, tip, tip_now - d, !f.conflict_only);
+      detail::DartCurve dart = walk_out(s, r, tip, tip_now - d);
       if (dart.points.size() < 2) continue;
       *near = std::move(dart);
       walked[i] = changed = true;
       continue;
     }
     if (darts.size() - given >= kDartsPerDrape) continue;
-    detail::DartCurve dart = walk_out(s, r, tip, INFINITY, !f.conflict_only);
+    detail::DartCurve dart = walk_out(s, r, tip, INFINITY);
     if (dart.points.size() < 2) continue;
     darts.push_back(std::move(dart));
     changed = true;
   }
   return changed;
-}
-
-// The darts from the face's edge for the stops, then the seam darts where fronts met (kept as
-// they are: `seam` marks them); false when none is proposed.
-bool propose(const DrapeSurface& s, const DrapeResult& r, std::vector<detail::DartCurve>& darts,
-             std::vector<bool>& seam, bool with_seams) {
-  seam.resize(darts.size(), false);
-  const bool edge = propose_darts(s, r, darts, seam);
-  seam.resize(darts.size(), false);
-  const bool seams = with_seams && detail::propose_seam_darts(s, r, darts) > 0;
-  seam.resize(darts.size(), true);
-  return edge || seams;
 }
 
 bool laid(const DrapeResult& r) {
@@ -188,7 +162,7 @@ bool laid(const DrapeResult& r) {
 Result<DrapeResult> drape_auto_darts(const DrapeSurface& s, const DrapeProblem& problem,
                                      const DrapeOptions& opt, int max_drapes) {
   detail::SolveMemo memo[2];  // the last drape's solves, and the next one's
-  auto r = drape(s, problem, opt, detail::Redrape{nullptr, nullptr, &memo[0]});
+  auto r = drape(s, problem, opt, detail::Redrape{nullptr, nullptr, &memo[0], true});
   if (!r) return r;
   // The given darts as the first drape took them, then the walked ones: each dart is put on
   // the surface once.
@@ -196,13 +170,12 @@ Result<DrapeResult> drape_auto_darts(const DrapeSurface& s, const DrapeProblem& 
   if (!given) return given.error();
   std::vector<detail::DartCurve> darts = given->curves();
   int drapes = 1;
-  std::vector<bool> seam;
-  while (!laid(*r) && drapes < max_drapes && propose(s, *r, darts, seam, drapes >= 2)) {
+  while (!laid(*r) && drapes < max_drapes && propose_darts(s, *r, darts)) {
     const detail::DartSet set = detail::DartSet::of(darts, r->ply->d());
     detail::SolveMemo& last = memo[(drapes - 1) % 2];
     detail::SolveMemo& next = memo[drapes % 2];
     next = detail::SolveMemo{};
-    auto again = drape(s, problem, opt, detail::Redrape{&set, &last, &next});
+    auto again = drape(s, problem, opt, detail::Redrape{&set, &last, &next, true});
     if (!again) return again;
     r = std::move(again);
     r->solves_reused = next.reused;

@@ -55,8 +55,10 @@ double segment_distance(const Vec3& a, const Vec3& b, const Vec3& p) {
 
 }  // namespace
 
-void DartCurve::add(const Vec3& p, const Vec3& n) {
+void DartCurve::add(const Vec3& p, const Vec3& n, std::uint64_t link) {
   if (!points.empty() && (p - points.back()).norm() == 0.0) return;
+  if (link != kNoLink) links.resize(points.size(), kNoLink);
+  if (!links.empty()) links.push_back(link);
   if (points.empty()) lo = hi = p;
   if (!points.empty()) length += (p - points.back()).norm();
   lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
@@ -218,25 +220,60 @@ double quad_area(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
   return 0.5 * std::abs(cross2(a, b) + cross2(b, c) + cross2(c, d) + cross2(d, a));
 }
 
-// The dart's cut lines: each curve point carried through the nearest mapped node on each side
-// of the curve (within reach) and its cells; points with no node on one side are left out.
-// The area between the lines, per pair of points, is cut out where the right side's line lies
-// away from the left side's cloth, and a gap on the part where it lies in it.
-void cut_lines(const DartCurve& c, const NodeGrid& grid, const DrapeResult& res, double reach,
+// The cloth on each side of curve point i (left, right): the nearest mapped node on each side
+// within reach.
+// Nodes whose normal turns from the curve's by 90 degrees or more lie on another sheet of the
+// part (a thin shell's other wall within reach): not the cloth beside the curve.
+struct NearNodes {
+  NodeGrid grid;
+  std::vector<Vec3> normals;  // per node in the grid
+};
+
+void sides(const DartCurve& c, std::size_t i, const NearNodes& near, const DrapeResult& res,
+           double reach, const DrapeNode* best[2]) {
+  const Vec3& p = c.points[i];
+  const Vec3 t = c.points[std::min(i + 1, c.points.size() - 1)] - c.points[i > 0 ? i - 1 : 0];
+  const Vec3 left = c.normals[i].cross(t);
+  auto side = [&](const DrapeNode& n) { return (n.point - p).dot(left) >= 0.0 ? 0 : 1; };
+  double best_d[2] = {reach, reach};
+  near.grid.around(p, [&](std::uint32_t k) {
+    const DrapeNode& n = res.nodes[k];
+    const double dist = (n.point - p).norm();
+    if (near.normals[k].dot(c.normals[i]) > 0.0 && dist < best_d[side(n)])
+      best_d[side(n)] = dist, best[side(n)] = &n;
+  });
+}
+
+// A seam's cut lines: the fronts on its two sides are ply neighbours, so in the flat pattern it
+// is a slit through the middles of the links it cut (both lines), in the order of its points
+// (the points between them have no link). On the part each link is off its rest length: the
+// fronts leave a gap (opening_area) or lie on each other (removed_area), a strip of the
+// link's rest length across the seam per link.
+void seam_lines(const DartCurve& c, const DrapeResult& res, DartResult& out) {
+  for (std::uint64_t link : c.links) {
+    if (link == DartCurve::kNoLink) continue;
+    const DrapeNode& a = res.nodes[link >> 32];
+    const DrapeNode& b = res.nodes[link & 0xffffffffu];
+    if (!a.mapped() || !b.mapped()) continue;
+    const Vec2 mid = 0.5 * (a.ply + b.ply);
+    out.line_left.push_back(mid);
+    out.line_right.push_back(mid);
+    const double rest = (b.ply - a.ply).norm(), off = (b.point - a.point).norm() - rest;
+    (off > 0.0 ? out.opening_area : out.removed_area) += std::abs(off) * rest;
+  }
+}
+
+// The dart's cut lines: each curve point carried through the cloth on each side (sides()) and
+// its cells; points with no cloth on one side are left out. The area between the lines, per
+// pair of points, is cut out where the right side's line lies away from the left side's
+// cloth, and a gap on the part where it lies in it.
+void cut_lines(const DartCurve& c, const NearNodes& near, const DrapeResult& res, double reach,
                double min_sin2, DartResult& out) {
   std::vector<double> away;  // per pair: right line's offset away from the left cloth
   for (std::size_t i = 0; i < c.points.size(); ++i) {
     const Vec3& p = c.points[i];
-    const Vec3 t = c.points[std::min(i + 1, c.points.size() - 1)] - c.points[i > 0 ? i - 1 : 0];
-    const Vec3 left = c.normals[i].cross(t);
     const DrapeNode* best[2] = {nullptr, nullptr};
-    double best_d[2] = {reach, reach};
-    grid.around(p, [&](std::uint32_t k) {
-      const DrapeNode& n = res.nodes[k];
-      const double dist = (n.point - p).norm();
-      const int side = (n.point - p).dot(left) >= 0.0 ? 0 : 1;
-      if (dist < best_d[side]) best_d[side] = dist, best[side] = &n;
-    });
+    sides(c, i, near, res, reach, best);
     Vec2 l, r;
     if (!best[0] || !best[1] || !carry(res, *best[0], p, min_sin2, l) ||
         !carry(res, *best[1], p, min_sin2, r))
@@ -258,15 +295,22 @@ void cut_lines(const DartCurve& c, const NodeGrid& grid, const DrapeResult& res,
 
 }  // namespace
 
-void lay_darts(const DartSet& darts, const std::vector<std::uint64_t>& cut_out,
-               const Tolerances& tol, DrapeResult& res) {
+void lay_darts(const DrapeSurface& s, const DartSet& darts,
+               const std::vector<std::uint64_t>& cut_out, const Tolerances& tol, DrapeResult& res) {
   if (darts.empty()) return;
   const double d = res.ply->d();
   const double reach = kDartNearRel * d;
-  NodeGrid grid;
-  grid.cell = reach;
-  for (std::uint32_t k = 0; k < res.nodes.size(); ++k)
-    if (res.nodes[k].mapped() && darts.near(res.nodes[k].point)) grid.add(res.nodes[k].point, k);
+  NearNodes near;
+  near.grid.cell = reach;
+  near.normals.assign(res.nodes.size(), Vec3::Zero());
+  for (std::uint32_t k = 0; k < res.nodes.size(); ++k) {
+    const DrapeNode& n = res.nodes[k];
+    if (!n.mapped() || !darts.near(n.point)) continue;
+    const SurfaceNormal normal = s.normal(n.at());
+    if (!normal.ok) continue;
+    near.grid.add(n.point, k);
+    near.normals[k] = normal.n;
+  }
   const double min_sin2 = std::pow(std::sin(tol.fold_angle), 2);
   for (std::size_t k = 0; k < darts.curves().size(); ++k) {
     const DartCurve& c = darts.curves()[k];
@@ -275,7 +319,10 @@ void lay_darts(const DartSet& darts, const std::vector<std::uint64_t>& cut_out,
     out.length = c.length;
     out.tip = c.points.back();
     out.nodes_cut_out = k < cut_out.size() ? cut_out[k] : 0;
-    cut_lines(c, grid, res, reach, min_sin2, out);
+    if (c.links.empty())
+      cut_lines(c, near, res, reach, min_sin2, out);
+    else
+      seam_lines(c, res, out);
     res.darts.push_back(std::move(out));
   }
   for (std::uint64_t key : res.cut_links) {

@@ -28,12 +28,17 @@ inline constexpr double kDartNearRel = 3.0;
 
 /// A dart's curve on the surface, with the normals the crossing test projects along.
 struct DartCurve {
+  static constexpr std::uint64_t kNoLink = ~std::uint64_t{0};
   std::vector<Vec3> points;
   std::vector<Vec3> normals;
+  /// Per point of a seam: the cut link (DrapeResult::link_key) whose midpoint it is, whose two
+  /// ends are the cloth of its two sides (kNoLink: a point between them). Empty for a dart.
+  std::vector<std::uint64_t> links;
   Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();  // bounding box
   double length = 0.0;
-  /// Appends a point of the surface and its unit normal (a repeated point is dropped).
-  void add(const Vec3& p, const Vec3& n);
+  /// Appends a point of the surface and its unit normal (a repeated point is dropped), and,
+  /// for a seam, the link it was made from.
+  void add(const Vec3& p, const Vec3& n, std::uint64_t link = kNoLink);
 };
 
 /// Where a walk on the surface ended: at the face's edge (the free boundary), at a crease the
@@ -118,17 +123,17 @@ class DartSet {
   double segment_max_ = 0.0;  // the longest segment
 };
 
-/// Seam darts: where two fronts of cloth met (the drape's conflict nodes, and its overlaps on
-/// laid cloth), a dart along each line where they meet (such nodes in chains, each a few
-/// spacings from the next, the curve through the mean of each one's mapped neighbours, walked
-/// on a few spacings beyond the chain's ends), appended to `darts`. The number added.
-std::size_t propose_seam_darts(const DrapeSurface& s, const DrapeResult& r,
-                               std::vector<DartCurve>& darts);
+/// The seams of a drape whose scan cut `links` (DrapeResult::link_key) where two fronts of
+/// cloth met and disagreed: the links' midpoints (on the surface) in chains, each a couple of
+/// spacings from the next, one curve per chain, run on half a spacing beyond its ends.
+std::vector<DartCurve> seam_curves(const DrapeSurface& s, const DrapeResult& r,
+                                   const std::vector<std::uint64_t>& links);
 
 /// Each dart as the drape laid it (DrapeResult::darts): its cut lines through the cells of each
-/// side, the area between them, the links it cut; `cut_out`: per dart, the ply nodes no side
-/// holds.
-void lay_darts(const DartSet& darts, const std::vector<std::uint64_t>& cut_out,
-               const Tolerances& tol, DrapeResult& res);
+/// side (on its sheet of `s`: nodes whose normal turns 90 degrees or more from the curve's are
+/// not beside it), the area between them, the links it cut; `cut_out`: per dart, the ply nodes
+/// no side holds.
+void lay_darts(const DrapeSurface& s, const DartSet& darts,
+               const std::vector<std::uint64_t>& cut_out, const Tolerances& tol, DrapeResult& res);
 
 }  // namespace plyfit::detail

@@ -308,6 +308,22 @@ void warn_thread_ends(const detail::Scanner& scanner, DrapeResult& res) {
   }
 }
 
+// The darts' cut lines, and the seams the scan cut (after the darts, marked).
+void lay_darts_and_seams(const DrapeSurface& s, const detail::DartSet& darts,
+                         const detail::Scanner& scanner, const Tolerances& tol, DrapeResult& res) {
+  if (scanner.seam_links().empty()) {
+    detail::lay_darts(s, darts, scanner.cut_out(), tol, res);
+    return;
+  }
+  std::vector<detail::DartCurve> all = darts.curves();
+  std::vector<detail::DartCurve> seams = detail::seam_curves(s, res, scanner.seam_links());
+  all.insert(all.end(), std::make_move_iterator(seams.begin()),
+             std::make_move_iterator(seams.end()));
+  detail::lay_darts(s, detail::DartSet::of(std::move(all), res.ply->d()), scanner.cut_out(), tol,
+                    res);
+  for (std::size_t k = darts.curves().size(); k < res.darts.size(); ++k) res.darts[k].seam = true;
+}
+
 // The scan (§6.2) from the base path along t3, then the metrics.
 void scan_and_measure(const DrapeSurface& s, const DrapeOptions& opt, const Vec3& t3,
                       detail::Scanner& scanner, DrapeResult& res) {
@@ -350,8 +366,9 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
   if (*curve) scanner.follow(&**curve);
   scanner.cut_along(&darts);
   scanner.memo(again.last, again.next);
+  scanner.seam_where_fronts_meet(again.seams);
   scan_and_measure(s, opt, *t3, scanner, res);
-  detail::lay_darts(darts, scanner.cut_out(), opt.tol, res);
+  lay_darts_and_seams(s, darts, scanner, opt.tol, res);
   warn_scan_stops(scanner, opt, res);
   warn_path_ends(s, res);
   warn_thread_ends(scanner, res);

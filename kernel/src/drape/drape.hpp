@@ -17,11 +17,13 @@ class DartSet;
 struct SolveMemo;
 /// A drape made again (automatic darts): its darts already on the surface (DartSet::of, walked
 /// on it; nullptr: the problem's darts), the last drape's solves (SolveMemo), where to keep
-/// its own (nullptr: none kept, none taken).
+/// its own (nullptr: none kept, none taken), whether the scan cuts seams where fronts of cloth
+/// meet and disagree (Scanner::seam_where_fronts_meet).
 struct Redrape {
   const DartSet* darts = nullptr;
   const SolveMemo* last = nullptr;
   SolveMemo* next = nullptr;
+  bool seams = false;
 };
 }  // namespace detail
 /// drape() made again (detail::Redrape).

@@ -1,82 +1,61 @@
-// Seam darts: where two fronts of cloth meet (conflict nodes, and overlaps on the other's
-// cloth), typically where the cloth wraps round a closed shell and comes back to itself, a
-// dart along the line where they meet lets each front end at it (docs/decisions/darts.md,
-// "Closed shells").
+// Seams: the links the scan cut where two fronts of cloth met and disagreed (Scanner's seams,
+// typically where the cloth wraps round a closed shell and comes back to itself), as curves
+// on the part along the line where they met: darts, with their cut lines
+// (docs/decisions/darts.md, "Seams in the scan").
 #include "drape/darts.hpp"
-#include "drape/scan/scanner.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <string_view>
 
 namespace plyfit::detail {
 
 namespace {
 
-// Nodes where fronts met within this many spacings (3D) of each other lie on one meeting line
-// (the nodes of a staircase along a diagonal line lie a cell diagonal apart).
-constexpr double kSeamGapRel = 3.0;
-// A seam dart runs on this many spacings beyond the meeting line's last nodes: the fronts
-// meet a little farther than where they first disagree or overlap.
-constexpr double kSeamExtendRel = 3.0;
-// At most this many new seam darts per drape.
-constexpr std::size_t kSeamDartsPerDrape = 64;
+// Seam links whose midpoints lie within this many spacings (3D) of each other lie on one
+// seam (along a thread the midpoints of the cut links lie a spacing apart, along a staircase
+// half a cell diagonal; sheared cells a little more).
+constexpr double kSeamGapRel = 2.0;
+// A seam's curve runs on this many spacings beyond its end links' midpoints, so that it
+// crosses the end links as it does the others.
+constexpr double kSeamExtendRel = 0.5;
 
-// A node where two fronts of cloth met: in conflict (they disagree), or an overlap that landed
-// on the cloth the other front laid (a front that came round onto the other).
-bool meets(const DrapeNode& n, const char* why) {
-  return n.status == NodeStatus::kConflict ||
-         (n.status == NodeStatus::kOverlap && why && std::string_view(why) == kOnLaidCloth);
-}
-
-// Where two fronts meet at such a node: the mean of its mapped neighbours (of the two fronts
-// at a conflict; of its own front, beside the other's cloth, at an overlap), projected;
-// `along` the line where they meet (across the thread between two opposite neighbours), or
-// zero where no thread has both.
+// Where two fronts met across a cut link: its midpoint on the surface, the normal there and
+// the direction of the line where they met (across the link).
 struct Meeting {
   Vec3 point = Vec3::Zero(), normal = Vec3::UnitZ(), along = Vec3::Zero();
+  Vec2 ply = Vec2::Zero();  // the link's midpoint in the ply
+  std::uint64_t link = DartCurve::kNoLink;
 };
 
-std::optional<Meeting> meeting_at(const DrapeSurface& s, const DrapeResult& r, const DrapeNode& n) {
-  const DrapeNode* nb[4];
-  Vec3 sum = Vec3::Zero();
-  int count = 0;
-  for (int d = 0; d < 4; ++d) {
-    nb[d] = r.neighbour(n, static_cast<ThreadDir>(d));
-    if (nb[d] && !nb[d]->mapped()) nb[d] = nullptr;
-    if (nb[d]) sum += nb[d]->point, ++count;
-  }
-  if (count == 0) return std::nullopt;
-  const Projection pr = s.project(sum / count);
+std::optional<Meeting> meeting_at(const DrapeSurface& s, const DrapeResult& r, std::uint64_t link) {
+  const DrapeNode& a = r.nodes[link >> 32];
+  const DrapeNode& b = r.nodes[link & 0xffffffffu];
+  if (!a.mapped() || !b.mapped()) return std::nullopt;
+  const Projection pr = s.project(0.5 * (a.point + b.point));
   const SurfaceNormal normal = pr.ok ? s.normal(pr.at) : SurfaceNormal{};
   if (!pr.ok || !normal.ok) return std::nullopt;
-  Meeting m{pr.point, normal.n, Vec3::Zero()};
-  Vec3 across = Vec3::Zero();
-  for (int a = 0; a < 2; ++a)  // ThreadDir: +x, -x, +y, -y
-    if (nb[2 * a] && nb[2 * a + 1] &&
-        (nb[2 * a]->point - nb[2 * a + 1]->point).norm() > across.norm())
-      across = nb[2 * a]->point - nb[2 * a + 1]->point;
-  // An overlap has a point of its own: its front came to it from its mapped neighbours.
-  if (!(across.norm() > 0.0) && n.status == NodeStatus::kOverlap) across = n.point - sum / count;
-  const Vec3 along = normal.n.cross(across);
-  if (along.norm() > 0.0) m.along = along.normalized();
-  return m;
+  const Vec3 along = normal.n.cross(b.point - a.point);
+  if (!(along.norm() > 0.0)) return std::nullopt;
+  return Meeting{pr.point, normal.n, along.normalized(), 0.5 * (a.ply + b.ply), link};
 }
 
 // The meetings in chains: from a meeting not yet taken, the nearest untaken one within `gap`
-// is taken next, one way until none is left, then the other way from the first.
+// on the part and in the ply is taken next (meetings of two lines where fronts met that pass
+// near each other on the part lie far apart in the ply), one way until none is left, then the
+// other way from the first.
 std::vector<std::vector<const Meeting*>> chains(const std::vector<Meeting>& m, double gap) {
   NodeGrid grid;
   grid.cell = gap;
   for (std::uint32_t k = 0; k < m.size(); ++k) grid.add(m[k].point, k);
   std::vector<bool> taken(m.size(), false);
-  auto next_to = [&](const Vec3& p) {
+  auto next_to = [&](const Meeting& from) {
     std::int64_t best = -1;
     double best_d = gap;
-    grid.around(p, [&](std::uint32_t k) {
-      const double dist = (m[k].point - p).norm();
-      if (!taken[k] && dist <= best_d) best = k, best_d = dist;
+    grid.around(from.point, [&](std::uint32_t k) {
+      const double dist = (m[k].point - from.point).norm();
+      if (!taken[k] && dist <= best_d && (m[k].ply - from.ply).norm() <= gap)
+        best = k, best_d = dist;
     });
     return best;
   };
@@ -86,8 +65,8 @@ std::vector<std::vector<const Meeting*>> chains(const std::vector<Meeting>& m, d
     taken[first] = true;
     std::vector<const Meeting*> way[2] = {{&m[first]}, {}};
     for (int w = 0; w < 2; ++w)
-      for (std::int64_t k = next_to(m[first].point); k >= 0;
-           k = next_to(way[w].empty() ? m[first].point : way[w].back()->point)) {
+      for (std::int64_t k = next_to(m[first]); k >= 0;
+           k = next_to(way[w].empty() ? m[first] : *way[w].back())) {
         taken[static_cast<std::size_t>(k)] = true;
         way[w].push_back(&m[static_cast<std::size_t>(k)]);
       }
@@ -98,7 +77,7 @@ std::vector<std::vector<const Meeting*>> chains(const std::vector<Meeting>& m, d
   return out;
 }
 
-// The dart along a chain: its meetings joined on the surface (points added between them at
+// The seam along a chain: its meetings joined on the surface (points added between them at
 // kDartStepRel * d, projected), walked on kSeamExtendRel * d beyond both ends, along the
 // chain (or, for one meeting, along the line where its fronts meet).
 DartCurve seam_curve(const DrapeSurface& s, const std::vector<const Meeting*>& chain, double d) {
@@ -129,7 +108,7 @@ DartCurve seam_curve(const DrapeSurface& s, const std::vector<const Meeting*>& c
         if (pr.ok && n.ok && pr.distance <= h) c.add(pr.point, n.n);
       }
     }
-    c.add(chain[k]->point, chain[k]->normal);
+    c.add(chain[k]->point, chain[k]->normal, chain[k]->link);
   }
   walk_on_surface(s, b.point, out_b, h, extend, c);
   return c;
@@ -137,22 +116,18 @@ DartCurve seam_curve(const DrapeSurface& s, const std::vector<const Meeting*>& c
 
 }  // namespace
 
-std::size_t propose_seam_darts(const DrapeSurface& s, const DrapeResult& r,
-                               std::vector<DartCurve>& darts) {
+std::vector<DartCurve> seam_curves(const DrapeSurface& s, const DrapeResult& r,
+                                   const std::vector<std::uint64_t>& links) {
   std::vector<Meeting> meetings;
-  for (const auto& [k, why] : r.failures)
-    if (meets(r.nodes[k], why))
-      if (auto m = meeting_at(s, r, r.nodes[k])) meetings.push_back(*m);
+  for (std::uint64_t key : links)
+    if (auto m = meeting_at(s, r, key)) meetings.push_back(*m);
   const double d = r.ply->d();
-  std::size_t added = 0;
+  std::vector<DartCurve> out;
   for (const auto& chain : chains(meetings, kSeamGapRel * d)) {
-    if (added == kSeamDartsPerDrape) break;
     DartCurve c = seam_curve(s, chain, d);
-    if (c.points.size() < 2) continue;
-    darts.push_back(std::move(c));
-    ++added;
+    if (c.points.size() >= 2) out.push_back(std::move(c));
   }
-  return added;
+  return out;
 }
 
 }  // namespace plyfit::detail

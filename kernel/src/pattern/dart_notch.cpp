@@ -151,7 +151,8 @@ void OutlineBuilder::place_cut_out_nodes() {
 
 // Each dart's V in `region` (the outline's loops) where its cut lines bound cloth cut out
 // (removed_area, the sides overlapping on the part; where they leave a gap on the part, no
-// cloth is missing): the left line out to the tip and the right one back, united.
+// cloth is missing): the left line out to the tip and the right one back, united. Not a
+// seam's.
 Region2 OutlineBuilder::dart_notches(const Region2& region) const {
   const auto in_region = [&](const Vec2& p) {
     bool in = false;
@@ -160,7 +161,8 @@ Region2 OutlineBuilder::dart_notches(const Region2& region) const {
   };
   Region2 out;
   for (const DartResult& d : r_.darts) {
-    if (!(d.removed_area > d.opening_area) || d.line_left.size() < 2) continue;
+    // A seam cuts nothing out: each front keeps its cloth up to the line where they met.
+    if (d.seam || !(d.removed_area > d.opening_area) || d.line_left.size() < 2) continue;
     // The lines start where both sides have cloth near the curve, short of the ply's edge
     // that the curve starts from: each is continued that far along its first segment when
     // that leaves the outline (a curve that starts inside the cloth is not continued).

@@ -200,7 +200,7 @@ TEST_CASE("darts: a drape made again takes the unchanged solves and lays what a 
   CHECK(plain.metrics.nodes.mapped > 0);
 }
 
-TEST_CASE("darts: seam darts part the fronts that meet round a closed torus") {
+TEST_CASE("darts: the scan's seams cut the links where fronts meet round a closed torus") {
   // The outer half of a torus, closed round its axis: cloth laid from the outer equator goes
   // round both ways and its fronts meet behind the axis, where they disagree (conflict nodes).
   const double R = 30.0, r = 10.0, d = 1.0;
@@ -211,46 +211,66 @@ TEST_CASE("darts: seam darts part the fronts that meet round a closed torus") {
               Vec3(0, 1, 0), {Vec3(0, 1, 0), Vec3(0, -1, 0)});
   const DrapeResult plain = ok(drape(f, pb));
   REQUIRE(plain.metrics.nodes.conflict > 0);
-  std::vector<detail::DartCurve> curves;
-  const std::size_t added = detail::propose_seam_darts(f.impl(), plain, curves);
-  REQUIRE(added == curves.size());
-  REQUIRE(added > 0);
-  // Every point of a seam dart lies on the torus (its distance to the tube's circle is r).
-  const double on_surface = 1e-9 * R;
-  for (const auto& c : curves)
-    for (const Vec3& p : c.points)
-      CHECK(std::abs(std::hypot(std::hypot(p.x(), p.y()) - R, p.z()) - r) <= on_surface);
-  // At every conflict node the two fronts are parted: the path on the surface between some
-  // two of its mapped neighbours (their chord, in pieces of at most half a spacing, projected)
-  // crosses a dart. (The fronts leave gaps of several spacings: the chord itself passes
-  // farther below the surface than the crossing test reaches.)
-  const detail::DartSet set = detail::DartSet::of(curves, d);
-  auto parted_path = [&](const Vec3& a, const Vec3& b) {
-    const int pieces = static_cast<int>(std::ceil((b - a).norm() / (0.5 * d)));
-    Vec3 last = a;
-    for (int k = 1; k <= pieces; ++k) {
-      const Vec3 p = k == pieces ? b : f.project(a + (b - a) * (double(k) / pieces)).point;
-      if (set.crosses(last, p)) return true;
-      last = p;
-    }
-    return false;
+  const DrapeResult seamed =
+      ok(drape(f.impl(), pb, {}, detail::Redrape{nullptr, nullptr, nullptr, true}));
+  INFO(plain.metrics.nodes.conflict
+       << " conflict nodes, " << plain.metrics.nodes.mapped << " mapped, "
+       << plain.metrics.nodes.overlap << " overlap without seams; with seams "
+       << seamed.metrics.nodes.mapped << " mapped, " << seamed.metrics.nodes.overlap << " overlap, "
+       << seamed.cut_links.size() << " links cut, " << seamed.darts.size() << " seams");
+  CHECK(seamed.metrics.nodes.conflict == 0);
+  REQUIRE(!seamed.darts.empty());
+  for (const DartResult& dart : seamed.darts) CHECK(dart.seam);
+  // Measured on the part: every link between mapped nodes that the scan kept has its rest
+  // length (the solver's accuracy), every link it cut is off by more than that (two fronts
+  // that disagree), and a seam passes between its two ends: the seam's point nearest the
+  // link's midpoint on the surface, the seam's direction there (through the points before
+  // and after it), the two ends on the two sides of it (seen along the normal).
+  std::uint64_t kept = 0, cut_links = 0, parted = 0;
+  double kept_err = 0.0, cut_err = INFINITY;
+  auto parts = [&](const Vec3& a, const Vec3& b) {
+    const Projection mid = f.impl().project(0.5 * (a + b));
+    const std::vector<Vec3>* best = nullptr;
+    std::size_t at = 0;
+    for (const DartResult& dart : seamed.darts)
+      for (std::size_t k = 0; k < dart.curve.size(); ++k)
+        if (!best || (dart.curve[k] - mid.point).norm() < ((*best)[at] - mid.point).norm())
+          best = &dart.curve, at = k;
+    const std::vector<Vec3>& c = *best;
+    const Vec3 t = c[std::min(at + 1, c.size() - 1)] - c[at > 0 ? at - 1 : 0];
+    const Vec3 left = f.impl().normal(mid.at).n.cross(t);
+    return ((a - c[at]).dot(left) > 0.0) != ((b - c[at]).dot(left) > 0.0);
   };
-  std::uint64_t conflicts = 0, parted = 0;
-  for (const auto& n : plain.nodes) {
-    if (n.status != NodeStatus::kConflict) continue;
-    ++conflicts;
-    std::vector<Vec3> nb;
-    for (int k = 0; k < 4; ++k)
-      if (const DrapeNode* m = plain.neighbour(n, static_cast<ThreadDir>(k)); m && m->mapped())
-        nb.push_back(m->point);
-    bool across = false;
-    for (std::size_t a = 0; a < nb.size(); ++a)
-      for (std::size_t b = a + 1; b < nb.size(); ++b) across = across || parted_path(nb[a], nb[b]);
-    parted += across;
+  for (std::uint32_t k = 0; k < seamed.nodes.size(); ++k) {
+    const DrapeNode& a = seamed.nodes[k];
+    if (!a.mapped()) continue;
+    for (ThreadDir dir : {ThreadDir::kPlusX, ThreadDir::kPlusY}) {
+      const DrapeNode* b = seamed.neighbour(a, dir);
+      if (!b || !b->mapped()) continue;
+      const double err = std::abs((b->point - a.point).norm() - (b->ply - a.ply).norm()) / d;
+      if (seamed.cut(k, seamed.index_of(*b))) {
+        ++cut_links;
+        cut_err = std::min(cut_err, err);
+        parted += parts(a.point, b->point);
+      } else {
+        ++kept;
+        kept_err = std::max(kept_err, err);
+      }
+    }
   }
-  INFO(conflicts << " conflict nodes, " << parted << " parted by " << added << " seam darts");
-  CHECK(parted == conflicts);
-  // Draped again with them (and the darts from the face's edge): no conflict left.
+  INFO(kept << " links kept (largest error " << kept_err << " d), " << cut_links
+            << " cut (smallest error " << cut_err << " d), " << parted << " parted by a seam");
+  CHECK(kept_err < 1e-9);
+  CHECK(cut_links > 0);
+  CHECK(cut_err > 1e-9);
+  CHECK(parted == cut_links);
+  // Every point of a seam lies on the torus (its distance to the tube's circle is r).
+  const double on_surface = 1e-9 * R;
+  for (const DartResult& dart : seamed.darts)
+    for (const Vec3& p : dart.curve)
+      CHECK(std::abs(std::hypot(std::hypot(p.x(), p.y()) - R, p.z()) - r) <= on_surface);
+  // With automatic darts (from the face's edge, and seams where fronts still meet): no
+  // conflict left.
   const DrapeResult cut = ok(drape_auto_darts(f, pb, DrapeOptions{}, 3));
   INFO("with " << cut.darts.size() << " darts after " << cut.drapes << " drapes: "
                << cut.metrics.nodes.conflict << " conflict, " << cut.metrics.nodes.mapped

@@ -199,6 +199,9 @@ struct DartResult {
   double width_max = 0.0;           ///< largest distance between the cut lines, mm in the ply
   std::uint64_t links_cut = 0;      ///< links between mapped nodes across it, not enforced
   std::uint64_t nodes_cut_out = 0;  ///< ply nodes no side's cloth holds (in the cut-out V)
+  /// A seam: the line where two fronts of cloth met, cut by the scan itself (--darts auto),
+  /// not a curve given or proposed before the drape.
+  bool seam = false;
 };
 
 /// Everything the drape computed.

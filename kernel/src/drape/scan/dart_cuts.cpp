@@ -84,8 +84,8 @@ void Scanner::unpark(std::int32_t k) {
 // After the scan: nodes still parked hold no cloth (off the ply: the dart cut them out, counted
 // per nearest dart), and the cut links go to the result, sorted.
 void Scanner::finish_cuts() {
-  if (!darts_) return;
-  cut_out_.assign(darts_->curves().size(), 0);
+  if (!darts_ && cuts_.empty()) return;
+  cut_out_.assign(darts_ ? darts_->curves().size() : 0, 0);
   std::vector<std::uint32_t> parked(parked_.begin(), parked_.end());
   std::sort(parked.begin(), parked.end());
   for (std::uint32_t k : parked) {
@@ -96,7 +96,7 @@ void Scanner::finish_cuts() {
     for (int d = 0; d < 4 && !m; ++d)
       if (n.nb[d] >= 0 && res_.nodes[static_cast<std::size_t>(n.nb[d])].mapped())
         m = &res_.nodes[static_cast<std::size_t>(n.nb[d])];
-    const int dart = m ? darts_->nearest(m->point) : -1;
+    const int dart = m && darts_ ? darts_->nearest(m->point) : -1;
     if (dart >= 0) ++cut_out_[static_cast<std::size_t>(dart)];
   }
   parked_.clear();

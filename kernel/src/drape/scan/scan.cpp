@@ -286,6 +286,7 @@ void Scanner::step(std::uint32_t qi) {
   } else {
     r = solve_or_reuse(qi, known, nk);
   }
+  if (seams_ && r.fronts_disagree) solve_across_seam(qi, r);
   resolve(qi, r);
   // The cloth can come round onto itself (a closed face, a face that wraps over itself, a
   // net sheared nearly flat), or fold its threads back (folds_back()). In a hole the cloth
@@ -327,9 +328,10 @@ int Scanner::known_neighbours(const DrapeNode& q, Known known[4]) const {
 }
 
 // The pair of known neighbours to solve from: a weft-warp pair whose cell's fourth corner is
-// mapped, then any weft-warp pair, then two neighbours on one thread.
-void Scanner::best_pair(const DrapeNode& q, const Known known[4], int nk, int& best_a,
-                        int& best_b) const {
+// mapped (score 2), then any weft-warp pair (1), then two neighbours on one thread (0); its
+// score.
+int Scanner::best_pair(const DrapeNode& q, const Known known[4], int nk, int& best_a,
+                       int& best_b) const {
   int best_score = -1;
   for (int x = 0; x < nk; ++x) {
     for (int y = x + 1; y < nk; ++y) {
@@ -351,6 +353,7 @@ void Scanner::best_pair(const DrapeNode& q, const Known known[4], int nk, int& b
       }
     }
   }
+  return best_score;
 }
 
 // Node qi from two of its nk >= 2 known neighbours (solver 2), the links to the others checked.

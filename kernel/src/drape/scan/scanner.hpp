@@ -88,6 +88,11 @@ class Scanner {
   /// every solve kept in `next` (nullptr: none kept, none taken); both kept by the caller
   /// during run().
   void memo(const SolveMemo* last, SolveMemo* next);
+  /// Where fronts of cloth meet and disagree at a node, solve it from one front and cut its
+  /// links to the other (a seam: seams.cpp); off by default (the node is a conflict).
+  void seam_where_fronts_meet(bool on);
+  /// The links the seams cut (DrapeResult::link_key), in the order they were cut.
+  const std::vector<std::uint64_t>& seam_links() const { return seam_links_; }
   /// Per dart: the ply nodes no side's cloth holds (their links to both sides cross it).
   const std::vector<std::uint64_t>& cut_out() const { return cut_out_; }
   bool truncated() const { return truncated_; }
@@ -143,13 +148,23 @@ class Scanner {
     const DrapeNode* n;
   };
   int known_neighbours(const DrapeNode& q, Known known[4]) const;
-  void best_pair(const DrapeNode& q, const Known known[4], int nk, int& best_a, int& best_b) const;
+  int best_pair(const DrapeNode& q, const Known known[4], int nk, int& best_a, int& best_b) const;
   SolveResult solve_from_two(std::uint32_t qi, const Known known[4], int nk);
   SolveResult solve_known(std::uint32_t qi, const Known known[4], int nk);
 
   // solve_memo.cpp
   std::uint64_t seen(const DrapeNode& q) const;
   SolveResult solve_or_reuse(std::uint32_t qi, const Known known[4], int nk);
+
+  // seams.cpp
+  struct SeamFront {  // a group of a node's known neighbours (bits of Known[]), ranked
+    unsigned mask = 0;
+    int size = 0;
+    int pair = 0;              // best_pair's score (-1: one neighbour)
+    std::uint32_t newest = 0;  // the latest resolution order among its members
+  };
+  int seam_fronts(const DrapeNode& q, const Known known[4], int nk, SeamFront out[16]) const;
+  bool solve_across_seam(std::uint32_t qi, SolveResult& r);
 
   // dart_cuts.cpp
   bool near_dart(const Known known[4], int nk) const;
@@ -225,6 +240,8 @@ class Scanner {
   std::unordered_set<std::uint64_t> cuts_;    // links across a dart (DrapeResult::link_key)
   std::unordered_set<std::uint32_t> parked_;  // nodes whose cloth so far lies across a dart
   std::vector<std::uint64_t> cut_out_;        // per dart: nodes left parked at the end
+  bool seams_ = false;                        // seam_where_fronts_meet
+  std::vector<std::uint64_t> seam_links_;     // links the seams cut
   const SolveMemo* memo_last_ = nullptr;
   SolveMemo* memo_next_ = nullptr;
   bool curve_along_ = true;  // the curve's later points lie ahead along t3
