@@ -229,8 +229,10 @@ def main():
                 failures.append("%s: width %r and height %r are not in mm" % (path, w, h))
             elif abs(number(w) - vb[2]) > WRITTEN_MM or abs(number(h) - vb[3]) > WRITTEN_MM or vb[:2] != [0, 0]:
                 failures.append("%s: size %s x %s but viewBox %s: not 1 mm per user unit" % (path, w, h, vb))
+            # The red outline is the exact one (the cut outline may leave out pieces of it: cloth
+            # laid twice where a closed shell's cloth meets itself).
             outline = [el for el in root.iter(SVG + "path") if el.get("id") == "outline"]
-            loops = report["flat_outline"]["loops"]
+            loops = report["flat_outline_exact"]["loops"]
             xs = [p[0] for l in loops for p in l["points"]]
             ys = [p[1] for l in loops for p in l["points"]]
             if len(outline) != 1:

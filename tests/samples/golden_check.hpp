@@ -87,12 +87,15 @@ inline const std::vector<std::string> kBoundaryRelative = {
 /// A 0 deg ply's laid angle comes out as round-off: this absolute floor (degrees) is added.
 inline constexpr double kAngleRoundoffDeg = 1e-9;
 
-/// The figures of each dart (darts.md), compared to kGoldenRel (areas) or exactly (counts).
+/// The figures of each dart (darts.md), compared to kGoldenRel (areas) or exactly (counts,
+/// whether it is a seam), and with darts the drapes made, whether the ply was laid and the
+/// conflict nodes left (exactly).
 inline std::vector<std::string> dart_figures(const json& report, bool exact) {
   std::vector<std::string> out;
   if (!report.contains("darts")) return out;
-  static const std::vector<std::string> counts = {"links_cut", "nodes_cut_out"};
+  static const std::vector<std::string> counts = {"links_cut", "nodes_cut_out", "seam"};
   static const std::vector<std::string> areas = {"removed_area", "opening_area"};
+  if (exact) out = {"/darts/drapes", "/darts/laid", "/nodes/conflict"};
   for (std::size_t k = 0; k < report["darts"]["darts"].size(); ++k)
     for (const std::string& f : exact ? counts : areas)
       out.push_back("/darts/darts/" + std::to_string(k) + "/" + f);
