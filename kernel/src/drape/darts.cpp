@@ -196,6 +196,13 @@ bool DartSet::crosses(const DartCurve& c, std::size_t k, const Vec3& p, const Ve
 
 namespace {
 
+// A dart's cut line moves in the ply by at most this many times the curve's step on the part
+// (a cell sheared to 30 degrees stretches a step by 2.7 in the ply) plus kCutLineSlackRel * d
+// (the line passing from one node's cells to the next node's); more is a jump onto cloth
+// from elsewhere in the ply.
+constexpr double kCutLineJump = 4.0;
+constexpr double kCutLineSlackRel = 2.0;
+
 // The ply point of p carried through the cell corner a and its linked weft and warp
 // neighbours (the cell's affine map, least squares in the tangent plane); false where a has
 // no such neighbours or its links are sheared flat.
@@ -269,7 +276,12 @@ void seam_lines(const DartCurve& c, const DrapeResult& res, DartResult& out) {
 // cloth, and a gap on the part where it lies in it.
 void cut_lines(const DartCurve& c, const NearNodes& near, const DrapeResult& res, double reach,
                double min_sin2, DartResult& out) {
-  std::vector<double> away;  // per pair: right line's offset away from the left cloth
+  struct Pair {
+    Vec3 p;
+    Vec2 l, r;
+    double away;  // right line's offset away from the left cloth
+  };
+  std::vector<Pair> pairs;
   for (std::size_t i = 0; i < c.points.size(); ++i) {
     const Vec3& p = c.points[i];
     const DrapeNode* best[2] = {nullptr, nullptr};
@@ -280,16 +292,35 @@ void cut_lines(const DartCurve& c, const NearNodes& near, const DrapeResult& res
       continue;
     const Vec2 cloth = best[0]->ply - l;
     const double cn = cloth.norm();
-    away.push_back(cn > 0.0 ? -(r - l).dot(cloth) / cn : 0.0);
-    out.line_left.push_back(l);
-    out.line_right.push_back(r);
-    out.width_max = std::max(out.width_max, (r - l).norm());
+    pairs.push_back({p, l, r, cn > 0.0 ? -(r - l).dot(cloth) / cn : 0.0});
+  }
+  // The longest run of pairs each of whose lines moves in the ply by no more than
+  // kCutLineJump times the curve's step on the part plus kCutLineSlackRel * d: where the
+  // nearest node on a side is cloth that came round from elsewhere in the ply (a closed
+  // shell's fronts), the line jumps across the pattern.
+  const double slack = kCutLineSlackRel * res.ply->d();
+  std::size_t best_first = 0, best_size = pairs.empty() ? 0 : 1;
+  for (std::size_t first = 0, k = 1; k <= pairs.size(); ++k) {
+    const bool joined = k < pairs.size() && [&] {
+      const double jump = kCutLineJump * (pairs[k].p - pairs[k - 1].p).norm() + slack;
+      return (pairs[k].l - pairs[k - 1].l).norm() <= jump &&
+             (pairs[k].r - pairs[k - 1].r).norm() <= jump;
+    }();
+    if (joined) continue;
+    if (k - first > best_size) best_first = first, best_size = k - first;
+    first = k;
+  }
+  for (std::size_t k = best_first; k < best_first + best_size; ++k) {
+    out.line_left.push_back(pairs[k].l);
+    out.line_right.push_back(pairs[k].r);
+    out.width_max = std::max(out.width_max, (pairs[k].r - pairs[k].l).norm());
   }
   const auto& L = out.line_left;
   const auto& R = out.line_right;
   for (std::size_t i = 0; i + 1 < L.size(); ++i) {
     const double a = quad_area(L[i], L[i + 1], R[i + 1], R[i]);
-    (away[i] + away[i + 1] >= 0.0 ? out.removed_area : out.opening_area) += a;
+    const double away = pairs[best_first + i].away + pairs[best_first + i + 1].away;
+    (away >= 0.0 ? out.removed_area : out.opening_area) += a;
   }
 }
 
