@@ -85,17 +85,29 @@ ArcPoint nearest_on(const Arc& a, const Vec2& x) {
   return best;
 }
 
+// Whether some edge of `a` passes closer than w to x (nearest_on(a, x).dist < w, the same
+// distances, stopping at the first such edge).
+bool within(const Arc& a, const Vec2& x, double w) {
+  for (Index i = 0; i < a.edges(); ++i) {
+    const Vec2 s = a.vertex(i), e = a.vertex(i + 1) - s;
+    const double ee = e.squaredNorm();
+    const double t = ee > 0.0 ? std::clamp((x - s).dot(e) / ee, 0.0, 1.0) : 0.0;
+    if ((s + t * e - x).norm() < w) return true;
+  }
+  return false;
+}
+
 // Walks `a` from its vertex `start` while its points stay closer than w to `other`; the
 // first point where the distance reaches w (found by bisection on the edge, on the side
 // where it is at least w), or none when the arc ends first.
 std::optional<ArcPoint> mouth(const Arc& a, Index start, const Arc& other, double w) {
   for (Index i = start; i < a.edges(); ++i) {
     const Vec2 s = a.vertex(i), e = a.vertex(i + 1) - s;
-    if (nearest_on(other, a.vertex(i + 1)).dist < w) continue;
+    if (within(other, a.vertex(i + 1), w)) continue;
     double lo = 0.0, hi = 1.0;
     for (int it = 0; it < kWidthBisections; ++it) {
       const double mid = 0.5 * (lo + hi);
-      (nearest_on(other, s + mid * e).dist < w ? lo : hi) = mid;
+      (within(other, s + mid * e, w) ? lo : hi) = mid;
     }
     ArcPoint m;
     m.e = i;
