@@ -159,7 +159,7 @@ Region2 OutlineBuilder::dart_notches(const Region2& region) const {
     for (const auto& loop : region) in = in != inside_polygon(loop, p);
     return in;
   };
-  Region2 out;
+  std::vector<Region2> vs;
   for (const DartResult& d : r_.darts) {
     // A seam cuts nothing out: each front keeps its cloth up to the line where they met.
     if (d.seam || !(d.removed_area > d.opening_area) || d.line_left.size() < 2) continue;
@@ -177,9 +177,18 @@ Region2 OutlineBuilder::dart_notches(const Region2& region) const {
     v.insert(v.end(), d.line_left.begin(), d.line_left.end());
     v.insert(v.end(), d.line_right.rbegin(), d.line_right.rend());
     if (open) v.push_back(mr);
-    out = unite_regions(out, {v});
+    vs.push_back({std::move(v)});
   }
-  return out;
+  // United two by two (a balanced tree): each V unites with regions of its own size, not
+  // with the whole union so far (with a hundred darts that was most of the flat pattern).
+  while (vs.size() > 1) {
+    std::vector<Region2> next;
+    for (std::size_t k = 0; k + 1 < vs.size(); k += 2)
+      next.push_back(unite_regions(vs[k], vs[k + 1]));
+    if (vs.size() % 2 == 1) next.push_back(std::move(vs.back()));
+    vs = std::move(next);
+  }
+  return vs.empty() ? Region2{} : std::move(vs.front());
 }
 
 // The loops without the darts' V: the even-odd region of the loops and of their part in the V
