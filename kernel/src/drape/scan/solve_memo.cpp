@@ -45,6 +45,7 @@ void Scanner::memo(const SolveMemo* last, SolveMemo* next) {
   memo_last_ = last;
   memo_next_ = next;
   if (next) next->nodes.reserve(res_.nodes.capacity());
+  if (next) next->index = res_.index;
 }
 
 // The hash of what q's solve reads: q's neighbours (status; whether the cloth goes on from
@@ -75,11 +76,12 @@ SolveResult Scanner::solve_or_reuse(std::uint32_t qi, const Known known[4], int 
   constexpr std::uint8_t kSolveFlags =
       DrapeNode::kSolvedTwo | DrapeNode::kFromPlusX | DrapeNode::kFromPlusY;
   DrapeNode& q = node(qi);
-  const std::uint64_t key = q.id.key(), h = seen(q);
-  if (memo_last_) {
-    auto it = memo_last_->nodes.find(key);
-    if (it != memo_last_->nodes.end() && it->second.seen == h) {
-      const SolveMemo::Entry& e = it->second;
+  const std::uint64_t h = seen(q);
+  if (memo_next_->nodes.size() <= qi) memo_next_->nodes.resize(qi + 1);
+  const std::int64_t k = memo_last_ && memo_last_->index ? memo_last_->index->find(q.id) : -1;
+  if (k >= 0 && static_cast<std::size_t>(k) < memo_last_->nodes.size()) {
+    const SolveMemo::Entry& e = memo_last_->nodes[static_cast<std::size_t>(k)];
+    if (e.kept && e.seen == h) {
       q.flags = static_cast<std::uint8_t>((q.flags & ~kSolveFlags) | e.flags);
       if (e.guess != 0) {
         if (guess_kind_.size() <= qi) {
@@ -90,19 +92,20 @@ SolveResult Scanner::solve_or_reuse(std::uint32_t qi, const Known known[4], int 
         guess_kind_[qi] = static_cast<GuessKind>(e.guess);
       }
       ++memo_next_->reused;
-      memo_next_->nodes[key] = e;
+      memo_next_->nodes[qi] = e;
       SolveResult r = e.r;
       r.iterations = r.evaluations = 0;  // no solver work done
       return r;
     }
   }
   SolveResult r = solve_known(qi, known, nk);
-  SolveMemo::Entry e{h, r, static_cast<std::uint8_t>(q.flags & kSolveFlags)};
+  SolveMemo::Entry& e = memo_next_->nodes[qi];
+  e = SolveMemo::Entry{h, r, static_cast<std::uint8_t>(q.flags & kSolveFlags)};
+  e.kept = true;
   if (qi < guess_kind_.size() && guess_kind_[qi] != GuessKind::kNone) {
     e.du = guess_error_[qi].du, e.dv = guess_error_[qi].dv;
     e.guess = static_cast<std::uint8_t>(guess_kind_[qi]);
   }
-  memo_next_->nodes[key] = e;
   return r;
 }
 
