@@ -19,8 +19,11 @@ namespace {
 constexpr double kDartSpacingRel = 3.0;
 // At most this many new darts per drape.
 constexpr std::size_t kDartsPerDrape = 64;
-// A dart's tip lies this many spacings short of the stop it is for, towards the start.
+// A dart's tip lies at least this many spacings short of the stop it is for, towards the
+// start, and under a lock on until the cloth there is sheared less than the lock by
+// kTipShearMargin (radians), at most half-way to the start.
 constexpr double kTipInsideRel = 4.0;
+constexpr double kTipShearMargin = 10.0 * kDegToRad;
 // The walk out of a zone steps this many spacings along the surface.
 constexpr double kWalkStepRel = 0.5;
 
@@ -63,38 +66,76 @@ Vec2 snapped_direction(const Vec2& from_start) {
   return Vec2(std::cos(a), std::sin(a));
 }
 
-// The 3D direction of ply direction u at mapped node n, through its linked weft and warp
-// neighbours (zero if it has none).
-Vec3 direction_at(const DrapeResult& r, const DrapeNode& n, const Vec2& u) {
-  Vec3 e[2];
+// The 3D directions of the weft and the warp at mapped node n (per unit of ply), through its
+// linked neighbours; false where it has none on a thread.
+bool threads_at(const DrapeResult& r, const DrapeNode& n, Vec3 e[2]) {
   const ThreadDir dirs[2][2] = {{ThreadDir::kPlusX, ThreadDir::kMinusX},
                                 {ThreadDir::kPlusY, ThreadDir::kMinusY}};
   for (int a = 0; a < 2; ++a) {
     const DrapeNode* m = r.linked(n, dirs[a][0]);
     if (!m || !m->mapped()) m = r.linked(n, dirs[a][1]);
-    if (!m || !m->mapped()) return Vec3::Zero();
+    if (!m || !m->mapped()) return false;
     const double dp = (m->ply - n.ply)[a];
-    if (dp == 0.0) return Vec3::Zero();
+    if (dp == 0.0) return false;
     e[a] = (m->point - n.point) / dp;
   }
-  return e[0] * u.x() + e[1] * u.y();
+  return true;
 }
+
+// The 3D direction of ply direction u at mapped node n (zero where threads_at finds none).
+Vec3 direction_at(const DrapeResult& r, const DrapeNode& n, const Vec2& u) {
+  Vec3 e[2];
+  return threads_at(r, n, e) ? Vec3(e[0] * u.x() + e[1] * u.y()) : Vec3::Zero();
+}
+
+// The mapped nodes by position, and the shear of the cloth near a point: that of the nearest
+// mapped node within a spacing (|90 deg - thread angle|; none: -1).
+struct ShearMap {
+  const DrapeResult& r;
+  detail::NodeGrid grid;
+  explicit ShearMap(const DrapeResult& res) : r(res) {
+    grid.cell = r.ply->d();
+    for (std::uint32_t k = 0; k < r.nodes.size(); ++k)
+      if (r.nodes[k].mapped()) grid.add(r.nodes[k].point, k);
+  }
+  double at(const Vec3& p) const {
+    const DrapeNode* best = nullptr;
+    double best_d = grid.cell;
+    grid.around(p, [&](std::uint32_t k) {
+      const double dist = (r.nodes[k].point - p).norm();
+      if (dist < best_d) best_d = dist, best = &r.nodes[k];
+    });
+    Vec3 e[2];
+    if (!best || !threads_at(r, *best, e)) return -1.0;
+    return std::abs(0.5 * kPi - std::atan2(e[0].cross(e[1]).norm(), e[0].dot(e[1])));
+  }
+};
 
 // The dart for the stop next to mapped node n: along the snapped direction from the start to n,
 // from the face's edge (or the surface's size away) to kTipInsideRel spacings short of n
 // towards the start (its tip, in cloth sheared less). None (no points) when the tip would lie
 // farther than `tip_within` from the start (3D): the tip is walked first.
-detail::DartCurve walk_out(const DrapeSurface& s, const DrapeResult& r, const DrapeNode& n,
-                           double tip_within) {
+detail::DartCurve walk_out(const DrapeSurface& s, const DrapeResult& r, const ShearMap& shear,
+                           const DrapeNode& n, double tip_within) {
   const Vec2 from = n.ply - r.ply->spec().start;
   if (!(from.norm() > 0.0)) return {};
   const Vec3 dir = direction_at(r, n, snapped_direction(from));
   const SurfaceNormal at_n = s.normal(n.at());
   if (!(dir.norm() > 0.0) || !at_n.ok) return {};
   const double h = kWalkStepRel * r.ply->d();
-  const double inside = std::min(kTipInsideRel * r.ply->d(), 0.5 * from.norm());
+  const double least = std::min(kTipInsideRel * r.ply->d(), 0.5 * from.norm());
+  const double lock = 0.5 * kPi - r.gamma_min_limit;  // pi/2: no lock
+  const bool locked = r.gamma_min_limit > 0.0;
   detail::DartCurve in, out, dart;
-  detail::walk_on_surface(s, n.point, -dir, h, inside, in);
+  // Under a lock the tip lies where the cloth is sheared less than the lock by the margin.
+  auto enough = [&](const Vec3& p) {
+    const double g = shear.at(p);
+    return in.length >= least && g >= 0.0 && g <= lock - kTipShearMargin;
+  };
+  if (locked)
+    detail::walk_on_surface(s, n.point, -dir, h, 0.5 * from.norm(), in, enough);
+  else
+    detail::walk_on_surface(s, n.point, -dir, h, least, in);
   const Vec3 tip = in.points.empty() ? n.point : in.points.back();
   if ((tip - r.start_point).norm() > tip_within) return {};
   detail::walk_on_surface(s, n.point, dir, h, s.size(), out);
@@ -118,6 +159,7 @@ double distance_to_curve(const std::vector<Vec3>& c, const Vec3& p) {
 bool propose_darts(const DrapeSurface& s, const DrapeResult& r,
                    std::vector<detail::DartCurve>& darts) {
   std::vector<std::uint32_t> fronts = front_nodes(r);
+  const ShearMap shear(r);
   const Vec2 start = r.ply->spec().start;
   auto from_start = [&](std::uint32_t k) { return (r.nodes[k].ply - start).norm(); };
   std::stable_sort(fronts.begin(), fronts.end(),
@@ -138,14 +180,14 @@ bool propose_darts(const DrapeSurface& s, const DrapeResult& r,
       // Walked only when its tip (kTipInsideRel spacings in from the node) can lie nearer.
       const double reach = (tip.point - start3).norm() - kTipInsideRel * d;
       if (i >= walked.size() || walked[i] || reach > tip_now - d) continue;
-      detail::DartCurve dart = walk_out(s, r, tip, tip_now - d);
+      detail::DartCurve dart = walk_out(s, r, shear, tip, tip_now - d);
       if (dart.points.size() < 2) continue;
       *near = std::move(dart);
       walked[i] = changed = true;
       continue;
     }
     if (darts.size() - given >= kDartsPerDrape) continue;
-    detail::DartCurve dart = walk_out(s, r, tip, INFINITY);
+    detail::DartCurve dart = walk_out(s, r, shear, tip, INFINITY);
     if (dart.points.size() < 2) continue;
     darts.push_back(std::move(dart));
     changed = true;

@@ -1,8 +1,10 @@
 // Darts: the curves on the surface, the crossing test the scan asks, and the cut lines.
 #include "drape/darts.hpp"
+#include "geometry/numeric.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <unordered_map>
 
 namespace plyfit::detail {
@@ -66,12 +68,49 @@ void DartCurve::add(const Vec3& p, const Vec3& n, std::uint64_t link) {
   normals.push_back(n);
 }
 
+namespace {
+
+// A walk's step is projected by Gauss-Newton from the last point's location while it settles
+// within kWalkSettleSteps steps to kWalkSettleRel of the walk's step (the global projection
+// otherwise: past the face's edge, or where it does not settle).
+constexpr int kWalkSettleSteps = 8;
+constexpr double kWalkSettleRel = 1e-9;
+
+// The point of `s` nearest to t, by Gauss-Newton from `at` across the shell's shared edges
+// (DrapeSurface::locate); none when it does not settle to `tol` or leaves the surface.
+std::optional<Projection> project_near(const DrapeSurface& s, SurfaceLocation at, const Vec3& t,
+                                       double tol) {
+  for (int k = 0; k < kWalkSettleSteps; ++k) {
+    const SurfaceEval1 e = s.eval1(at);
+    if (!e.ok) return std::nullopt;
+    const Vec2 step = detail::metric_solve(e, t - e.p);
+    at = s.locate(at, at.uv + step);
+    if ((e.du * step.x() + e.dv * step.y()).norm() > tol) continue;
+    const SurfaceEval1 f = s.eval1(at);
+    if (!f.ok || !s.contains(at)) return std::nullopt;
+    return Projection{at, f.p, (t - f.p).norm(), true};
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 // Each step projected, the direction kept along the last step.
 WalkEnd walk_on_surface(const DrapeSurface& s, Vec3 p, Vec3 dir, double h, double length,
                         DartCurve& c) {
+  return walk_on_surface(s, p, dir, h, length, c, nullptr);
+}
+
+WalkEnd walk_on_surface(const DrapeSurface& s, Vec3 p, Vec3 dir, double h, double length,
+                        DartCurve& c, const std::function<bool(const Vec3&)>& enough) {
   const int steps = static_cast<int>(std::ceil(length / h));
+  std::optional<SurfaceLocation> at;  // the last point's, once projected
   for (int k = 0; k < steps; ++k) {
-    const Projection pr = s.project(p + h * dir.normalized());
+    const Vec3 target = p + h * dir.normalized();
+    std::optional<Projection> near =
+        at ? project_near(s, *at, target, kWalkSettleRel * h) : std::nullopt;
+    const Projection pr = near ? *near : s.project(target);
+    at = pr.at;
     // A crease the surface turns away at: the step lands farther than its length from it.
     if (!pr.ok || pr.distance > h) return WalkEnd::kCrease;
     // The face's edge: the step, projected, is shorter than half its length.
@@ -82,6 +121,7 @@ WalkEnd walk_on_surface(const DrapeSurface& s, Vec3 p, Vec3 dir, double h, doubl
     c.add(pr.point, n.n);
     dir = step;
     p = pr.point;
+    if (enough && enough(p)) break;
   }
   return WalkEnd::kLength;
 }

@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <unordered_map>
 #include <vector>
 
@@ -49,6 +50,9 @@ enum class WalkEnd : std::uint8_t { kEdge, kCrease, kLength };
 /// points are kept with their normals (a dart's curve: not projected again).
 WalkEnd walk_on_surface(const DrapeSurface& s, Vec3 p, Vec3 dir, double h, double length,
                         DartCurve& c);
+/// The same, also ended after the first point for which `enough` holds (kLength).
+WalkEnd walk_on_surface(const DrapeSurface& s, Vec3 p, Vec3 dir, double h, double length,
+                        DartCurve& c, const std::function<bool(const Vec3&)>& enough);
 
 /// Items by 3D position in cubes of side `cell` (a hash of their integer coordinates).
 template <class T>
