@@ -195,8 +195,11 @@ bool propose_darts(const DrapeSurface& s, const DrapeResult& r,
   return changed;
 }
 
+// No conflict and no shear-limit node (counted: the drapes made again are measured only when
+// kept).
 bool laid(const DrapeResult& r) {
-  return r.metrics.nodes.conflict == 0 && r.metrics.nodes.shear_limit == 0;
+  return detail::count_status(r, NodeStatus::kConflict) == 0 &&
+         detail::count_status(r, NodeStatus::kShearLimit) == 0;
 }
 
 }  // namespace
@@ -204,33 +207,37 @@ bool laid(const DrapeResult& r) {
 Result<DrapeResult> drape_auto_darts(const DrapeSurface& s, const DrapeProblem& problem,
                                      const DrapeOptions& opt, int max_drapes) {
   detail::SolveMemo memo[2];  // the last drape's solves, and the next one's
-  auto r = drape(s, problem, opt, detail::Redrape{nullptr, nullptr, &memo[0], true});
-  if (!r) return r;
+  auto first =
+      detail::scan_drape(s, problem, opt, detail::Redrape{nullptr, nullptr, &memo[0], true});
+  if (!first) return first.error();
+  detail::ScannedDrape cur = std::move(first).value();
   // The given darts as the first drape took them, then the walked ones: each dart is put on
   // the surface once.
-  auto given = detail::DartSet::create(s, problem.darts, r->ply->d(), opt.tol);
-  if (!given) return given.error();
-  std::vector<detail::DartCurve> darts = given->curves();
+  std::vector<detail::DartCurve> darts = cur.darts->curves();
   int drapes = 1;
-  while (!laid(*r) && drapes < max_drapes && propose_darts(s, *r, darts)) {
-    const detail::DartSet set = detail::DartSet::of(darts, r->ply->d());
+  std::uint64_t reused = 0;
+  while (!laid(cur.res) && drapes < max_drapes && propose_darts(s, cur.res, darts)) {
+    auto set =
+        std::make_shared<const detail::DartSet>(detail::DartSet::of(darts, cur.res.ply->d()));
     detail::SolveMemo& last = memo[(drapes - 1) % 2];
     detail::SolveMemo& next = memo[drapes % 2];
     next = detail::SolveMemo{};
-    auto again = drape(s, problem, opt, detail::Redrape{&set, &last, &next, true});
-    if (!again) return again;
-    r = std::move(again);
-    r->solves_reused = next.reused;
+    auto again = detail::scan_drape(s, problem, opt, detail::Redrape{set, &last, &next, true});
+    if (!again) return again.error();
+    cur = std::move(again).value();
+    reused = next.reused;
     ++drapes;
   }
-  r->drapes = static_cast<std::uint32_t>(drapes);
-  r->darts_auto = true;
-  if (!laid(*r)) {
-    r->partial = true;
-    r->warnings.push_back({WarningCode::kDartsNotEnough,
-                           {static_cast<std::int64_t>(r->metrics.nodes.conflict),
-                            static_cast<std::int64_t>(r->metrics.nodes.shear_limit),
-                            static_cast<std::int64_t>(drapes)}});
+  DrapeResult r = detail::measure_drape(s, problem, opt, std::move(cur));
+  r.solves_reused = reused;
+  r.drapes = static_cast<std::uint32_t>(drapes);
+  r.darts_auto = true;
+  if (!laid(r)) {
+    r.partial = true;
+    r.warnings.push_back({WarningCode::kDartsNotEnough,
+                          {static_cast<std::int64_t>(r.metrics.nodes.conflict),
+                           static_cast<std::int64_t>(r.metrics.nodes.shear_limit),
+                           static_cast<std::int64_t>(drapes)}});
   }
   return r;
 }

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 namespace plyfit {
 
@@ -272,12 +273,12 @@ Status pair_sweeps(const DrapeProblem& pb, const Ply& P, const Tolerances& tol, 
 
 // Warnings of the scan's stops: cancelled, the node cap, cloth on cloth, failed and
 // conflicting nodes.
-void warn_scan_stops(const detail::Scanner& scanner, const DrapeOptions& opt, DrapeResult& res) {
-  if (scanner.cancelled()) {
+void warn_scan_stops(const detail::ScannedDrape& sd, const DrapeOptions& opt, DrapeResult& res) {
+  if (sd.cancelled) {
     res.partial = true;
     res.warnings.push_back({WarningCode::kCancelled, {}});
   }
-  if (scanner.truncated()) {
+  if (sd.truncated) {
     res.partial = true;
     res.warnings.push_back({WarningCode::kNodeCap, {count(opt.max_nodes)}});
   }
@@ -297,39 +298,46 @@ void warn_scan_stops(const detail::Scanner& scanner, const DrapeOptions& opt, Dr
 
 // Warnings of threads that end inside the surface: outside nodes where a thread could not
 // follow it, a slit along the base path's line.
-void warn_thread_ends(const detail::Scanner& scanner, DrapeResult& res) {
-  if (const auto& te = scanner.thread_ends(); te.nodes > 0)
+void warn_thread_ends(const detail::ScannedDrape& sd, DrapeResult& res) {
+  if (sd.thread_end_nodes > 0)
     res.warnings.push_back(
-        {WarningCode::kThreadEnds, {count(te.nodes), te.first.x(), te.first.y()}});
-  if (const auto slit = scanner.path_slits(); slit.links > 0) {
+        {WarningCode::kThreadEnds,
+         {count(sd.thread_end_nodes), sd.thread_end_first.x(), sd.thread_end_first.y()}});
+  if (sd.slit_links > 0) {
     res.partial = true;
     res.warnings.push_back(
-        {WarningCode::kPathSlit, {slit.stop.x(), slit.stop.y(), count(slit.links)}});
+        {WarningCode::kPathSlit, {sd.slit_stop.x(), sd.slit_stop.y(), count(sd.slit_links)}});
   }
 }
 
 // The darts' cut lines, and the seams the scan cut (after the darts, marked).
-void lay_darts_and_seams(const DrapeSurface& s, const detail::DartSet& darts,
-                         const detail::Scanner& scanner, const Tolerances& tol, DrapeResult& res) {
-  if (scanner.seam_links().empty()) {
-    detail::lay_darts(s, darts, scanner.cut_out(), tol, res);
+void lay_darts_and_seams(const DrapeSurface& s, const detail::ScannedDrape& sd,
+                         const Tolerances& tol, DrapeResult& res) {
+  const detail::DartSet& darts = *sd.darts;
+  if (sd.seam_links.empty()) {
+    detail::lay_darts(s, darts, sd.cut_out, tol, res);
     return;
   }
   std::vector<detail::DartCurve> all = darts.curves();
-  std::vector<detail::DartCurve> seams = detail::seam_curves(s, res, scanner.seam_links());
+  std::vector<detail::DartCurve> seams = detail::seam_curves(s, res, sd.seam_links);
   all.insert(all.end(), std::make_move_iterator(seams.begin()),
              std::make_move_iterator(seams.end()));
-  detail::lay_darts(s, detail::DartSet::of(std::move(all), res.ply->d()), scanner.cut_out(), tol,
-                    res);
+  detail::lay_darts(s, detail::DartSet::of(std::move(all), res.ply->d()), sd.cut_out, tol, res);
   for (std::size_t k = darts.curves().size(); k < res.darts.size(); ++k) res.darts[k].seam = true;
 }
 
-// The scan (§6.2) from the base path along t3, then the metrics.
-void scan_and_measure(const DrapeSurface& s, const DrapeOptions& opt, const Vec3& t3,
-                      detail::Scanner& scanner, DrapeResult& res) {
-  scanner.run(t3);
-  detail::compute_metrics(s, opt.tol, res);
-  res.metrics.nodes.off_ply += scanner.path_off_ply();
+// What the scan leaves for the steps after it.
+void keep_scan_facts(const detail::Scanner& scanner, detail::ScannedDrape& sd) {
+  sd.cut_out = scanner.cut_out();
+  sd.seam_links = scanner.seam_links();
+  sd.cancelled = scanner.cancelled();
+  sd.truncated = scanner.truncated();
+  sd.path_off_ply = scanner.path_off_ply();
+  sd.thread_end_nodes = scanner.thread_ends().nodes;
+  sd.thread_end_first = scanner.thread_ends().first;
+  const auto slit = scanner.path_slits();
+  sd.slit_links = slit.links;
+  sd.slit_stop = slit.stop;
 }
 
 }  // namespace
@@ -340,11 +348,21 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
 
 Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const DrapeOptions& opt,
                           const detail::Redrape& again) {
+  auto scanned = detail::scan_drape(s, pb, opt, again);
+  if (!scanned) return scanned.error();
+  return detail::measure_drape(s, pb, opt, std::move(scanned).value());
+}
+
+namespace detail {
+
+Result<ScannedDrape> scan_drape(const DrapeSurface& s, const DrapeProblem& pb,
+                                const DrapeOptions& opt, const Redrape& again) {
   const auto t0 = std::chrono::steady_clock::now();
   auto ply = Ply::create(pb.ply, opt.tol);
   if (!ply) return ply.error();
   if (auto ok = check_problem(pb, opt); !ok) return ok.error();
-  DrapeResult res;
+  ScannedDrape sd;
+  DrapeResult& res = sd.res;
   res.index = std::make_shared<NodeIndex>();
   Vec3 n0 = Vec3::Zero();  // the normal at the start
   auto t3 = place_start(s, pb, res, n0);
@@ -358,26 +376,51 @@ Result<DrapeResult> drape(const DrapeSurface& s, const DrapeProblem& pb, const D
   res.ply = mply;
   res.nodes.reserve(
       expected_nodes(s, *mply, res.start_point, res.base_normal, pb.sweeps, opt.max_nodes));
-  auto given = again.darts ? Result<detail::DartSet>(detail::DartSet())
-                           : detail::DartSet::create(s, pb.darts, mply->d(), opt.tol);
-  if (!given) return given.error();
-  const detail::DartSet& darts = again.darts ? *again.darts : *given;
-  detail::Scanner scanner(s, *mply, opt, res);  // sized by the reserve
-  if (*curve) scanner.follow(&**curve);
-  scanner.cut_along(&darts);
-  scanner.memo(again.last, again.next);
-  scanner.seam_where_fronts_meet(again.seams);
-  scan_and_measure(s, opt, *t3, scanner, res);
-  lay_darts_and_seams(s, darts, scanner, opt.tol, res);
-  warn_scan_stops(scanner, opt, res);
+  if (again.darts) {
+    sd.darts = again.darts;
+  } else {
+    auto given = DartSet::create(s, pb.darts, mply->d(), opt.tol);
+    if (!given) return given.error();
+    sd.darts = std::make_shared<const DartSet>(std::move(given).value());
+  }
+  {
+    Scanner scanner(s, *mply, opt, res);  // sized by the reserve
+    if (*curve) scanner.follow(&**curve);
+    scanner.cut_along(sd.darts.get());
+    scanner.memo(again.last, again.next);
+    scanner.seam_where_fronts_meet(again.seams);
+    scanner.run(*t3);  // the scan of §6.2 from the base path along t3
+    keep_scan_facts(scanner, sd);
+  }
+  sd.scan_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return sd;
+}
+
+DrapeResult measure_drape(const DrapeSurface& s, const DrapeProblem& pb, const DrapeOptions& opt,
+                          ScannedDrape sd) {
+  const auto t0 = std::chrono::steady_clock::now();
+  DrapeResult res = std::move(sd.res);
+  compute_metrics(s, opt.tol, res);
+  res.metrics.nodes.off_ply += sd.path_off_ply;
+  lay_darts_and_seams(s, sd, opt.tol, res);
+  warn_scan_stops(sd, opt, res);
   warn_path_ends(s, res);
-  warn_thread_ends(scanner, res);
-  judge_drape(s, pb, opt.tol, !scanner.cancelled() && !scanner.truncated(), res);
+  warn_thread_ends(sd, res);
+  judge_drape(s, pb, opt.tol, !sd.cancelled && !sd.truncated, res);
   if (!res.partial) warn_uncovered(s, res);
   res.drape_ms =
+      sd.scan_ms +
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return res;
 }
+
+std::uint64_t count_status(const DrapeResult& r, NodeStatus status) {
+  return static_cast<std::uint64_t>(std::count_if(
+      r.nodes.begin(), r.nodes.end(), [&](const DrapeNode& n) { return n.status == status; }));
+}
+
+}  // namespace detail
 
 void release_drape_scratch() {
   detail::OverlapGrid::release_thread_spare();

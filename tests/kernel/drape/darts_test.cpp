@@ -175,8 +175,9 @@ TEST_CASE("darts: a drape made again takes the unchanged solves and lays what a 
   auto darts = detail::DartSet::create(f.impl(), {curve}, d, Tolerances{});
   REQUIRE(darts);
   detail::SolveMemo next;
-  const DrapeResult again = ok(drape(f.impl(), pb, {}, detail::Redrape{&*darts, &first, &next}));
-  const DrapeResult fresh = ok(drape(f.impl(), pb, {}, detail::Redrape{&*darts}));
+  const auto set = std::make_shared<const detail::DartSet>(*darts);
+  const DrapeResult again = ok(drape(f.impl(), pb, {}, detail::Redrape{set, &first, &next}));
+  const DrapeResult fresh = ok(drape(f.impl(), pb, {}, detail::Redrape{set}));
   INFO("nodes " << fresh.nodes.size() << ", solves taken from the drape before " << next.reused);
   CHECK(next.reused > 0);
   CHECK(next.reused < fresh.nodes.size());
