@@ -151,6 +151,36 @@ double distance_to_curve(const std::vector<Vec3>& c, const Vec3& p) {
   return best;
 }
 
+// The darts' points by position in cubes of side `within`: the first dart (in order) with a
+// point within `within` of p has a point in the 27 cubes about p. A dart walked again adds its
+// new points; its old ones stay listed and are measured against its curve as it is now.
+class DartsNear {
+ public:
+  DartsNear(const std::vector<detail::DartCurve>& darts, double within)
+      : darts_(darts), within_(within) {
+    grid_.cell = within;
+    for (std::uint32_t k = 0; k < darts.size(); ++k) add(k);
+  }
+  void add(std::uint32_t k) {
+    for (const Vec3& p : darts_[k].points) grid_.add(p, k);
+  }
+  /// The first dart with a point within `within` of p (-1: none).
+  std::int64_t first(const Vec3& p) const {
+    std::vector<std::uint32_t> ks;
+    grid_.around(p, [&](std::uint32_t k) { ks.push_back(k); });
+    std::sort(ks.begin(), ks.end());
+    ks.erase(std::unique(ks.begin(), ks.end()), ks.end());
+    for (std::uint32_t k : ks)
+      if (distance_to_curve(darts_[k].points, p) <= within_) return k;
+    return -1;
+  }
+
+ private:
+  const std::vector<detail::DartCurve>& darts_;
+  double within_;
+  detail::NodeGrid grid_;
+};
+
 // New or lengthened darts for the drape's stops; false when it proposes none. The nodes next
 // to a stop are taken nearest the start first; each starts a dart unless a dart passes within
 // kDartSpacingRel * d of it: then that dart is walked again from it if the new tip lies nearer
@@ -168,21 +198,20 @@ bool propose_darts(const DrapeSurface& s, const DrapeResult& r,
   const Vec3& start3 = r.start_point;
   const std::size_t given = darts.size();
   std::vector<bool> walked(darts.size(), false);
+  DartsNear near_darts(darts, spacing);
   bool changed = false;
   for (std::uint32_t f : fronts) {
     const DrapeNode& tip = r.nodes[f];
-    auto near = std::find_if(darts.begin(), darts.end(), [&](const detail::DartCurve& c) {
-      return distance_to_curve(c.points, tip.point) <= spacing;
-    });
-    if (near != darts.end()) {
-      const auto i = static_cast<std::size_t>(near - darts.begin());
-      const double tip_now = (near->points.back() - start3).norm();
+    if (const std::int64_t near = near_darts.first(tip.point); near >= 0) {
+      const auto i = static_cast<std::size_t>(near);
+      const double tip_now = (darts[i].points.back() - start3).norm();
       // Walked only when its tip (kTipInsideRel spacings in from the node) can lie nearer.
       const double reach = (tip.point - start3).norm() - kTipInsideRel * d;
       if (i >= walked.size() || walked[i] || reach > tip_now - d) continue;
       detail::DartCurve dart = walk_out(s, r, shear, tip, tip_now - d);
       if (dart.points.size() < 2) continue;
-      *near = std::move(dart);
+      darts[i] = std::move(dart);
+      near_darts.add(static_cast<std::uint32_t>(i));
       walked[i] = changed = true;
       continue;
     }
@@ -190,6 +219,7 @@ bool propose_darts(const DrapeSurface& s, const DrapeResult& r,
     detail::DartCurve dart = walk_out(s, r, shear, tip, INFINITY);
     if (dart.points.size() < 2) continue;
     darts.push_back(std::move(dart));
+    near_darts.add(static_cast<std::uint32_t>(darts.size() - 1));
     changed = true;
   }
   return changed;
