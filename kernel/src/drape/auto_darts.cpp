@@ -112,9 +112,11 @@ struct ShearMap {
 };
 
 // The dart for the stop next to mapped node n: along the snapped direction from the start to n,
-// from the face's edge (or the surface's size away) to kTipInsideRel spacings short of n
-// towards the start (its tip, in cloth sheared less). None (no points) when the tip would lie
-// farther than `tip_within` from the start (3D): the tip is walked first.
+// from the face's edge (or the surface's size away) to its tip short of n towards the start,
+// in cloth sheared less: kTipInsideRel spacings at least, and under a lock on until `shear`
+// there is kTipShearMargin below the lock, at most half-way to the start. None (no points)
+// when the tip would lie farther than `tip_within` from the start (3D): the tip is walked
+// first.
 detail::DartCurve walk_out(const DrapeSurface& s, const DrapeResult& r, const ShearMap& shear,
                            const DrapeNode& n, double tip_within) {
   const Vec2 from = n.ply - r.ply->spec().start;
@@ -129,8 +131,9 @@ detail::DartCurve walk_out(const DrapeSurface& s, const DrapeResult& r, const Sh
   detail::DartCurve in, out, dart;
   // Under a lock the tip lies where the cloth is sheared less than the lock by the margin.
   auto enough = [&](const Vec3& p) {
+    if (in.length < least) return false;
     const double g = shear.at(p);
-    return in.length >= least && g >= 0.0 && g <= lock - kTipShearMargin;
+    return g >= 0.0 && g <= lock - kTipShearMargin;
   };
   if (locked)
     detail::walk_on_surface(s, n.point, -dir, h, 0.5 * from.norm(), in, enough);

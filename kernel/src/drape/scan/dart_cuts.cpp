@@ -54,8 +54,7 @@ bool Scanner::solve_beside_darts(std::uint32_t qi, const Known known[4], int nk,
       if (group[x] == g) sub[ns++] = known[x];
     // A group's solve from a weft and a warp neighbour marks the node (set_solved_from); the
     // group that holds it marks it again.
-    node(qi).flags &= static_cast<std::uint8_t>(
-        ~(DrapeNode::kSolvedTwo | DrapeNode::kFromPlusX | DrapeNode::kFromPlusY));
+    node(qi).flags &= static_cast<std::uint8_t>(~kSolveFlags);
     SolveResult t = solve_known(qi, sub, ns);
     bool across = false;
     for (int x = 0; x < ns && lands(s_, t); ++x)

@@ -119,6 +119,9 @@ class Scanner {
 
  private:
   DrapeNode& node(std::uint32_t k) { return res_.nodes[k]; }
+  // The flags a node's solve sets (set_solved_from): cleared before a solve tried again.
+  static constexpr std::uint8_t kSolveFlags =
+      DrapeNode::kSolvedTwo | DrapeNode::kFromPlusX | DrapeNode::kFromPlusY;
 
   // scan.cpp
   std::optional<NodeId> neighbour_id(const NodeId& id, ThreadDir d) const;

@@ -48,8 +48,6 @@ int Scanner::seam_fronts(const DrapeNode& q, const Known known[4], int nk,
 // disagree), its links to the others cut (a seam). False, r and the node's flags as they were,
 // when no group holds it.
 bool Scanner::solve_across_seam(std::uint32_t qi, SolveResult& r) {
-  constexpr std::uint8_t kSolveFlags =
-      DrapeNode::kSolvedTwo | DrapeNode::kFromPlusX | DrapeNode::kFromPlusY;
   Known known[4];
   const int nk = known_neighbours(node(qi), known);
   if (nk < 2) return false;

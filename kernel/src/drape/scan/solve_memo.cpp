@@ -73,8 +73,6 @@ std::uint64_t Scanner::seen(const DrapeNode& q) const {
 // the next drape.
 SolveResult Scanner::solve_or_reuse(std::uint32_t qi, const Known known[4], int nk) {
   if (!memo_next_) return solve_known(qi, known, nk);
-  constexpr std::uint8_t kSolveFlags =
-      DrapeNode::kSolvedTwo | DrapeNode::kFromPlusX | DrapeNode::kFromPlusY;
   DrapeNode& q = node(qi);
   const std::uint64_t h = seen(q);
   if (memo_next_->nodes.size() <= qi) memo_next_->nodes.resize(qi + 1);
