@@ -70,7 +70,8 @@ exporters::PlySheet sheet_of(const PlyRun& r) {
   s.name = r.ply.name;
   if (r.job) {
     s.angle_deg = r.job->ply_angle_deg;
-    s.material = r.job->material_label.empty() ? r.job->material : r.job->material_label;
+    s.material =
+        r.job->exports.material_label.empty() ? r.job->material : r.job->exports.material_label;
   } else {  // its keys are wrong: what they say, as far as it reads
     const Options o(r.ply.raw, drape_options());
     const auto angle = o.number("ply-angle");

@@ -239,18 +239,18 @@ Status read_boundary(const Options& o, DrapeJob& job) {
 // The material: its warning and limit angles are the defaults of --warn-angle and
 // --lock-angle.
 Status read_material(const Options& o, DrapeJob& job) {
-  if (auto f = o.text("materials")) job.materials_file = resolve(o, "materials", *f);
-  auto table =
-      job.materials_file.empty() ? builtin_materials() : load_materials(job.materials_file);
+  if (auto f = o.text("materials")) job.exports.materials_file = resolve(o, "materials", *f);
+  auto table = job.exports.materials_file.empty() ? builtin_materials()
+                                                  : load_materials(job.exports.materials_file);
   if (!table) {
     Error e = table.error();
-    if (!job.materials_file.empty()) e.in("materials");
+    if (!job.exports.materials_file.empty()) e.in("materials");
     return e;
   }
   job.material = *o.text("material");
   auto material = find_material(*table, job.material);
   if (!material) return Error(material.error()).in("material");
-  job.material_label = material->label;
+  job.exports.material_label = material->label;
   if (material->roll_width > 0.0) job.roll_width = material->roll_width;
   job.lock_angle_deg = material->limit_deg;
   if (o.given("lock-angle")) {
@@ -333,14 +333,14 @@ Status read_outputs(const Options& o, DrapeJob& job) {
   if (!degree) return degree.error();
   if (*degree == 2)
     return Error{ErrorCode::kUnknownValue, "curve-degree", {*o.text("curve-degree"), "1, 3"}};
-  job.curve_degree = static_cast<int>(*degree);
+  job.exports.curve_degree = static_cast<int>(*degree);
   auto view = o.vec3("view");
   if (!view) return view.error();
   if (!(view->norm() > 0)) return Error{ErrorCode::kZeroVector, "view", {*o.text("view")}};
-  job.view = *view;
+  job.exports.view = *view;
   auto threads = o.flag("dxf-threads");
   if (!threads) return threads.error();
-  job.dxf_threads = *threads;
+  job.exports.dxf_threads = *threads;
   if (o.given("min-width")) {
     auto w =
         o.number_in("min-width", {0, std::numeric_limits<double>::infinity(), false, false, ""});

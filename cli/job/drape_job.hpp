@@ -56,9 +56,9 @@ struct DrapeJob {
   bool flip_normal = false;
   std::string outdir;
   std::vector<std::string> outputs;
-  int curve_degree = 1;
-  Vec3 view = Vec3(1, 1, 1);
-  bool dxf_threads = false;  ///< THREADS layer in flat.dxf
+  /// What the writers are told as given (--curve-degree, --view, --dxf-threads, the
+  /// material's label and table); run_job adds the warning angle and the ply as laid.
+  exporters::ExportOptions exports;
   /// --min-width: the cut outline's minimum width; empty: half the spacing.
   std::optional<double> min_width;
   double warn_angle_deg = 25.0;
@@ -83,8 +83,6 @@ struct DrapeJob {
   /// stagger across plies); empty: none.
   std::function<SpliceStagger()> stagger;
   std::string material = "woven";  ///< name in the materials table
-  std::string material_label;      ///< the material's label
-  std::string materials_file;      ///< materials table file; empty: plyfit's own
   std::string scene;               ///< scene file the job came from, if any
   /// Names the inputs its errors blame (scene keys) as the flag or the scene file's key their
   /// value came from ("--sweep3d", "FILE: key 'sweep3d'").

@@ -39,18 +39,6 @@ exporters::RunInfo run_info(const DrapeJob& job) {
   return run;
 }
 
-exporters::ExportOptions export_options(const DrapeJob& job) {
-  exporters::ExportOptions eo;
-  eo.warn_shear = job.warn_angle_deg * kDegToRad;
-  eo.curve_degree = job.curve_degree;
-  eo.view = job.view;
-  eo.dxf_threads = job.dxf_threads;
-  eo.ply_angle_deg = job.ply_angle_deg;
-  eo.material_label = job.material_label;
-  eo.materials_file = job.materials_file;
-  return eo;
-}
-
 // The drape, with the node count on stderr while it runs when that is a terminal.
 Result<DrapeResult> drape_with_progress(const MoldSurface& surface, const DrapeJob& job,
                                         const DrapeProblem& problem,
@@ -157,7 +145,8 @@ Result<JobOutcome> run_job_on(const DrapeJob& job, const LoadedSurface& loaded,
   auto splices = splice_job(job, *res, flat);
   if (!splices) return splices.error();
   run.total_ms = run.import_ms + ms_since(t0);
-  exporters::ExportOptions eo = export_options(job);
+  exporters::ExportOptions eo = job.exports;
+  eo.warn_shear = job.warn_angle_deg * kDegToRad;
   auto ply = ply_report(job, surface, *res);
   if (!ply) return ply.error();
   eo.ply = *ply;

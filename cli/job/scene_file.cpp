@@ -114,7 +114,7 @@ void mold_and_ply_values(const DrapeJob& job, SceneValues& v) {
 // The material, numerics and output keys of a job.
 void material_and_output_values(const DrapeJob& job, SceneValues& v) {
   v["material"] = {job.material};
-  if (!job.materials_file.empty()) v["materials"] = {job.materials_file};
+  if (!job.exports.materials_file.empty()) v["materials"] = {job.exports.materials_file};
   v["lock-angle"] = {fmt(job.lock_angle_deg)};
   v["warn-angle"] = {fmt(job.warn_angle_deg)};
   v["ply-name"] = {job.ply_name};
@@ -127,9 +127,9 @@ void material_and_output_values(const DrapeJob& job, SceneValues& v) {
   std::string outs;
   for (const auto& o : job.outputs) outs += (outs.empty() ? "" : ",") + o;
   v["outputs"] = {outs};
-  v["curve-degree"] = {std::to_string(job.curve_degree)};
-  v["view"] = {fmt(job.view)};
-  v["dxf-threads"] = {job.dxf_threads ? "true" : "false"};
+  v["curve-degree"] = {std::to_string(job.exports.curve_degree)};
+  v["view"] = {fmt(job.exports.view)};
+  v["dxf-threads"] = {job.exports.dxf_threads ? "true" : "false"};
   // The effective value: the one given, or the default the flat pattern takes.
   v["min-width"] = {fmt(FlatPatternOptions{job.min_width}.width_for(job.problem.ply))};
 }
