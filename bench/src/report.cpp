@@ -28,20 +28,6 @@ namespace plyfit::bench {
 
 namespace {
 
-// The targets of issue 8.
-constexpr double kTargetNodesPerSecond = 1e6;
-constexpr double kTargetLinkRel = 1e-10;
-constexpr double kTargetBytesPerNode = 200.0;
-// Batch throughput "grows" with the jobs when the most jobs beat -j1 by at least this factor
-// (beyond the run-to-run noise of a shared machine).
-constexpr double kTargetBatchGrowth = 1.2;
-// The targets of issue 14 for import: plyfit info on any file within this many seconds, and
-// the import of one face within this multiple of OpenCASCADE's own read of the file.
-constexpr double kTargetInfoSeconds = 2.0;
-constexpr double kTargetImportRatio = 2.0;
-// Issue 14: plyfit optimize finds a better optimum than the paper's cases in under this.
-constexpr double kTargetOptimizeSeconds = 10.0;
-
 std::string cpuinfo_field(const std::string& key) {
   std::ifstream is("/proc/cpuinfo");
   std::string line;
@@ -92,6 +78,110 @@ std::string fill(std::string text, const std::map<std::string, std::string>& val
       text.replace(pos, key.size(), v);
   }
   return text;
+}
+
+// The figures the targets are checked against (run_report measures them).
+struct TargetFigures {
+  const ThroughputReport& throughput;
+  double default_tol;
+  bool batch_available;
+  double batch_speedup;
+  bool optimize_available;
+  const OptimizeFigures& optimize;
+  const ImportReport& imports;
+};
+
+const char* met(bool ok) {
+  return ok ? "yes" : "**no**";
+}
+
+// A whole number with its thousands marked: 1e6 -> "1,000,000".
+std::string thousands(double x) {
+  const std::string digits = format("%.0f", x);
+  std::string s;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) s += ',';
+    s += digits[i];
+  }
+  return s;
+}
+
+// Issue 8: the drape's speed, accuracy and memory (table 1).
+std::string drape_target_rows(const TargetFigures& f) {
+  constexpr double kNodesPerSecond = 1e6;
+  constexpr double kLinkRel = 1e-10;
+  constexpr double kBytesPerNode = 200.0;
+  const ThroughputReport& th = f.throughput;
+  double worst_rate = 1e300;
+  for (double r : th.bicubic_nodes_per_s) worst_rate = std::min(worst_rate, r);
+  double worst_mem = 0.0;
+  for (double b : th.peak_bytes_per_node) worst_mem = std::max(worst_mem, b);
+  const bool rate_ok = !th.bicubic_nodes_per_s.empty() && worst_rate >= kNodesPerSecond;
+  const bool mem_ok = !th.peak_bytes_per_node.empty() && worst_mem <= kBytesPerNode;
+  return format(
+             "| >= %s mapped nodes/s on one core, bicubic face, default tolerance (%.0e) | "
+             "slowest size: %.2f M nodes/s | %s |\n",
+             thousands(kNodesPerSecond).c_str(), f.default_tol, worst_rate * 1e-6, met(rate_ok)) +
+         format("| link-length error <= %.0e d (bicubic face, all sizes) | %.1e d | %s |\n",
+                kLinkRel, th.bicubic_link_rel, met(th.bicubic_link_rel <= kLinkRel)) +
+         format(
+             "| peak memory <= %.0f bytes per mapped node (all faces and sizes) | largest: %.0f "
+             "B/node | %s |\n",
+             kBytesPerNode, worst_mem, met(mem_ok));
+}
+
+// Batch throughput "grows" with the jobs when the most jobs beat -j1 by at least this factor
+// (beyond the run-to-run noise of a shared machine).
+std::string batch_target_row(const TargetFigures& f, unsigned cores) {
+  constexpr double kBatchGrowth = 1.2;
+  if (!f.batch_available)
+    return format(
+        "| batch throughput grows with -j up to the cores (%u here) | plyfit batch not "
+        "available | not measured |\n",
+        cores);
+  return format(
+      "| batch throughput grows with -j up to the cores (%u here) | -j%u against -j1: %.2fx "
+      "(batch table) | %s |\n",
+      cores, cores, f.batch_speedup, met(f.batch_speedup >= kBatchGrowth));
+}
+
+// Issue 14: plyfit optimize finds a better optimum than the paper's cases in under this.
+std::string optimize_target_row(const TargetFigures& f, unsigned cores) {
+  constexpr double kOptimizeSeconds = 10.0;
+  const OptimizeFigures& opt = f.optimize;
+  const bool measured = f.optimize_available && opt.ok;
+  const bool ok = measured && opt.found_worst < opt.paper_best && opt.seconds < kOptimizeSeconds;
+  return format(
+      "| plyfit optimize: from each of the paper's sphere-octant cases, a lower energy than "
+      "the best of them, in under %.0f s on %u cores | %s | %s |\n",
+      kOptimizeSeconds, cores,
+      measured ? format("highest best found %.3f against %.3f; slowest run %.2f s (optimize table)",
+                        opt.found_worst, opt.paper_best, opt.seconds)
+                     .c_str()
+               : "not measured",
+      f.optimize_available ? met(ok) : "not measured");
+}
+
+// Issue 14 for import: plyfit info on any file within this many seconds, and the import of one
+// face within this multiple of OpenCASCADE's own read of the file.
+std::string import_target_rows(const TargetFigures& f) {
+  constexpr double kInfoSeconds = 2.0;
+  constexpr double kImportRatio = 2.0;
+  const ImportReport& imports = f.imports;
+  return format("| `plyfit info` on any file <= %.0f s (import table) | longest: %.2f s | %s |\n",
+                kInfoSeconds, imports.max_info_s, met(imports.max_info_s <= kInfoSeconds)) +
+         format(
+             "| import of one face <= %.0fx OpenCASCADE's own read of the file (import table) | "
+             "largest ratio: %.2f | %s |\n",
+             kImportRatio, imports.max_ratio,
+             imports.max_ratio <= kImportRatio ? "yes" : "**no** (see the import section)");
+}
+
+// The targets table of BENCHMARKS.md: each target, what was measured, whether it is met.
+std::string targets_table(const TargetFigures& f) {
+  const unsigned cores = machine_cores();
+  return "| target | measured (table 1) | met |\n|---|---|---|\n" + drape_target_rows(f) +
+         batch_target_row(f, cores) + optimize_target_row(f, cores) + import_target_rows(f);
 }
 
 int run_report(const std::vector<std::string>& args) {
@@ -167,56 +257,8 @@ int run_report(const std::vector<std::string>& args) {
 
   // Targets, from the figures above.
   const double default_tol = Tolerances{}.newton_residual_rel;
-  std::string targets;
-  {
-    double worst_rate = 1e300;
-    for (double r : th.bicubic_nodes_per_s) worst_rate = std::min(worst_rate, r);
-    double worst_mem = 0.0;
-    for (double b : th.peak_bytes_per_node) worst_mem = std::max(worst_mem, b);
-    const bool rate_ok = !th.bicubic_nodes_per_s.empty() && worst_rate >= kTargetNodesPerSecond;
-    const bool link_ok = th.bicubic_link_rel <= kTargetLinkRel;
-    const bool mem_ok = !th.peak_bytes_per_node.empty() && worst_mem <= kTargetBytesPerNode;
-    targets += format("| target | measured (table 1) | met |\n|---|---|---|\n");
-    targets += format(
-        "| >= 1,000,000 mapped nodes/s on one core, bicubic face, default tolerance (%.0e) | "
-        "slowest size: %.2f M nodes/s | %s |\n",
-        default_tol, worst_rate * 1e-6, rate_ok ? "yes" : "**no**");
-    targets += format("| link-length error <= 1e-10 d (bicubic face, all sizes) | %.1e d | %s |\n",
-                      th.bicubic_link_rel, link_ok ? "yes" : "**no**");
-    targets += format(
-        "| peak memory <= 200 bytes per mapped node (all faces and sizes) | largest: %.0f "
-        "B/node | %s |\n",
-        worst_mem, mem_ok ? "yes" : "**no**");
-    const unsigned cores = machine_cores();
-    const bool grows = batch_available && batch_speedup >= kTargetBatchGrowth;
-    targets +=
-        format("| batch throughput grows with -j up to the cores (%u here) | %s | %s |\n", cores,
-               batch_available
-                   ? format("-j%u against -j1: %.2fx (batch table)", cores, batch_speedup).c_str()
-                   : "plyfit batch not available",
-               batch_available ? (grows ? "yes" : "**no**") : "not measured");
-    const bool opt_ok = optimize_available && opt.ok && opt.found_worst < opt.paper_best &&
-                        opt.seconds < kTargetOptimizeSeconds;
-    targets += format(
-        "| plyfit optimize: from each of the paper's sphere-octant cases, a lower energy than "
-        "the best of them, in under %.0f s on %u cores | %s | %s |\n",
-        kTargetOptimizeSeconds, cores,
-        optimize_available && opt.ok
-            ? format("highest best found %.3f against %.3f; slowest run %.2f s (optimize table)",
-                     opt.found_worst, opt.paper_best, opt.seconds)
-                  .c_str()
-            : "not measured",
-        optimize_available ? (opt_ok ? "yes" : "**no**") : "not measured");
-    targets +=
-        format("| `plyfit info` on any file <= %.0f s (import table) | longest: %.2f s | %s |\n",
-               kTargetInfoSeconds, imports.max_info_s,
-               imports.max_info_s <= kTargetInfoSeconds ? "yes" : "**no**");
-    targets += format(
-        "| import of one face <= %.0fx OpenCASCADE's own read of the file (import table) | "
-        "largest ratio: %.2f | %s |\n",
-        kTargetImportRatio, imports.max_ratio,
-        imports.max_ratio <= kTargetImportRatio ? "yes" : "**no** (see the import section)");
-  }
+  const std::string targets = targets_table(
+      {th, default_tol, batch_available, batch_speedup, optimize_available, opt, imports});
 
   const double minutes =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / 60.0;
