@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <optional>
 #include <utility>
+#include <vector>
 
 namespace plyfit {
 
@@ -85,16 +86,34 @@ ArcPoint nearest_on(const Arc& a, const Vec2& x) {
   return best;
 }
 
+// Whether edge i of `a` passes closer than w to x (the distance of nearest_on).
+bool edge_within(const Arc& a, Index i, const Vec2& x, double w) {
+  const Vec2 s = a.vertex(i), e = a.vertex(i + 1) - s;
+  const double ee = e.squaredNorm();
+  const double t = ee > 0.0 ? std::clamp((x - s).dot(e) / ee, 0.0, 1.0) : 0.0;
+  return (s + t * e - x).norm() < w;
+}
+
 // Whether some edge of `a` passes closer than w to x (nearest_on(a, x).dist < w, the same
 // distances, stopping at the first such edge).
 bool within(const Arc& a, const Vec2& x, double w) {
-  for (Index i = 0; i < a.edges(); ++i) {
-    const Vec2 s = a.vertex(i), e = a.vertex(i + 1) - s;
-    const double ee = e.squaredNorm();
-    const double t = ee > 0.0 ? std::clamp((x - s).dot(e) / ee, 0.0, 1.0) : 0.0;
-    if ((s + t * e - x).norm() < w) return true;
-  }
+  for (Index i = 0; i < a.edges(); ++i)
+    if (edge_within(a, i, x, w)) return true;
   return false;
+}
+
+// The edges of `a` that may pass closer than w to a point of the segment p..q: all but those
+// whose box lies farther than 2 w from the segment's along an axis (farther than w from
+// every point of it, rounding of the points on it included).
+std::vector<Index> edges_near(const Arc& a, const Vec2& p, const Vec2& q, double w) {
+  const Vec2 lo = p.cwiseMin(q).array() - 2.0 * w, hi = p.cwiseMax(q).array() + 2.0 * w;
+  std::vector<Index> near;
+  for (Index i = 0; i < a.edges(); ++i) {
+    const Vec2 s = a.vertex(i), t = a.vertex(i + 1);
+    if ((s.cwiseMax(t).array() >= lo.array()).all() && (s.cwiseMin(t).array() <= hi.array()).all())
+      near.push_back(i);
+  }
+  return near;
 }
 
 // Walks `a` from its vertex `start` while its points stay closer than w to `other`; the
@@ -104,10 +123,17 @@ std::optional<ArcPoint> mouth(const Arc& a, Index start, const Arc& other, doubl
   for (Index i = start; i < a.edges(); ++i) {
     const Vec2 s = a.vertex(i), e = a.vertex(i + 1) - s;
     if (within(other, a.vertex(i + 1), w)) continue;
+    // The bisection's points all lie on this edge: only the edges of `other` near it can
+    // be closer than w to them (the same answers as within(), without the whole arc).
+    const std::vector<Index> near = edges_near(other, s, a.vertex(i + 1), w);
+    const auto near_within = [&](const Vec2& x) {
+      return std::any_of(near.begin(), near.end(),
+                         [&](Index j) { return edge_within(other, j, x, w); });
+    };
     double lo = 0.0, hi = 1.0;
     for (int it = 0; it < kWidthBisections; ++it) {
       const double mid = 0.5 * (lo + hi);
-      (within(other, s + mid * e, w) ? lo : hi) = mid;
+      (near_within(s + mid * e) ? lo : hi) = mid;
     }
     ArcPoint m;
     m.e = i;
