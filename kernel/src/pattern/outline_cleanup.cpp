@@ -20,6 +20,11 @@ constexpr int kWidthBisections = 60;
 // least one vertex of a tip and adds at most two; the cap only bounds a pathological case).
 constexpr int kExtraCuts = 16;
 
+// Points of a long loop sampled first for the width test (hull_narrower): one in this many.
+constexpr std::size_t kHullSampleStride = 16;
+// A sample's hull counts as wider than w when it is wider than w (1 + this).
+constexpr double kHullSampleMargin = 1e-9;
+
 using Index = std::ptrdiff_t;
 
 struct Loop {
@@ -267,7 +272,7 @@ std::optional<Cut> cut_tip(const std::vector<Loop>& loops, std::size_t li, Index
 // farthest point is first looked for by climbing from the last edge's (the rotating
 // calipers); only when that point is nearer than w are all points measured, so the answer
 // does not depend on how rounding breaks ties between nearly collinear hull points.
-bool hull_narrower(std::vector<Vec2> p, double w) {
+bool hull_narrower_all(std::vector<Vec2> p, double w) {
   std::sort(p.begin(), p.end(), [](const Vec2& a, const Vec2& b) {
     return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
   });
@@ -298,6 +303,19 @@ bool hull_narrower(std::vector<Vec2> p, double w) {
     if (far < w) return true;
   }
   return false;
+}
+
+// hull_narrower, first on every kHullSampleStride-th point when there are many: their hull
+// lies inside the loop's, so when even it is wider than w (by kHullSampleMargin, far above
+// rounding) so is the loop's, and the answer (false) is the same without sorting every point
+// after every cut of a long outline.
+bool hull_narrower(std::vector<Vec2> p, double w) {
+  if (p.size() >= 4 * kHullSampleStride) {
+    std::vector<Vec2> sample;
+    for (std::size_t i = 0; i < p.size(); i += kHullSampleStride) sample.push_back(p[i]);
+    if (!hull_narrower_all(std::move(sample), w * (1.0 + kHullSampleMargin))) return false;
+  }
+  return hull_narrower_all(std::move(p), w);
 }
 
 void finish(const Loop& l, OutlineLoop& out) {
