@@ -176,6 +176,26 @@ TEST_CASE("outline cleanup: loops narrower than w everywhere are dropped") {
   CHECK(outline_cleanup({small}, {0.35}).loops.size() == 1);
 }
 
+TEST_CASE("outline cleanup: a long strip of many points goes or stays by its width alone") {
+  // 100 x 0.4 turned by 29 degrees, 400 points per side: the width test samples long loops
+  // first (every 16th point); the answer must be the full hull's on both sides of the width.
+  const double c = std::cos(29.0 * kDegToRad), s = std::sin(29.0 * kDegToRad);
+  const Vec2 u(c, s), v(-s, c);
+  std::vector<Vec2> p;
+  const Vec2 corner[4] = {Vec2::Zero(), Vec2(100 * u), Vec2(100 * u + 0.4 * v), Vec2(0.4 * v)};
+  for (int side = 0; side < 4; ++side)
+    for (int k = 0; k < 400; ++k)
+      p.push_back(corner[side] + (k / 400.0) * (corner[(side + 1) % 4] - corner[side]));
+  const auto gone = outline_cleanup({loop(p)}, {0.5});
+  CHECK(gone.loops.empty());
+  CHECK(gone.loops_dropped == 1);
+  CHECK(std::abs(gone.removed_area - 40.0) < 1e-9);
+  const auto kept = outline_cleanup({loop(p)}, {0.35});
+  REQUIRE(kept.loops.size() == 1);
+  CHECK(kept.loops[0].points == p);
+  CHECK(kept.slivers == 0);
+}
+
 TEST_CASE("outline cleanup: w = 0 leaves every outline as it is") {
   const double a = 3.0 * kDegToRad, L = 5.0, b = L * std::tan(a);
   const std::vector<OutlineLoop> in{
