@@ -92,12 +92,13 @@ Vec3 direction_at(const DrapeResult& r, const DrapeNode& n, const Vec2& u) {
 // mapped node within a spacing (|90 deg - thread angle|; none: -1).
 struct ShearMap {
   const DrapeResult& r;
-  detail::NodeGrid grid;
-  explicit ShearMap(const DrapeResult& res) : r(res) {
-    grid.cell = r.ply->d();
-    for (std::uint32_t k = 0; k < r.nodes.size(); ++k)
-      if (r.nodes[k].mapped()) grid.add(r.nodes[k].point, k);
-  }
+  detail::FrozenGrid grid;
+  explicit ShearMap(const DrapeResult& res)
+      : r(res),
+        grid(
+            res.ply->d(), static_cast<std::uint32_t>(res.nodes.size()),
+            [&](std::uint32_t k) { return res.nodes[k].mapped(); },
+            [&](std::uint32_t k) { return res.nodes[k].point; }) {}
   double at(const Vec3& p) const {
     const DrapeNode* best = nullptr;
     double best_d = grid.cell;

@@ -272,8 +272,8 @@ double quad_area(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
 // Nodes whose normal turns from the curve's by 90 degrees or more lie on another sheet of the
 // part (a thin shell's other wall within reach): not the cloth beside the curve.
 struct NearNodes {
-  NodeGrid grid;
-  std::vector<Vec3> normals;  // per node in the grid
+  FrozenGrid grid;
+  std::vector<Vec3> normals;  // per node: zero for a node not in the grid
 };
 
 void sides(const DartCurve& c, std::size_t i, const NearNodes& near, const DrapeResult& res,
@@ -371,17 +371,18 @@ void lay_darts(const DrapeSurface& s, const DartSet& darts,
   if (darts.empty()) return;
   const double d = res.ply->d();
   const double reach = kDartNearRel * d;
-  NearNodes near;
-  near.grid.cell = reach;
-  near.normals.assign(res.nodes.size(), Vec3::Zero());
+  std::vector<Vec3> normals(res.nodes.size(), Vec3::Zero());
   for (std::uint32_t k = 0; k < res.nodes.size(); ++k) {
     const DrapeNode& n = res.nodes[k];
     if (!n.mapped() || !darts.near(n.point)) continue;
-    const SurfaceNormal normal = s.normal(n.at());
-    if (!normal.ok) continue;
-    near.grid.add(n.point, k);
-    near.normals[k] = normal.n;
+    if (const SurfaceNormal normal = s.normal(n.at()); normal.ok) normals[k] = normal.n;
   }
+  const auto in_grid = [&](std::uint32_t k) { return normals[k] != Vec3::Zero(); };
+  // (The grid is made before the normals move into the struct: aggregate initialisers run in
+  // order.)
+  const NearNodes near{FrozenGrid(reach, static_cast<std::uint32_t>(res.nodes.size()), in_grid,
+                                  [&](std::uint32_t k) { return res.nodes[k].point; }),
+                       std::move(normals)};
   const double min_sin2 = std::pow(std::sin(tol.fold_angle), 2);
   for (std::size_t k = 0; k < darts.curves().size(); ++k) {
     const DartCurve& c = darts.curves()[k];

@@ -54,18 +54,32 @@ WalkEnd walk_on_surface(const DrapeSurface& s, Vec3 p, Vec3 dir, double h, doubl
 WalkEnd walk_on_surface(const DrapeSurface& s, Vec3 p, Vec3 dir, double h, double length,
                         DartCurve& c, const std::function<bool(const Vec3&)>& enough);
 
-/// Items by 3D position in cubes of side `cell` (a hash of their integer coordinates).
-template <class T>
-struct CubeGrid {
+/// The cube of side `cell` holding a point, as one key (21 bits of each integer coordinate).
+struct CubeKeys {
   double cell = 1.0;
-  std::unordered_map<std::uint64_t, std::vector<T>> bins;
   static std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
     return (static_cast<std::uint64_t>(x & 0x1fffff) << 42) |
            (static_cast<std::uint64_t>(y & 0x1fffff) << 21) |
            static_cast<std::uint64_t>(z & 0x1fffff);
   }
   std::int64_t at(double v) const { return static_cast<std::int64_t>(std::floor(v / cell)); }
-  void add(const Vec3& p, T k) { bins[key(at(p.x()), at(p.y()), at(p.z()))].push_back(k); }
+  std::uint64_t key(const Vec3& p) const { return key(at(p.x()), at(p.y()), at(p.z())); }
+  /// Calls f(key) for the 27 cubes around p, in one order.
+  template <class F>
+  void around(const Vec3& p, F&& f) const {
+    const std::int64_t x = at(p.x()), y = at(p.y()), z = at(p.z());
+    for (std::int64_t a = -1; a <= 1; ++a)
+      for (std::int64_t b = -1; b <= 1; ++b)
+        for (std::int64_t c = -1; c <= 1; ++c) f(key(x + a, y + b, z + c));
+  }
+};
+
+/// Items by 3D position in cubes of side `cell` (a hash of their integer coordinates), added
+/// one by one.
+template <class T>
+struct CubeGrid : CubeKeys {
+  std::unordered_map<std::uint64_t, std::vector<T>> bins;
+  void add(const Vec3& p, T k) { bins[key(p)].push_back(k); }
   /// Adds k to every cube the box [lo, hi] meets.
   void add_box(const Vec3& lo, const Vec3& hi, T k) {
     for (std::int64_t x = at(lo.x()); x <= at(hi.x()); ++x)
@@ -74,19 +88,86 @@ struct CubeGrid {
   }
   /// The items of the cube holding p (nullptr: none).
   const std::vector<T>* in(const Vec3& p) const {
-    auto it = bins.find(key(at(p.x()), at(p.y()), at(p.z())));
+    auto it = bins.find(key(p));
     return it == bins.end() ? nullptr : &it->second;
   }
-  /// Calls f(k) for the items in the 27 cubes around p.
+  /// Calls f(k) for the items in the 27 cubes around p (each cube's in the order added).
   template <class F>
   void around(const Vec3& p, F&& f) const {
-    const std::int64_t x = at(p.x()), y = at(p.y()), z = at(p.z());
-    for (std::int64_t a = -1; a <= 1; ++a)
-      for (std::int64_t b = -1; b <= 1; ++b)
-        for (std::int64_t c = -1; c <= 1; ++c)
-          if (auto it = bins.find(key(x + a, y + b, z + c)); it != bins.end())
-            for (const T& k : it->second) f(k);
+    CubeKeys::around(p, [&](std::uint64_t c) {
+      if (auto it = bins.find(c); it != bins.end())
+        for (const T& k : it->second) f(k);
+    });
   }
+};
+
+/// Numbers 0 .. count - 1 (a drape's nodes, points of a curve) by 3D position in cubes of side
+/// `cell`, all given at once: one array of them by cube and an open-addressing table of the
+/// cubes, two passes over the points and no allocation per cube (a hash map of vectors took
+/// longer to build and free than the darts' walks that ask it). around() visits the same
+/// items in the same order as a CubeGrid's to which they were added in increasing order.
+class FrozenGrid : public CubeKeys {
+ public:
+  /// The numbers k < count for which keep(k) holds, at point_of(k).
+  template <class Keep, class PointOf>
+  FrozenGrid(double cube, std::uint32_t count, Keep&& keep, PointOf&& point_of) {
+    cell = cube;
+    std::size_t n = 0;
+    for (std::uint32_t k = 0; k < count; ++k) n += keep(k) ? 1 : 0;
+    std::size_t cap = 16;  // at least twice the cubes: a slot is always free
+    while (cap < 2 * n) cap *= 2;
+    slots_.assign(cap, Slot{});
+    mask_ = cap - 1;
+    for (std::uint32_t k = 0; k < count; ++k)
+      if (keep(k))
+        if (Slot* s = slot(key(point_of(k)))) ++s->count;
+    std::uint32_t begin = 0;
+    for (Slot& s : slots_)
+      if (s.key != kEmpty) s.begin = begin, begin += s.count, s.count = 0;
+    items_.resize(begin);
+    for (std::uint32_t k = 0; k < count; ++k)
+      if (keep(k))
+        if (Slot* s = slot(key(point_of(k)))) items_[s->begin + s->count++] = k;
+  }
+  /// Calls f(k) for the numbers in the 27 cubes around p (each cube's in increasing order).
+  template <class F>
+  void around(const Vec3& p, F&& f) const {
+    CubeKeys::around(p, [&](std::uint64_t c) {
+      if (const Slot* s = find(c))
+        for (std::uint32_t i = s->begin; i < s->begin + s->count; ++i) f(items_[i]);
+    });
+  }
+
+ private:
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};  // no key has all 64 bits set
+  struct Slot {
+    std::uint64_t key = kEmpty;
+    std::uint32_t begin = 0, count = 0;
+  };
+  std::size_t home(std::uint64_t key) const {
+    return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 17) & mask_;
+  }
+  // The slot of `key`, taken if it had none (nullptr only if the table were full).
+  Slot* slot(std::uint64_t key) {
+    for (std::size_t i = home(key), probes = 0; probes < slots_.size();
+         ++probes, i = (i + 1) & mask_)
+      if (slots_[i].key == key || slots_[i].key == kEmpty) {
+        slots_[i].key = key;
+        return &slots_[i];
+      }
+    return nullptr;
+  }
+  const Slot* find(std::uint64_t key) const {
+    for (std::size_t i = home(key), probes = 0; probes < slots_.size();
+         ++probes, i = (i + 1) & mask_) {
+      if (slots_[i].key == key) return &slots_[i];
+      if (slots_[i].key == kEmpty) return nullptr;
+    }
+    return nullptr;
+  }
+  std::vector<Slot> slots_;
+  std::vector<std::uint32_t> items_;
+  std::size_t mask_ = 0;
 };
 using NodeGrid = CubeGrid<std::uint32_t>;
 

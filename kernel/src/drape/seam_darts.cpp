@@ -45,9 +45,9 @@ std::optional<Meeting> meeting_at(const DrapeSurface& s, const DrapeResult& r, s
 // near each other on the part lie far apart in the ply), one way until none is left, then the
 // other way from the first.
 std::vector<std::vector<const Meeting*>> chains(const std::vector<Meeting>& m, double gap) {
-  NodeGrid grid;
-  grid.cell = gap;
-  for (std::uint32_t k = 0; k < m.size(); ++k) grid.add(m[k].point, k);
+  const FrozenGrid grid(
+      gap, static_cast<std::uint32_t>(m.size()), [](std::uint32_t) { return true; },
+      [&](std::uint32_t k) { return m[k].point; });
   std::vector<bool> taken(m.size(), false);
   auto next_to = [&](const Meeting& from) {
     std::int64_t best = -1;

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 using namespace plyfit;
 
@@ -44,6 +45,37 @@ using support::builtin_surface;
 using support::problem;
 
 }  // namespace
+
+TEST_CASE("darts: the frozen point grid finds what the cube grid finds, in the same order") {
+  // Points on a sphere of radius 3 and off it, some in one cube, some on cube faces (integer
+  // coordinates at cell 0.5), negative coordinates too; a third left out.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Vec3> pts;
+  for (int k = 0; k < 3000; ++k) {
+    const Vec3 p(u(rng), u(rng), u(rng));
+    pts.push_back(k % 5 == 0 ? Vec3(std::round(4 * p.x()) / 2, std::round(4 * p.y()) / 2, 0.0)
+                             : Vec3(3.0 * p.normalized() + 0.1 * p));
+  }
+  const double cell = 0.5;
+  const auto keep = [](std::uint32_t k) { return k % 3 != 1; };
+  detail::NodeGrid loose;
+  loose.cell = cell;
+  for (std::uint32_t k = 0; k < pts.size(); ++k)
+    if (keep(k)) loose.add(pts[k], k);
+  const detail::FrozenGrid frozen(cell, static_cast<std::uint32_t>(pts.size()), keep,
+                                  [&](std::uint32_t k) { return pts[k]; });
+  std::size_t seen = 0;
+  for (int q = 0; q < 500; ++q) {
+    const Vec3 p = 3.5 * Vec3(u(rng), u(rng), u(rng));
+    std::vector<std::uint32_t> a, b;
+    loose.around(p, [&](std::uint32_t k) { a.push_back(k); });
+    frozen.around(p, [&](std::uint32_t k) { b.push_back(k); });
+    REQUIRE(a == b);
+    seen += a.size();
+  }
+  CHECK(seen > 1000);  // the queries met points, not only empty cubes
+}
 
 TEST_CASE("darts: a straight dart on a plane cuts the links it crosses and opens nothing") {
   const MoldSurface f = builtin_surface("plane");  // [0, 100]^2, z = 0
