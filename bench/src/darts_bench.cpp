@@ -1,6 +1,7 @@
 // plyfit-bench darts [--runs R]: a drape with automatic darts (drape_auto_darts) against the
 // same drape without (issue 31: at most 3 drapes of the ply), medians of R >= 5 runs
-// interleaved; the drapes it made and whether the ply was laid. The hemisphere's darts relieve
+// interleaved; the drapes it made and whether the ply was laid; and each drape's flat pattern
+// (a job's other large step: the darts' V's are cut out of it). The hemisphere's darts relieve
 // the lock; the closed torus's seams part the fronts that meet round it.
 
 #include "bench.hpp"
@@ -8,6 +9,7 @@
 
 #include <plyfit/kernel/builtin_molds.hpp>
 #include <plyfit/kernel/drape.hpp>
+#include <plyfit/kernel/flat_pattern.hpp>
 
 #include <iostream>
 
@@ -63,10 +65,11 @@ Table darts_table(int runs, bool* ok) {
   t.caption = "A drape with --darts auto against the same drape without: wall time, medians of " +
               std::to_string(std::max(runs, kMinRuns)) +
               " runs each, interleaved; ratio = with / without (target <= 3: at most 3 drapes); "
-              "reused = nodes of the last drape that took the drape before's solve.";
-  t.header = {"case",   "drapes",     "laid",    "darts", "nodes",
-              "reused", "without ms", "with ms", "ratio"};
-  t.right = {false, true, false, true, true, true, true, true, true};
+              "reused = nodes of the last drape that took the drape before's solve; flat = the "
+              "flat pattern of each drape (without / with darts).";
+  t.header = {"case",       "drapes",  "laid",  "darts",           "nodes",       "reused",
+              "without ms", "with ms", "ratio", "flat without ms", "flat with ms"};
+  t.right = {false, true, false, true, true, true, true, true, true, true, true};
   for (DartCase c :
        {hemisphere_case(10, 0.1, 40), hemisphere_case(10, 0.05, 40), torus_case(0.5)}) {
     if (!c.mold) {
@@ -74,22 +77,26 @@ Table darts_table(int runs, bool* ok) {
       t.add_failed(c.name, "no mold");
       continue;
     }
-    Result<DrapeResult> with = Error{ErrorCode::kInternal};
-    const auto m = paired_medians<2>(runs, [&] {
-      return std::array{time_once([&] { (void)drape(*c.mold, c.problem, c.options); }),
-                        time_once([&] { with = drape_auto_darts(*c.mold, c.problem, c.options); })};
+    Result<DrapeResult> without = Error{ErrorCode::kInternal}, with = without;
+    const auto m = paired_medians<4>(runs, [&] {
+      const double t0 = time_once([&] { without = drape(*c.mold, c.problem, c.options); });
+      const double t1 = time_once([&] { with = drape_auto_darts(*c.mold, c.problem, c.options); });
+      if (!without || !with) return std::array{t0, t1, 0.0, 0.0};
+      return std::array{t0, t1, time_once([&] { (void)flat_pattern(*c.mold, *without); }),
+                        time_once([&] { (void)flat_pattern(*c.mold, *with); })};
     });
-    if (!m || !with) {
+    if (!m || !without || !with) {
       *ok = false;
       t.add_failed(c.name, "failed");
       continue;
     }
-    const auto [t0, t1] = *m;
+    const auto [t0, t1, f0, f1] = *m;
     const bool laid = with->metrics.nodes.conflict == 0 && with->metrics.nodes.shear_limit == 0;
     t.add({c.name, format("%u", with->drapes), laid ? "yes" : "no",
            format("%zu", with->darts.size()), format("%zu", with->nodes.size()),
            format("%llu", static_cast<unsigned long long>(with->solves_reused)),
-           format("%.1f", t0 * 1e3), format("%.1f", t1 * 1e3), format("%.2f", t1 / t0)});
+           format("%.1f", t0 * 1e3), format("%.1f", t1 * 1e3), format("%.2f", t1 / t0),
+           format("%.1f", f0 * 1e3), format("%.1f", f1 * 1e3)});
   }
   return t;
 }
