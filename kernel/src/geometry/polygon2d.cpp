@@ -111,6 +111,14 @@ Region2 unite_regions(const Region2& a, const Region2& b) {
   return to_region(out);
 }
 
+std::optional<Region2> subtract_regions(const Region2& a, const Region2& b) {
+  const BgMulti ma = to_multi(a), mb = to_multi(b);
+  if (!bg::intersects(ma, mb)) return std::nullopt;
+  BgMulti out;
+  bg::difference(ma, mb, out);
+  return to_region(out);
+}
+
 double region_area(const Region2& r) {
   return bg::area(to_multi(r));
 }

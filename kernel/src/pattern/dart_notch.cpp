@@ -191,18 +191,15 @@ Region2 OutlineBuilder::dart_notches(const Region2& region) const {
   return vs.empty() ? Region2{} : std::move(vs.front());
 }
 
-// The loops without the darts' V: the even-odd region of the loops and of their part in the V
-// is the loops less the V.
+// The loops without the darts' V.
 void OutlineBuilder::notch_darts(std::vector<OutlineLoop>& loops) const {
   if (r_.darts.empty() || loops.empty()) return;
   Region2 region;
   for (const auto& l : loops) region.push_back(l.points);
   const Region2 notches = dart_notches(region);
   if (notches.empty()) return;
-  const Region2 inside = intersect_regions(region, notches);
-  if (inside.empty()) return;
-  Region2 all = region;
-  all.insert(all.end(), inside.begin(), inside.end());
+  const std::optional<Region2> notched = subtract_regions(region, notches);
+  if (!notched) return;
   SnapIndex kept, cut;
   for (const auto& l : loops)
     for (std::size_t k = 0; k < l.points.size(); ++k)
@@ -219,7 +216,7 @@ void OutlineBuilder::notch_darts(std::vector<OutlineLoop>& loops) const {
   };
   const double snap = kNotchSnapRel * extent(region);
   std::vector<OutlineLoop> out;
-  for (const auto& pts : unite_regions(all, {})) {
+  for (const auto& pts : *notched) {
     OutlineLoop l = notched_loop(pts, kept, cut, snap, place);
     // Where the V's edge runs along the outline's, the boolean's two roundings of it leave
     // loops no wider than the snap: one of less area than the snap times the spacing is such

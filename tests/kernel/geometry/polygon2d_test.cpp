@@ -66,3 +66,25 @@ TEST_CASE("polygon2d: a slab across a U's arms gives a loop per arm") {
   // A slab beside the region leaves nothing.
   CHECK(clip_to_slab(c, 4.0, 5.0).empty());
 }
+
+TEST_CASE("polygon2d: a region less another: a hole, a bite, and nothing when they do not meet") {
+  const std::vector<Vec2> square{Vec2(0, 0), Vec2(10, 0), Vec2(10, 10), Vec2(0, 10)};
+  const std::vector<Vec2> inner{Vec2(2, 2), Vec2(4, 2), Vec2(4, 5), Vec2(2, 5)};
+  // A square inside: a hole of 6 (loops whose even-odd area is 100 - 6).
+  const auto holed = subtract_regions({square}, {inner});
+  REQUIRE(holed);
+  CHECK(holed->size() == 2);
+  CHECK(region_area(*holed) == Approx(94.0).epsilon(1e-14));
+  // A triangle over the right edge: the part inside bitten off, a trapezoid 2 wide between
+  // heights 4 (x = 8) and 2 (x = 10).
+  const std::vector<Vec2> tri{Vec2(8, 3), Vec2(12, 5), Vec2(8, 7)};
+  const auto bitten = subtract_regions({square}, {tri});
+  REQUIRE(bitten);
+  CHECK(region_area(*bitten) == Approx(100.0 - 6.0).epsilon(1e-14));
+  // A square inside the hole of an even-odd region (the square with the inner hole) does not
+  // meet it, nor does one far away: none (the region stays whole).
+  const std::vector<Vec2> in_hole{Vec2(2.5, 2.5), Vec2(3.5, 2.5), Vec2(3.5, 3.5), Vec2(2.5, 3.5)};
+  CHECK_FALSE(subtract_regions({square, inner}, {in_hole}));
+  const std::vector<Vec2> far{Vec2(20, 0), Vec2(21, 0), Vec2(21, 1)};
+  CHECK_FALSE(subtract_regions({square}, {far}));
+}

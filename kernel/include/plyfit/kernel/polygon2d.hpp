@@ -4,6 +4,7 @@
 
 #include <plyfit/kernel/types.hpp>
 
+#include <optional>
 #include <vector>
 
 namespace plyfit {
@@ -36,6 +37,10 @@ Region2 intersect_regions(const Region2& a, const Region2& b);
 
 /// The union of two even-odd regions, likewise.
 Region2 unite_regions(const Region2& a, const Region2& b);
+
+/// Region a less region b (even-odd regions), likewise; none when b does not meet a (a is
+/// then whole).
+std::optional<Region2> subtract_regions(const Region2& a, const Region2& b);
 
 /// The area of an even-odd region.
 double region_area(const Region2& r);
