@@ -20,6 +20,9 @@ constexpr int kWidthBisections = 60;
 // least one vertex of a tip and adds at most two; the cap only bounds a pathological case).
 constexpr int kExtraCuts = 16;
 
+// A search bounded by a distance (nearest_on, chord_clear) passes over what lies beyond it by
+// more than this much of it (or of the coordinates): far above rounding, far below any width.
+constexpr double kBoundMargin = 1e-9;
 // Points of a long loop sampled first for the width test (hull_narrower): one in this many.
 constexpr std::size_t kHullSampleStride = 16;
 // A sample's hull counts as wider than w when it is wider than w (1 + this).
@@ -77,16 +80,32 @@ struct ArcPoint {
   bool operator<=(const ArcPoint& o) const { return e < o.e || (e == o.e && t <= o.t); }
 };
 
-ArcPoint nearest_on(const Arc& a, const Vec2& x) {
+// The nearest point to x of edge i of `a`.
+ArcPoint nearest_on_edge(const Arc& a, Index i, const Vec2& x) {
+  const Vec2 s = a.vertex(i), e = a.vertex(i + 1) - s;
+  const double ee = e.squaredNorm();
+  const double t = ee > 0.0 ? std::clamp((x - s).dot(e) / ee, 0.0, 1.0) : 0.0;
+  const Vec2 q = s + t * e;
+  return {i, t, q, (q - x).norm()};
+}
+
+// Whether the box of edge i of `a` lies farther than `reach` from x along an axis (then every
+// point of the edge does).
+bool edge_beyond(const Arc& a, Index i, const Vec2& x, double reach) {
+  const Vec2 s = a.vertex(i), t = a.vertex(i + 1);
+  return (s.cwiseMin(t) - x).maxCoeff() > reach || (x - s.cwiseMax(t)).maxCoeff() > reach;
+}
+
+// The nearest point of `a` to x (the first of the nearest in the arc's order). Given `bound`,
+// the distance to a point of `a` already known, the edges whose box lies beyond it (by
+// kBoundMargin, far above rounding) are passed over: none of them can be the nearest.
+ArcPoint nearest_on(const Arc& a, const Vec2& x, double bound = INFINITY) {
+  const double reach = bound * (1.0 + kBoundMargin);
   ArcPoint best;
   best.dist = INFINITY;
   for (Index i = 0; i < a.edges(); ++i) {
-    const Vec2 s = a.vertex(i), e = a.vertex(i + 1) - s;
-    const double ee = e.squaredNorm();
-    const double t = ee > 0.0 ? std::clamp((x - s).dot(e) / ee, 0.0, 1.0) : 0.0;
-    const Vec2 q = s + t * e;
-    const double dd = (q - x).norm();
-    if (dd < best.dist) best = {i, t, q, dd};
+    if (reach < INFINITY && edge_beyond(a, i, x, reach)) continue;
+    if (const ArcPoint p = nearest_on_edge(a, i, x); p.dist < best.dist) best = p;
   }
   return best;
 }
@@ -144,7 +163,11 @@ std::optional<ArcPoint> mouth(const Arc& a, Index start, const Arc& other, doubl
     m.e = i;
     m.t = hi;
     m.pt = hi == 1.0 ? a.vertex(i + 1) : Vec2(s + hi * e);
-    m.dist = nearest_on(other, m.pt).dist;
+    // Within a hair of the bisection's last point inside w: nearer than 2 w, so the
+    // nearest edge is one of `near` (the others lie farther than 2 w).
+    m.dist = INFINITY;
+    for (Index j : near) m.dist = std::min(m.dist, nearest_on_edge(other, j, m.pt).dist);
+    if (!(m.dist <= 2.0 * w)) m.dist = nearest_on(other, m.pt).dist;
     return m;
   }
   return std::nullopt;
@@ -204,6 +227,8 @@ Loop apply(const Loop& l, const Cut& c) {
 // the two it ends on excepted).
 bool chord_clear(const std::vector<Loop>& loops, std::size_t li, const Cut& c) {
   if (c.P == c.Q) return false;
+  const Vec2 lo = c.P.cwiseMin(c.Q), hi = c.P.cwiseMax(c.Q);
+  const double gap = kBoundMargin * (1.0 + lo.cwiseAbs().maxCoeff() + hi.cwiseAbs().maxCoeff());
   for (std::size_t m = 0; m < loops.size(); ++m) {
     const Loop& l = loops[m];
     for (Index k = 0; k < l.n(); ++k) {
@@ -211,7 +236,11 @@ bool chord_clear(const std::vector<Loop>& loops, std::size_t li, const Cut& c) {
         // Edge k in the piece (ev .. eu, unwrapped) is gone or ends on the chord.
         if (c.ev + l.wrap(k - c.ev) <= c.eu) continue;
       }
-      if (segments_meet(c.P, c.Q, l.at(k), l.at(k + 1))) return false;
+      // Boxes apart by more than a hair: the segments cannot meet (the orientation tests
+      // decide only for the rest).
+      const Vec2 a = l.at(k), b = l.at(k + 1);
+      if ((lo - a.cwiseMax(b)).maxCoeff() > gap || (a.cwiseMin(b) - hi).maxCoeff() > gap) continue;
+      if (segments_meet(c.P, c.Q, a, b)) return false;
     }
   }
   return true;
@@ -255,8 +284,10 @@ std::optional<Cut> cut_tip(const std::vector<Loop>& loops, std::size_t li, Index
   };
   // From A's mouth across to the nearest point of B, if that lies no farther out than B's
   // own mouth; likewise from B's mouth; else between the two mouths.
-  if (const ArcPoint b = nearest_on(B, ma->pt); b <= *mb) cands.push_back(make(*ma, b));
-  if (const ArcPoint a = nearest_on(A, mb->pt); a <= *ma) cands.push_back(make(a, *mb));
+  // (Each mouth lies on its side: its distance to the other mouth bounds the search.)
+  const double across = (ma->pt - mb->pt).norm();
+  if (const ArcPoint b = nearest_on(B, ma->pt, across); b <= *mb) cands.push_back(make(*ma, b));
+  if (const ArcPoint a = nearest_on(A, mb->pt, across); a <= *ma) cands.push_back(make(a, *mb));
   if (cands.empty()) cands.push_back(make(*ma, *mb));
   std::optional<Cut> best;
   for (const Cut& c : cands) {
