@@ -35,7 +35,8 @@ struct Loop {
   std::vector<Vec3> p3;  // empty, or one per point
   bool hole = false;
   Index n() const { return static_cast<Index>(p.size()); }
-  Index wrap(Index k) const { return ((k % n()) + n()) % n(); }
+  // (Without a division for the indices already in range: most of them, in hot loops.)
+  Index wrap(Index k) const { return k >= 0 && k < n() ? k : ((k % n()) + n()) % n(); }
   const Vec2& at(Index k) const { return p[static_cast<std::size_t>(wrap(k))]; }
   Vec3 at3(Index k) const {
     return p3.empty() ? Vec3::Zero() : p3[static_cast<std::size_t>(wrap(k))];
