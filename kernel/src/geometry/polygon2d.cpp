@@ -111,6 +111,22 @@ Region2 unite_regions(const Region2& a, const Region2& b) {
   return to_region(out);
 }
 
+Region2 unite_all(const std::vector<Region2>& regions) {
+  std::vector<BgMulti> parts;
+  for (const Region2& r : regions) parts.push_back(to_multi(r));
+  while (parts.size() > 1) {
+    std::vector<BgMulti> next;
+    for (std::size_t k = 0; k + 1 < parts.size(); k += 2) {
+      BgMulti u;
+      bg::union_(parts[k], parts[k + 1], u);
+      next.push_back(std::move(u));
+    }
+    if (parts.size() % 2 == 1) next.push_back(std::move(parts.back()));
+    parts = std::move(next);
+  }
+  return parts.empty() ? Region2{} : to_region(parts.front());
+}
+
 std::optional<Region2> subtract_regions(const Region2& a, const Region2& b) {
   const BgMulti ma = to_multi(a), mb = to_multi(b);
   if (!bg::intersects(ma, mb)) return std::nullopt;

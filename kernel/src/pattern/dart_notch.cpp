@@ -179,16 +179,7 @@ Region2 OutlineBuilder::dart_notches(const Region2& region) const {
     if (open) v.push_back(mr);
     vs.push_back({std::move(v)});
   }
-  // United two by two (a balanced tree): each V unites with regions of its own size, not
-  // with the whole union so far (with a hundred darts that was most of the flat pattern).
-  while (vs.size() > 1) {
-    std::vector<Region2> next;
-    for (std::size_t k = 0; k + 1 < vs.size(); k += 2)
-      next.push_back(unite_regions(vs[k], vs[k + 1]));
-    if (vs.size() % 2 == 1) next.push_back(std::move(vs.back()));
-    vs = std::move(next);
-  }
-  return vs.empty() ? Region2{} : std::move(vs.front());
+  return unite_all(vs);
 }
 
 // The loops without the darts' V.

@@ -88,3 +88,19 @@ TEST_CASE("polygon2d: a region less another: a hole, a bite, and nothing when th
   const std::vector<Vec2> far{Vec2(20, 0), Vec2(21, 0), Vec2(21, 1)};
   CHECK_FALSE(subtract_regions({square}, {far}));
 }
+
+TEST_CASE("polygon2d: many regions united: overlaps counted once, a ring's hole kept") {
+  auto square = [](double x, double y, double a) {
+    return std::vector<Vec2>{Vec2(x, y), Vec2(x + a, y), Vec2(x + a, y + a), Vec2(x, y + a)};
+  };
+  // Five unit squares in a row, each overlapping the next by a half: 3 units long, 1 high.
+  std::vector<Region2> row;
+  for (int k = 0; k < 5; ++k) row.push_back({square(0.5 * k, 0, 1)});
+  CHECK(region_area(unite_all(row)) == Approx(3.0).epsilon(1e-14));
+  // A frame (a square with a square hole) and a square inside the hole not touching it: the
+  // hole's remaining ring stays a hole; and no regions at all: an empty region.
+  const Region2 frame{square(0, 0, 10), square(2, 2, 6)};
+  const Region2 island{square(4, 4, 2)};
+  CHECK(region_area(unite_all({frame, island})) == Approx(100.0 - 36.0 + 4.0).epsilon(1e-14));
+  CHECK(unite_all({}).empty());
+}

@@ -38,6 +38,10 @@ Region2 intersect_regions(const Region2& a, const Region2& b);
 /// The union of two even-odd regions, likewise.
 Region2 unite_regions(const Region2& a, const Region2& b);
 
+/// The union of many even-odd regions, likewise (united two by two: each with regions of its
+/// own size, not with the whole union so far).
+Region2 unite_all(const std::vector<Region2>& regions);
+
 /// Region a less region b (even-odd regions), likewise; none when b does not meet a (a is
 /// then whole).
 std::optional<Region2> subtract_regions(const Region2& a, const Region2& b);
