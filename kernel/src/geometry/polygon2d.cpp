@@ -50,9 +50,26 @@ BgPolygon to_polygon(const std::vector<Vec2>& loop) {
   return p;
 }
 
+// The parts combined by `op` two by two, a balanced tree: each part meets parts of its own
+// size, not the whole result so far (with a hundred parts against a flat pattern's outline,
+// that was most of the pattern's time).
+template <class Op>
+BgMulti pairwise(std::vector<BgMulti> parts, Op op) {
+  while (parts.size() > 1) {
+    std::vector<BgMulti> next;
+    for (std::size_t k = 0; k + 1 < parts.size(); k += 2) {
+      BgMulti x;
+      op(parts[k], parts[k + 1], x);
+      next.push_back(std::move(x));
+    }
+    if (parts.size() % 2 == 1) next.push_back(std::move(parts.back()));
+    parts = std::move(next);
+  }
+  return parts.empty() ? BgMulti{} : std::move(parts.front());
+}
+
 // An even-odd region as a union of disjoint polygons: the symmetric difference of its loops,
-// taken two by two (a balanced tree: each loop meets regions of its own size, not the whole
-// region so far, which with a hundred loops was most of a flat pattern's time).
+// taken two by two.
 BgMulti to_multi(const Region2& r) {
   std::vector<BgMulti> parts;
   for (const auto& loop : r) {
@@ -65,17 +82,9 @@ BgMulti to_multi(const Region2& r) {
       bg::union_(p, BgMulti{}, m);
     parts.push_back(std::move(m));
   }
-  while (parts.size() > 1) {
-    std::vector<BgMulti> next;
-    for (std::size_t k = 0; k + 1 < parts.size(); k += 2) {
-      BgMulti x;
-      bg::sym_difference(parts[k], parts[k + 1], x);
-      next.push_back(std::move(x));
-    }
-    if (parts.size() % 2 == 1) next.push_back(std::move(parts.back()));
-    parts = std::move(next);
-  }
-  return parts.empty() ? BgMulti{} : std::move(parts.front());
+  return pairwise(std::move(parts), [](const BgMulti& a, const BgMulti& b, BgMulti& out) {
+    bg::sym_difference(a, b, out);
+  });
 }
 
 std::vector<Vec2> ring_points(const BgPolygon::ring_type& ring) {
@@ -114,17 +123,9 @@ Region2 unite_regions(const Region2& a, const Region2& b) {
 Region2 unite_all(const std::vector<Region2>& regions) {
   std::vector<BgMulti> parts;
   for (const Region2& r : regions) parts.push_back(to_multi(r));
-  while (parts.size() > 1) {
-    std::vector<BgMulti> next;
-    for (std::size_t k = 0; k + 1 < parts.size(); k += 2) {
-      BgMulti u;
-      bg::union_(parts[k], parts[k + 1], u);
-      next.push_back(std::move(u));
-    }
-    if (parts.size() % 2 == 1) next.push_back(std::move(parts.back()));
-    parts = std::move(next);
-  }
-  return parts.empty() ? Region2{} : to_region(parts.front());
+  return to_region(pairwise(std::move(parts), [](const BgMulti& a, const BgMulti& b, BgMulti& out) {
+    bg::union_(a, b, out);
+  }));
 }
 
 std::optional<Region2> subtract_regions(const Region2& a, const Region2& b) {
