@@ -35,6 +35,21 @@ OutlineLoop loop(std::vector<Vec2> p, bool hole = false) {
   return l;
 }
 
+// A length x width rectangle from the origin, turned by `deg` degrees, counter-clockwise with
+// `per_side` points per side (collinear to rounding).
+std::vector<Vec2> turned_rectangle(double length, double width, double deg, int per_side) {
+  const double c = std::cos(deg * kDegToRad), s = std::sin(deg * kDegToRad);
+  const Vec2 u(c, s), v(-s, c);
+  const Vec2 corner[4] = {Vec2::Zero(), Vec2(length * u), Vec2(length * u + width * v),
+                          Vec2(width * v)};
+  std::vector<Vec2> p;
+  for (int side = 0; side < 4; ++side)
+    for (int k = 0; k < per_side; ++k)
+      p.push_back(corner[side] +
+                  (static_cast<double>(k) / per_side) * (corner[(side + 1) % 4] - corner[side]));
+  return p;
+}
+
 // The square [0, 10]^2, counter-clockwise from (0, 0), with `top` inserted in its top edge
 // (which runs from (10, 10) to (0, 10)).
 OutlineLoop square_with(const std::vector<Vec2>& top) {
@@ -143,13 +158,7 @@ TEST_CASE("outline cleanup: a rectangle, a disk with a hole of radius 3w, a slow
 
 TEST_CASE("outline cleanup: a turned rectangle with many points per side stays") {
   // 100 x 80 turned by 43 degrees, 40 points per side (collinear to rounding).
-  const double c = std::cos(43.0 * kDegToRad), s = std::sin(43.0 * kDegToRad);
-  const Vec2 u(c, s), v(-s, c);
-  std::vector<Vec2> p;
-  const Vec2 corner[4] = {Vec2::Zero(), Vec2(100 * u), Vec2(100 * u + 80 * v), Vec2(80 * v)};
-  for (int side = 0; side < 4; ++side)
-    for (int k = 0; k < 40; ++k)
-      p.push_back(corner[side] + (k / 40.0) * (corner[(side + 1) % 4] - corner[side]));
+  const std::vector<Vec2> p = turned_rectangle(100, 80, 43, 40);
   const auto res = outline_cleanup({loop(p)}, {0.5});
   REQUIRE(res.loops.size() == 1);
   CHECK(res.loops[0].points == p);
@@ -179,13 +188,7 @@ TEST_CASE("outline cleanup: loops narrower than w everywhere are dropped") {
 TEST_CASE("outline cleanup: a long strip of many points goes or stays by its width alone") {
   // 100 x 0.4 turned by 29 degrees, 400 points per side: the width test samples long loops
   // first (every 16th point); the answer must be the full hull's on both sides of the width.
-  const double c = std::cos(29.0 * kDegToRad), s = std::sin(29.0 * kDegToRad);
-  const Vec2 u(c, s), v(-s, c);
-  std::vector<Vec2> p;
-  const Vec2 corner[4] = {Vec2::Zero(), Vec2(100 * u), Vec2(100 * u + 0.4 * v), Vec2(0.4 * v)};
-  for (int side = 0; side < 4; ++side)
-    for (int k = 0; k < 400; ++k)
-      p.push_back(corner[side] + (k / 400.0) * (corner[(side + 1) % 4] - corner[side]));
+  const std::vector<Vec2> p = turned_rectangle(100, 0.4, 29, 400);
   const auto gone = outline_cleanup({loop(p)}, {0.5});
   CHECK(gone.loops.empty());
   CHECK(gone.loops_dropped == 1);
