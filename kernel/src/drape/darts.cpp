@@ -153,16 +153,25 @@ DartSet DartSet::of(std::vector<DartCurve> curves, double d) {
 
 void DartSet::index() {
   const double reach = kDartNearRel * d_;
-  segments_.cell = reach;
   for (std::size_t c = 0; c < curves_.size(); ++c) {
     const auto& pts = curves_[c].points;
     for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
-      const Vec3 lo = pts[k].cwiseMin(pts[k + 1]).array() - reach;
-      const Vec3 hi = pts[k].cwiseMax(pts[k + 1]).array() + reach;
-      segments_.add_box(lo, hi, {static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(k)});
+      segments_.push_back({static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(k)});
       segment_max_ = std::max(segment_max_, (pts[k + 1] - pts[k]).norm());
     }
   }
+  const CubeKeys cubes{reach};
+  segment_cubes_ = FrozenGrid(
+      reach, static_cast<std::uint32_t>(segments_.size()), [&](std::uint32_t i, auto&& emit) {
+        const auto& pts = curves_[segments_[i].curve].points;
+        const std::size_t k = segments_[i].k;
+        const Vec3 lo = pts[k].cwiseMin(pts[k + 1]).array() - reach;
+        const Vec3 hi = pts[k].cwiseMax(pts[k + 1]).array() + reach;
+        for (std::int64_t x = cubes.at(lo.x()); x <= cubes.at(hi.x()); ++x)
+          for (std::int64_t y = cubes.at(lo.y()); y <= cubes.at(hi.y()); ++y)
+            for (std::int64_t z = cubes.at(lo.z()); z <= cubes.at(hi.z()); ++z)
+              emit(CubeKeys::key(x, y, z));
+      });
 }
 
 double DartSet::distance(const Segment& g, const Vec3& p) const {
@@ -171,21 +180,18 @@ double DartSet::distance(const Segment& g, const Vec3& p) const {
 }
 
 bool DartSet::near(const Vec3& p) const {
-  const auto* segs = segments_.in(p);
-  if (!segs) return false;
   const double reach = kDartNearRel * d_;
-  return std::any_of(segs->begin(), segs->end(),
-                     [&](const Segment& g) { return distance(g, p) <= reach; });
+  const auto segs = segment_cubes_.in(p);
+  return std::any_of(segs.begin(), segs.end(),
+                     [&](std::uint32_t i) { return distance(segments_[i], p) <= reach; });
 }
 
 int DartSet::nearest(const Vec3& p) const {
-  const auto* segs = segments_.in(p);
-  if (!segs) return -1;
   int best = -1;
   double best_d = kDartNearRel * d_;
-  for (const Segment& g : *segs)
-    if (const double dist = distance(g, p); dist <= best_d)
-      best = static_cast<int>(g.curve), best_d = dist;
+  for (std::uint32_t i : segment_cubes_.in(p))
+    if (const double dist = distance(segments_[i], p); dist <= best_d)
+      best = static_cast<int>(segments_[i].curve), best_d = dist;
   return best;
 }
 
@@ -195,10 +201,10 @@ int DartSet::nearest(const Vec3& p) const {
 bool DartSet::crosses(const Vec3& p, const Vec3& q) const {
   const double within = (q - p).norm() + kDartOffsetRel * d_ + segment_max_;
   if (within <= kDartNearRel * d_) {
-    const auto* segs = segments_.in(p);
-    return segs && std::any_of(segs->begin(), segs->end(), [&](const Segment& g) {
-             return crosses(curves_[g.curve], g.k, p, q);
-           });
+    const auto segs = segment_cubes_.in(p);
+    return std::any_of(segs.begin(), segs.end(), [&](std::uint32_t i) {
+      return crosses(curves_[segments_[i].curve], segments_[i].k, p, q);
+    });
   }
   for (const DartCurve& c : curves_)
     for (std::size_t k = 0; k + 1 < c.points.size(); ++k)

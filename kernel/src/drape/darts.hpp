@@ -80,17 +80,6 @@ template <class T>
 struct CubeGrid : CubeKeys {
   std::unordered_map<std::uint64_t, std::vector<T>> bins;
   void add(const Vec3& p, T k) { bins[key(p)].push_back(k); }
-  /// Adds k to every cube the box [lo, hi] meets.
-  void add_box(const Vec3& lo, const Vec3& hi, T k) {
-    for (std::int64_t x = at(lo.x()); x <= at(hi.x()); ++x)
-      for (std::int64_t y = at(lo.y()); y <= at(hi.y()); ++y)
-        for (std::int64_t z = at(lo.z()); z <= at(hi.z()); ++z) bins[key(x, y, z)].push_back(k);
-  }
-  /// The items of the cube holding p (nullptr: none).
-  const std::vector<T>* in(const Vec3& p) const {
-    auto it = bins.find(key(p));
-    return it == bins.end() ? nullptr : &it->second;
-  }
   /// Calls f(k) for the items in the 27 cubes around p (each cube's in the order added).
   template <class F>
   void around(const Vec3& p, F&& f) const {
@@ -101,33 +90,55 @@ struct CubeGrid : CubeKeys {
   }
 };
 
-/// Numbers 0 .. count - 1 (a drape's nodes, points of a curve) by 3D position in cubes of side
-/// `cell`, all given at once: one array of them by cube and an open-addressing table of the
-/// cubes, two passes over the points and no allocation per cube (a hash map of vectors took
-/// longer to build and free than the darts' walks that ask it). around() visits the same
-/// items in the same order as a CubeGrid's to which they were added in increasing order.
+/// Numbers 0 .. count - 1 (a drape's nodes, points of a curve, segments of darts) by 3D
+/// position in cubes of side `cell`, all given at once: one array of them by cube and an
+/// open-addressing table of the cubes, two passes over them and no allocation per cube (a hash
+/// map of vectors took longer to build and free than the darts' walks that ask it, and its
+/// lookups divide). Each cube lists its numbers in increasing order: around() and in() visit
+/// the same items in the same order as a CubeGrid's to which they were added in that order.
 class FrozenGrid : public CubeKeys {
  public:
+  FrozenGrid() = default;
   /// The numbers k < count for which keep(k) holds, at point_of(k).
   template <class Keep, class PointOf>
-  FrozenGrid(double cube, std::uint32_t count, Keep&& keep, PointOf&& point_of) {
+  FrozenGrid(double cube, std::uint32_t count, Keep&& keep, PointOf&& point_of)
+      : FrozenGrid(cube, count, [&](std::uint32_t k, auto&& emit) {
+          if (keep(k)) emit(CubeKeys{cube}.key(point_of(k)));
+        }) {}
+  /// The numbers k < count, each in the cubes for which cubes_of(k, emit) calls emit(key).
+  template <class CubesOf>
+  FrozenGrid(double cube, std::uint32_t count, CubesOf&& cubes_of) {
     cell = cube;
     std::size_t n = 0;
-    for (std::uint32_t k = 0; k < count; ++k) n += keep(k) ? 1 : 0;
+    for (std::uint32_t k = 0; k < count; ++k) cubes_of(k, [&](std::uint64_t) { ++n; });
     std::size_t cap = 16;  // at least twice the cubes: a slot is always free
     while (cap < 2 * n) cap *= 2;
     slots_.assign(cap, Slot{});
     mask_ = cap - 1;
     for (std::uint32_t k = 0; k < count; ++k)
-      if (keep(k))
-        if (Slot* s = slot(key(point_of(k)))) ++s->count;
+      cubes_of(k, [&](std::uint64_t c) {
+        if (Slot* s = slot(c)) ++s->count;
+      });
     std::uint32_t begin = 0;
     for (Slot& s : slots_)
       if (s.key != kEmpty) s.begin = begin, begin += s.count, s.count = 0;
     items_.resize(begin);
     for (std::uint32_t k = 0; k < count; ++k)
-      if (keep(k))
-        if (Slot* s = slot(key(point_of(k)))) items_[s->begin + s->count++] = k;
+      cubes_of(k, [&](std::uint64_t c) {
+        if (Slot* s = slot(c)) items_[s->begin + s->count++] = k;
+      });
+  }
+  /// The numbers in one cube.
+  struct Items {
+    const std::uint32_t *first = nullptr, *last = nullptr;
+    const std::uint32_t* begin() const { return first; }
+    const std::uint32_t* end() const { return last; }
+  };
+  /// The numbers of the cube holding p (none: empty).
+  Items in(const Vec3& p) const {
+    const Slot* s = find(key(p));
+    if (!s) return {};
+    return {items_.data() + s->begin, items_.data() + s->begin + s->count};
   }
   /// Calls f(k) for the numbers in the 27 cubes around p (each cube's in increasing order).
   template <class F>
@@ -202,9 +213,11 @@ class DartSet {
   bool crosses(const DartCurve& c, std::size_t k, const Vec3& p, const Vec3& q) const;
   std::vector<DartCurve> curves_;
   double d_ = 1.0;
-  // Each segment in every cube of side kDartNearRel * d that its box grown by that much meets:
-  // the cube holding p lists every segment within kDartNearRel * d of p.
-  CubeGrid<Segment> segments_;
+  std::vector<Segment> segments_;
+  // Each segment (its number in segments_) in every cube of side kDartNearRel * d that its box
+  // grown by that much meets: the cube holding p lists every segment within kDartNearRel * d
+  // of p.
+  FrozenGrid segment_cubes_;
   double segment_max_ = 0.0;  // the longest segment
 };
 
