@@ -46,7 +46,7 @@ using support::problem;
 
 }  // namespace
 
-TEST_CASE("darts: the frozen point grid finds what the cube grid finds, in the same order") {
+TEST_CASE("darts: the frozen grid finds points as the cube grid does, and boxes in their cubes") {
   // Points on a sphere of radius 3 and off it, some in one cube, some on cube faces (integer
   // coordinates at cell 0.5), negative coordinates too; a third left out.
   std::mt19937 rng(7);
@@ -75,6 +75,41 @@ TEST_CASE("darts: the frozen point grid finds what the cube grid finds, in the s
     seen += a.size();
   }
   CHECK(seen > 1000);  // the queries met points, not only empty cubes
+
+  // Boxes in every cube they meet: the cube holding p lists the boxes whose cubes hold it, in
+  // increasing order.
+  std::vector<std::pair<Vec3, Vec3>> boxes;
+  for (int k = 0; k < 300; ++k) {
+    const Vec3 a = 3.0 * Vec3(u(rng), u(rng), u(rng)), b = a + Vec3(u(rng), u(rng), u(rng));
+    boxes.emplace_back(a.cwiseMin(b), a.cwiseMax(b));
+  }
+  const detail::CubeKeys cubes{cell};
+  auto holds = [&](std::size_t k, const Vec3& p) {
+    for (int i = 0; i < 3; ++i)
+      if (cubes.at(p[i]) < cubes.at(boxes[k].first[i]) ||
+          cubes.at(p[i]) > cubes.at(boxes[k].second[i]))
+        return false;
+    return true;
+  };
+  const detail::FrozenGrid boxed(
+      cell, static_cast<std::uint32_t>(boxes.size()), [&](std::uint32_t k, auto&& emit) {
+        const auto& [lo, hi] = boxes[k];
+        for (std::int64_t x = cubes.at(lo.x()); x <= cubes.at(hi.x()); ++x)
+          for (std::int64_t y = cubes.at(lo.y()); y <= cubes.at(hi.y()); ++y)
+            for (std::int64_t z = cubes.at(lo.z()); z <= cubes.at(hi.z()); ++z)
+              emit(detail::CubeKeys::key(x, y, z));
+      });
+  std::size_t listed = 0;
+  for (int q = 0; q < 500; ++q) {
+    const Vec3 p = 3.5 * Vec3(u(rng), u(rng), u(rng));
+    std::vector<std::uint32_t> want, got;
+    for (std::uint32_t k = 0; k < boxes.size(); ++k)
+      if (holds(k, p)) want.push_back(k);
+    for (std::uint32_t k : boxed.in(p)) got.push_back(k);
+    REQUIRE(got == want);
+    listed += got.size();
+  }
+  CHECK(listed > 100);
 }
 
 TEST_CASE("darts: a straight dart on a plane cuts the links it crosses and opens nothing") {
