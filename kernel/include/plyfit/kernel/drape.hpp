@@ -224,7 +224,7 @@ struct DrapeResult {
   Vec3 base_tangent = Vec3::UnitX();         ///< 3D direction of the base path at the start
   SeedCurve seed_curve = SeedCurve::kPlane;  ///< what the base path followed
   double gamma_min_limit = 0.0;  ///< gamma_min of the lock angle (radians; 0 without one)
-  double drape_ms = 0.0;         ///< wall time of drape()
+  double drape_ms = 0.0;         ///< wall time of drape() (drape_auto_darts: of all its drapes)
   /// Links not enforced because they cross a dart, as sorted keys (link_key()).
   std::vector<std::uint64_t> cut_links;
   /// Per node (when as long as `nodes`): true when some link of it is in cut_links.
