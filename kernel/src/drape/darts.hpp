@@ -112,7 +112,8 @@ class FrozenGrid : public CubeKeys {
     std::size_t n = 0;
     for (std::uint32_t k = 0; k < count; ++k) cubes_of(k, [&](std::uint64_t) { ++n; });
     std::size_t cap = 16;  // at least twice the cubes: a slot is always free
-    while (cap < 2 * n) cap *= 2;
+    shift_ = 60;
+    while (cap < 2 * n) cap *= 2, --shift_;
     slots_.assign(cap, Slot{});
     mask_ = cap - 1;
     for (std::uint32_t k = 0; k < count; ++k)
@@ -155,8 +156,10 @@ class FrozenGrid : public CubeKeys {
     std::uint64_t key = kEmpty;
     std::uint32_t begin = 0, count = 0;
   };
+  // Fibonacci hashing: the product's top bits (its low bits see only the key's low bits,
+  // and cubes apart along x differ only in the key's high ones).
   std::size_t home(std::uint64_t key) const {
-    return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 17) & mask_;
+    return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_) & mask_;
   }
   // The slot of `key`, taken if it had none (nullptr only if the table were full).
   Slot* slot(std::uint64_t key) {
@@ -179,6 +182,7 @@ class FrozenGrid : public CubeKeys {
   std::vector<Slot> slots_;
   std::vector<std::uint32_t> items_;
   std::size_t mask_ = 0;
+  int shift_ = 60;  // 64 - log2(slots)
 };
 using NodeGrid = CubeGrid<std::uint32_t>;
 
