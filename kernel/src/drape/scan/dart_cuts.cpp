@@ -28,7 +28,11 @@ bool Scanner::near_dart(const Known known[4], int nk) const {
 }
 
 void Scanner::cut_link(std::uint32_t a, const DrapeNode* b) {
-  cuts_.insert(DrapeResult::link_key(a, res_.index_of(*b)));
+  const std::uint32_t bi = res_.index_of(*b);
+  cuts_.insert(DrapeResult::link_key(a, bi));
+  const std::size_t last = std::max(a, bi);
+  if (cut_ends_.size() <= last) cut_ends_.resize(std::max(res_.nodes.capacity(), last + 1), false);
+  cut_ends_[a] = cut_ends_[bi] = true;
 }
 
 // Groups the known neighbours (a neighbour joins the first group whose first member it is

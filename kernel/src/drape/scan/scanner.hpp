@@ -138,8 +138,9 @@ class Scanner {
     if (k < 0) return nullptr;
     const DrapeNode& m = res_.nodes[static_cast<std::size_t>(k)];
     if (!m.carries()) return nullptr;
-    if (!cuts_.empty() &&
-        cuts_.count(DrapeResult::link_key(res_.index_of(n), static_cast<std::uint32_t>(k))))
+    const std::uint32_t ni = res_.index_of(n);
+    if (cut_end(ni) && cut_end(static_cast<std::uint32_t>(k)) &&
+        cuts_.count(DrapeResult::link_key(ni, static_cast<std::uint32_t>(k))))
       return nullptr;  // across a dart
     return &m;
   }
@@ -240,7 +241,11 @@ class Scanner {
   std::uint32_t popped_ = 0;  // frontier entries taken
   const SeedPolyline* seed_curve_ = nullptr;
   const DartSet* darts_ = nullptr;
-  std::unordered_set<std::uint64_t> cuts_;    // links across a dart (DrapeResult::link_key)
+  std::unordered_set<std::uint64_t> cuts_;  // links across a dart (DrapeResult::link_key)
+  // Per node: an end of a link in cuts_ (the set is asked only for links with both ends so:
+  // most links are far from every cut, and a lookup in the set divides).
+  std::vector<bool> cut_ends_;
+  bool cut_end(std::uint32_t k) const { return k < cut_ends_.size() && cut_ends_[k]; }
   std::unordered_set<std::uint32_t> parked_;  // nodes whose cloth so far lies across a dart
   std::vector<std::uint64_t> cut_out_;        // per dart: nodes left parked at the end
   bool seams_ = false;                        // seam_where_fronts_meet
