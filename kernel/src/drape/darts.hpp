@@ -109,13 +109,7 @@ class FrozenGrid : public CubeKeys {
   template <class CubesOf>
   FrozenGrid(double cube, std::uint32_t count, CubesOf&& cubes_of) {
     cell = cube;
-    std::size_t n = 0;
-    for (std::uint32_t k = 0; k < count; ++k) cubes_of(k, [&](std::uint64_t) { ++n; });
-    std::size_t cap = 16;  // at least twice the cubes: a slot is always free
-    shift_ = 60;
-    while (cap < 2 * n) cap *= 2, --shift_;
-    slots_.assign(cap, Slot{});
-    mask_ = cap - 1;
+    grow();
     for (std::uint32_t k = 0; k < count; ++k)
       cubes_of(k, [&](std::uint64_t c) {
         if (Slot* s = slot(c)) ++s->count;
@@ -161,15 +155,39 @@ class FrozenGrid : public CubeKeys {
   std::size_t home(std::uint64_t key) const {
     return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_) & mask_;
   }
-  // The slot of `key`, taken if it had none (nullptr only if the table were full).
+  // The slot of `key`, taken if it had none; the table doubles before it is half full (sized
+  // by the cubes, not by the items: a dart's segment lies in a dozen cubes its neighbours share).
   Slot* slot(std::uint64_t key) {
-    for (std::size_t i = home(key), probes = 0; probes < slots_.size();
-         ++probes, i = (i + 1) & mask_)
-      if (slots_[i].key == key || slots_[i].key == kEmpty) {
+    for (int pass = 0; pass < 2; ++pass) {
+      for (std::size_t i = home(key), probes = 0; probes < slots_.size();
+           ++probes, i = (i + 1) & mask_) {
+        if (slots_[i].key == key) return &slots_[i];
+        if (slots_[i].key != kEmpty) continue;
+        if (2 * (used_ + 1) > slots_.size()) break;  // grow first
         slots_[i].key = key;
+        ++used_;
         return &slots_[i];
       }
-    return nullptr;
+      grow();
+    }
+    return nullptr;  // not reached: after growing, the table is less than half full
+  }
+  // Doubles the table (16 slots at first), the cubes taken so far placed again.
+  void grow() {
+    std::vector<Slot> old = std::move(slots_);
+    slots_.assign(old.empty() ? 16 : 2 * old.size(), Slot{});
+    mask_ = slots_.size() - 1;
+    shift_ = 64;
+    for (std::size_t n = slots_.size(); n > 1; n /= 2) --shift_;
+    for (const Slot& o : old) {
+      if (o.key == kEmpty) continue;
+      for (std::size_t i = home(o.key), probes = 0; probes < slots_.size();
+           ++probes, i = (i + 1) & mask_)
+        if (slots_[i].key == kEmpty) {
+          slots_[i] = o;
+          break;
+        }
+    }
   }
   const Slot* find(std::uint64_t key) const {
     for (std::size_t i = home(key), probes = 0; probes < slots_.size();
@@ -182,7 +200,8 @@ class FrozenGrid : public CubeKeys {
   std::vector<Slot> slots_;
   std::vector<std::uint32_t> items_;
   std::size_t mask_ = 0;
-  int shift_ = 60;  // 64 - log2(slots)
+  int shift_ = 60;        // 64 - log2(slots)
+  std::size_t used_ = 0;  // slots taken
 };
 using NodeGrid = CubeGrid<std::uint32_t>;
 
