@@ -138,10 +138,11 @@ class Scanner {
     if (k < 0) return nullptr;
     const DrapeNode& m = res_.nodes[static_cast<std::size_t>(k)];
     if (!m.carries()) return nullptr;
-    const std::uint32_t ni = res_.index_of(n);
-    if (cut_end(ni) && cut_end(static_cast<std::uint32_t>(k)) &&
-        cuts_.count(DrapeResult::link_key(ni, static_cast<std::uint32_t>(k))))
-      return nullptr;  // across a dart
+    if (!cuts_.empty() && cut_end(static_cast<std::uint32_t>(k))) {
+      const std::uint32_t ni = res_.index_of(n);
+      if (cut_end(ni) && cuts_.count(DrapeResult::link_key(ni, static_cast<std::uint32_t>(k))))
+        return nullptr;  // across a dart
+    }
     return &m;
   }
   bool cancelled_now();
