@@ -161,17 +161,13 @@ void DartSet::index() {
     }
   }
   const CubeKeys cubes{reach};
-  segment_cubes_ = FrozenGrid(
-      reach, static_cast<std::uint32_t>(segments_.size()), [&](std::uint32_t i, auto&& emit) {
-        const auto& pts = curves_[segments_[i].curve].points;
-        const std::size_t k = segments_[i].k;
-        const Vec3 lo = pts[k].cwiseMin(pts[k + 1]).array() - reach;
-        const Vec3 hi = pts[k].cwiseMax(pts[k + 1]).array() + reach;
-        for (std::int64_t x = cubes.at(lo.x()); x <= cubes.at(hi.x()); ++x)
-          for (std::int64_t y = cubes.at(lo.y()); y <= cubes.at(hi.y()); ++y)
-            for (std::int64_t z = cubes.at(lo.z()); z <= cubes.at(hi.z()); ++z)
-              emit(CubeKeys::key(x, y, z));
-      });
+  segment_cubes_ = FrozenGrid(reach, static_cast<std::uint32_t>(segments_.size()),
+                              [&](std::uint32_t i, auto&& emit) {
+                                const auto& pts = curves_[segments_[i].curve].points;
+                                const std::size_t k = segments_[i].k;
+                                cubes.in_box(pts[k].cwiseMin(pts[k + 1]).array() - reach,
+                                             pts[k].cwiseMax(pts[k + 1]).array() + reach, emit);
+                              });
 }
 
 double DartSet::distance(const Segment& g, const Vec3& p) const {

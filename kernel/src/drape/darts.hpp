@@ -64,6 +64,13 @@ struct CubeKeys {
   }
   std::int64_t at(double v) const { return static_cast<std::int64_t>(std::floor(v / cell)); }
   std::uint64_t key(const Vec3& p) const { return key(at(p.x()), at(p.y()), at(p.z())); }
+  /// Calls f(key) for every cube the box [lo, hi] meets.
+  template <class F>
+  void in_box(const Vec3& lo, const Vec3& hi, F&& f) const {
+    for (std::int64_t x = at(lo.x()); x <= at(hi.x()); ++x)
+      for (std::int64_t y = at(lo.y()); y <= at(hi.y()); ++y)
+        for (std::int64_t z = at(lo.z()); z <= at(hi.z()); ++z) f(key(x, y, z));
+  }
   /// Calls f(key) for the 27 cubes around p, in one order.
   template <class F>
   void around(const Vec3& p, F&& f) const {

@@ -20,13 +20,12 @@ constexpr int kWidthBisections = 60;
 // least one vertex of a tip and adds at most two; the cap only bounds a pathological case).
 constexpr int kExtraCuts = 16;
 
-// A search bounded by a distance (nearest_on, chord_clear) passes over what lies beyond it by
-// more than this much of it (or of the coordinates): far above rounding, far below any width.
+// A test that passes over what lies beyond a distance (nearest_on, chord_clear) or takes a
+// sample's hull as wider than w (hull_narrower) does so only beyond it by this much of it (or
+// of the coordinates): far above rounding, far below any width.
 constexpr double kBoundMargin = 1e-9;
 // Points of a long loop sampled first for the width test (hull_narrower): one in this many.
 constexpr std::size_t kHullSampleStride = 16;
-// A sample's hull counts as wider than w when it is wider than w (1 + this).
-constexpr double kHullSampleMargin = 1e-9;
 
 using Index = std::ptrdiff_t;
 
@@ -90,11 +89,11 @@ ArcPoint nearest_on_edge(const Arc& a, Index i, const Vec2& x) {
   return {i, t, q, (q - x).norm()};
 }
 
-// Whether the box of edge i of `a` lies farther than `reach` from x along an axis (then every
-// point of the edge does).
-bool edge_beyond(const Arc& a, Index i, const Vec2& x, double reach) {
-  const Vec2 s = a.vertex(i), t = a.vertex(i + 1);
-  return (s.cwiseMin(t) - x).maxCoeff() > reach || (x - s.cwiseMax(t)).maxCoeff() > reach;
+// Whether the boxes of the segments a0-a1 and b0-b1 lie farther apart than `gap` along an axis
+// (then every point of one lies farther than `gap` from every point of the other).
+bool boxes_apart(const Vec2& a0, const Vec2& a1, const Vec2& b0, const Vec2& b1, double gap) {
+  return (a0.cwiseMin(a1) - b0.cwiseMax(b1)).maxCoeff() > gap ||
+         (b0.cwiseMin(b1) - a0.cwiseMax(a1)).maxCoeff() > gap;
 }
 
 // The nearest point of `a` to x (the first of the nearest in the arc's order). Given `bound`,
@@ -105,18 +104,15 @@ ArcPoint nearest_on(const Arc& a, const Vec2& x, double bound = INFINITY) {
   ArcPoint best;
   best.dist = INFINITY;
   for (Index i = 0; i < a.edges(); ++i) {
-    if (reach < INFINITY && edge_beyond(a, i, x, reach)) continue;
+    if (reach < INFINITY && boxes_apart(a.vertex(i), a.vertex(i + 1), x, x, reach)) continue;
     if (const ArcPoint p = nearest_on_edge(a, i, x); p.dist < best.dist) best = p;
   }
   return best;
 }
 
-// Whether edge i of `a` passes closer than w to x (the distance of nearest_on).
+// Whether edge i of `a` passes closer than w to x.
 bool edge_within(const Arc& a, Index i, const Vec2& x, double w) {
-  const Vec2 s = a.vertex(i), e = a.vertex(i + 1) - s;
-  const double ee = e.squaredNorm();
-  const double t = ee > 0.0 ? std::clamp((x - s).dot(e) / ee, 0.0, 1.0) : 0.0;
-  return (s + t * e - x).norm() < w;
+  return nearest_on_edge(a, i, x).dist < w;
 }
 
 // Whether some edge of `a` passes closer than w to x (nearest_on(a, x).dist < w, the same
@@ -131,13 +127,9 @@ bool within(const Arc& a, const Vec2& x, double w) {
 // whose box lies farther than 2 w from the segment's along an axis (farther than w from
 // every point of it, rounding of the points on it included).
 std::vector<Index> edges_near(const Arc& a, const Vec2& p, const Vec2& q, double w) {
-  const Vec2 lo = p.cwiseMin(q).array() - 2.0 * w, hi = p.cwiseMax(q).array() + 2.0 * w;
   std::vector<Index> near;
-  for (Index i = 0; i < a.edges(); ++i) {
-    const Vec2 s = a.vertex(i), t = a.vertex(i + 1);
-    if ((s.cwiseMax(t).array() >= lo.array()).all() && (s.cwiseMin(t).array() <= hi.array()).all())
-      near.push_back(i);
-  }
+  for (Index i = 0; i < a.edges(); ++i)
+    if (!boxes_apart(a.vertex(i), a.vertex(i + 1), p, q, 2.0 * w)) near.push_back(i);
   return near;
 }
 
@@ -228,8 +220,7 @@ Loop apply(const Loop& l, const Cut& c) {
 // the two it ends on excepted).
 bool chord_clear(const std::vector<Loop>& loops, std::size_t li, const Cut& c) {
   if (c.P == c.Q) return false;
-  const Vec2 lo = c.P.cwiseMin(c.Q), hi = c.P.cwiseMax(c.Q);
-  const double gap = kBoundMargin * (1.0 + lo.cwiseAbs().maxCoeff() + hi.cwiseAbs().maxCoeff());
+  const double gap = kBoundMargin * (1.0 + c.P.cwiseAbs().maxCoeff() + c.Q.cwiseAbs().maxCoeff());
   for (std::size_t m = 0; m < loops.size(); ++m) {
     const Loop& l = loops[m];
     for (Index k = 0; k < l.n(); ++k) {
@@ -240,7 +231,7 @@ bool chord_clear(const std::vector<Loop>& loops, std::size_t li, const Cut& c) {
       // Boxes apart by more than a hair: the segments cannot meet (the orientation tests
       // decide only for the rest).
       const Vec2 a = l.at(k), b = l.at(k + 1);
-      if ((lo - a.cwiseMax(b)).maxCoeff() > gap || (a.cwiseMin(b) - hi).maxCoeff() > gap) continue;
+      if (boxes_apart(c.P, c.Q, a, b, gap)) continue;
       if (segments_meet(c.P, c.Q, a, b)) return false;
     }
   }
@@ -338,14 +329,14 @@ bool hull_narrower_all(std::vector<Vec2> p, double w) {
 }
 
 // hull_narrower, first on every kHullSampleStride-th point when there are many: their hull
-// lies inside the loop's, so when even it is wider than w (by kHullSampleMargin, far above
+// lies inside the loop's, so when even it is wider than w (by kBoundMargin, far above
 // rounding) so is the loop's, and the answer (false) is the same without sorting every point
 // after every cut of a long outline.
 bool hull_narrower(std::vector<Vec2> p, double w) {
   if (p.size() >= 4 * kHullSampleStride) {
     std::vector<Vec2> sample;
     for (std::size_t i = 0; i < p.size(); i += kHullSampleStride) sample.push_back(p[i]);
-    if (!hull_narrower_all(std::move(sample), w * (1.0 + kHullSampleMargin))) return false;
+    if (!hull_narrower_all(std::move(sample), w * (1.0 + kBoundMargin))) return false;
   }
   return hull_narrower_all(std::move(p), w);
 }

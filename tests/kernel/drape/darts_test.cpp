@@ -92,13 +92,8 @@ TEST_CASE("darts: the frozen grid finds points as the cube grid does, and boxes 
     return true;
   };
   const detail::FrozenGrid boxed(
-      cell, static_cast<std::uint32_t>(boxes.size()), [&](std::uint32_t k, auto&& emit) {
-        const auto& [lo, hi] = boxes[k];
-        for (std::int64_t x = cubes.at(lo.x()); x <= cubes.at(hi.x()); ++x)
-          for (std::int64_t y = cubes.at(lo.y()); y <= cubes.at(hi.y()); ++y)
-            for (std::int64_t z = cubes.at(lo.z()); z <= cubes.at(hi.z()); ++z)
-              emit(detail::CubeKeys::key(x, y, z));
-      });
+      cell, static_cast<std::uint32_t>(boxes.size()),
+      [&](std::uint32_t k, auto&& emit) { cubes.in_box(boxes[k].first, boxes[k].second, emit); });
   std::size_t listed = 0;
   for (int q = 0; q < 500; ++q) {
     const Vec3 p = 3.5 * Vec3(u(rng), u(rng), u(rng));

@@ -44,8 +44,10 @@ std::uint64_t mix(std::uint64_t h, const DrapeNode& n) {
 void Scanner::memo(const SolveMemo* last, SolveMemo* next) {
   memo_last_ = last;
   memo_next_ = next;
-  if (next) next->nodes.reserve(res_.nodes.capacity());
-  if (next) next->index = res_.index;
+  if (next) {
+    next->nodes.reserve(res_.nodes.capacity());
+    next->index = res_.index;
+  }
 }
 
 // The hash of what q's solve reads: q's neighbours (status; whether the cloth goes on from
