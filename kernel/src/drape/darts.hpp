@@ -99,9 +99,9 @@ struct CubeGrid : CubeKeys {
 
 /// Numbers 0 .. count - 1 (a drape's nodes, points of a curve, segments of darts) by 3D
 /// position in cubes of side `cell`, all given at once: one array of them by cube and an
-/// open-addressing table of the cubes, two passes over them and no allocation per cube (a hash
-/// map of vectors took longer to build and free than the darts' walks that ask it, and its
-/// lookups divide). Each cube lists its numbers in increasing order: around() and in() visit
+/// open-addressing table of the cubes, two passes over them, no allocation per cube and
+/// lookups without a division (docs/decisions/darts.md: what a hash map of vectors cost the
+/// darts' proposals). Each cube lists its numbers in increasing order: around() and in() visit
 /// the same items in the same order as a CubeGrid's to which they were added in that order.
 class FrozenGrid : public CubeKeys {
  public:

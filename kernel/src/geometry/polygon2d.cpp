@@ -51,8 +51,8 @@ BgPolygon to_polygon(const std::vector<Vec2>& loop) {
 }
 
 // The parts combined by `op` two by two, a balanced tree: each part meets parts of its own
-// size, not the whole result so far (with a hundred parts against a flat pattern's outline,
-// that was most of the pattern's time).
+// size, not the whole result so far (a hundred darts' notches against a flat pattern's
+// outline would each pass over the whole outline).
 template <class Op>
 BgMulti pairwise(std::vector<BgMulti> parts, Op op) {
   while (parts.size() > 1) {
